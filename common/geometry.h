@@ -1,0 +1,93 @@
+// Small 2D/3D vector types and the polygon predicates every stage shares.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+namespace citygen {
+
+struct Vec2 {
+    double x = 0, y = 0;
+    Vec2() = default;
+    Vec2(double x_, double y_) : x(x_), y(y_) {}
+    Vec2 operator+(Vec2 o) const { return {x + o.x, y + o.y}; }
+    Vec2 operator-(Vec2 o) const { return {x - o.x, y - o.y}; }
+    Vec2 operator*(double s) const { return {x * s, y * s}; }
+    bool operator==(const Vec2& o) const { return x == o.x && y == o.y; }
+    bool operator!=(const Vec2& o) const { return !(*this == o); }
+};
+
+inline double dot(Vec2 a, Vec2 b) { return a.x * b.x + a.y * b.y; }
+inline double cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+inline double length(Vec2 a) { return std::sqrt(dot(a, a)); }
+inline Vec2 normalize(Vec2 a) { double l = length(a); return l > 0 ? a * (1.0 / l) : a; }
+inline Vec2 perp_left(Vec2 a) { return {-a.y, a.x}; }  // rotated 90 degrees CCW
+
+struct Vec3 {
+    double x = 0, y = 0, z = 0;
+    Vec3() = default;
+    Vec3(double x_, double y_, double z_) : x(x_), y(y_), z(z_) {}
+    Vec3 operator+(Vec3 o) const { return {x + o.x, y + o.y, z + o.z}; }
+    Vec3 operator-(Vec3 o) const { return {x - o.x, y - o.y, z - o.z}; }
+    Vec3 operator*(double s) const { return {x * s, y * s, z * s}; }
+    Vec3 operator*(Vec3 o) const { return {x * o.x, y * o.y, z * o.z}; }
+    Vec3 operator-() const { return {-x, -y, -z}; }
+    double operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+};
+
+inline double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(Vec3 a, Vec3 b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
+inline Vec3 normalize(Vec3 a) { double l = length(a); return l > 0 ? a * (1.0 / l) : a; }
+
+// A ring is a closed polygon boundary stored without repeating the first point.
+using Ring = std::vector<Vec2>;
+
+// Twice the signed area is avoided on purpose: callers want square metres.
+// Positive for counter-clockwise rings.
+inline double signed_area(const Ring& ring) {
+    double a = 0;
+    for (size_t i = 0, n = ring.size(); i < n; ++i) a += cross(ring[i], ring[(i + 1) % n]);
+    return 0.5 * a;
+}
+
+// Winding-number point-in-polygon; points exactly on the boundary may go either way.
+inline bool point_in_ring(Vec2 p, const Ring& ring) {
+    int winding = 0;
+    for (size_t i = 0, n = ring.size(); i < n; ++i) {
+        Vec2 a = ring[i], b = ring[(i + 1) % n];
+        if (a.y <= p.y) {
+            if (b.y > p.y && cross(b - a, p - a) > 0) ++winding;
+        } else if (b.y <= p.y && cross(b - a, p - a) < 0) {
+            --winding;
+        }
+    }
+    return winding != 0;
+}
+
+// True when segments [a,b] and [c,d] share any point.
+bool segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
+
+// True when no two non-adjacent edges of the ring touch and it has >= 3 distinct points.
+bool ring_is_simple(const Ring& ring);
+
+// True for a convex ring (either orientation), allowing collinear vertices.
+bool ring_is_convex(const Ring& ring);
+
+struct Box2 {
+    Vec2 min{1e300, 1e300}, max{-1e300, -1e300};
+    void extend(Vec2 p) {
+        min.x = std::fmin(min.x, p.x); min.y = std::fmin(min.y, p.y);
+        max.x = std::fmax(max.x, p.x); max.y = std::fmax(max.y, p.y);
+    }
+    bool empty() const { return min.x > max.x; }
+    bool overlaps(const Box2& o) const {
+        return min.x <= o.max.x && o.min.x <= max.x && min.y <= o.max.y && o.min.y <= max.y;
+    }
+};
+
+inline Box2 bounds_of(const Ring& ring) { Box2 b; for (Vec2 p : ring) b.extend(p); return b; }
+
+}  // namespace citygen

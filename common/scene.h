@@ -1,0 +1,113 @@
+// The in-memory scene: plain data that osmparse produces and render consumes.
+// scene_io.h converts it to and from the on-disk format defined in schema/scene.fbs.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry.h"
+
+namespace citygen {
+
+constexpr uint16_t kSceneFormatMajor = 1;
+constexpr uint16_t kSceneFormatMinor = 0;
+
+enum class OsmType : uint8_t { Node = 0, Way = 1, Relation = 2 };
+
+struct OsmRef {
+    OsmType type = OsmType::Way;
+    int64_t id = 0;
+    bool operator==(const OsmRef& o) const { return type == o.type && id == o.id; }
+    bool operator<(const OsmRef& o) const { return type != o.type ? type < o.type : id < o.id; }
+};
+
+std::string to_string(OsmRef ref);  // "w123", "r45", "n6"
+
+enum class HeightSource : uint8_t { Tagged = 0, Levels = 1, Random = 2 };
+
+struct Building {
+    OsmRef osm;
+    Ring outer;               // CCW
+    std::vector<Ring> holes;  // CW
+    double min_height = 0;
+    double height = 0;
+    int levels = 0;
+    HeightSource height_source = HeightSource::Random;
+    std::string type;
+    bool is_part = false;
+};
+
+enum class RoadClass : uint8_t {
+    Motorway = 0, Trunk, Primary, Secondary, Tertiary, Unclassified,
+    Residential, LivingStreet, Service, Other
+};
+
+struct RoadEdge {
+    OsmRef osm;
+    int64_t from_node = 0, to_node = 0;
+    std::vector<Vec2> centreline;
+    Ring quad;                // 4 points CCW
+    double width = 0;
+    RoadClass road_class = RoadClass::Other;
+    int lanes = 0;
+    bool oneway = false;
+    bool bridge = false;
+    int from_joint = -1, to_joint = -1;
+    bool sidewalk_left = false, sidewalk_right = false;
+};
+
+struct Joint {
+    OsmRef osm;
+    Ring polygon;             // CCW
+    std::vector<uint32_t> edges;
+};
+
+enum class SidewalkKind : uint8_t { Strip = 0, Corner = 1 };
+
+struct Sidewalk {
+    SidewalkKind kind = SidewalkKind::Strip;
+    Ring polygon;             // CCW
+    int road = -1;
+    int joint = -1;
+    double curb_height = 0.15;
+};
+
+enum class LampSource : uint8_t { Tagged = 0, Generated = 1 };
+
+struct Lamp {
+    OsmRef osm;
+    Vec3 position;
+    double height = 6;
+    LampSource source = LampSource::Tagged;
+};
+
+struct Ground {
+    Vec2 min, max;
+    double z = 0;
+};
+
+struct SceneHeader {
+    uint16_t format_major = kSceneFormatMajor;
+    uint16_t format_minor = kSceneFormatMinor;
+    std::string generator;
+    double origin_lat = 0, origin_lon = 0;
+    std::string projection;
+    Vec2 bounds_min, bounds_max;
+    uint64_t seed = 0;
+    std::vector<std::pair<std::string, std::string>> options;  // sorted by key
+    std::string source;
+};
+
+struct Scene {
+    SceneHeader header;
+    std::vector<Building> buildings;
+    std::vector<RoadEdge> roads;
+    std::vector<Joint> joints;
+    std::vector<Sidewalk> sidewalks;
+    std::vector<Lamp> lamps;
+    Ground ground;
+};
+
+}  // namespace citygen

@@ -1,0 +1,304 @@
+#include "scene_io.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <unistd.h>
+
+#include "error.h"
+#include "scene_generated.h"
+
+namespace citygen {
+
+std::string to_string(OsmRef ref) {
+    const char prefix = ref.type == OsmType::Node ? 'n' : ref.type == OsmType::Way ? 'w' : 'r';
+    return prefix + std::to_string(ref.id);
+}
+
+namespace {
+
+namespace fb = citygen::fb;
+
+fb::Vec2 to_fb(Vec2 p) { return {static_cast<float>(p.x), static_cast<float>(p.y)}; }
+fb::Vec3 to_fb(Vec3 p) {
+    return {static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)};
+}
+fb::OsmRef to_fb(OsmRef r) { return {static_cast<fb::OsmType>(r.type), r.id}; }
+
+using Builder = flatbuffers::FlatBufferBuilder;
+
+flatbuffers::Offset<flatbuffers::Vector<const fb::Vec2*>> points(Builder& b,
+                                                                 const std::vector<Vec2>& pts) {
+    std::vector<fb::Vec2> v;
+    v.reserve(pts.size());
+    for (Vec2 p : pts) v.push_back(to_fb(p));
+    return b.CreateVectorOfStructs(v);
+}
+
+flatbuffers::Offset<fb::Ring> ring(Builder& b, const Ring& r) {
+    return fb::CreateRing(b, points(b, r));
+}
+
+// ---- decoding: never trust the bytes -------------------------------------------------
+
+struct Checker {
+    const std::string& name;
+    [[noreturn]] void fail(const std::string& what) const {
+        throw Error(name + ": " + what);
+    }
+    double finite(float v, const char* what) const {
+        if (!std::isfinite(v)) fail(std::string("non-finite coordinate in ") + what);
+        return v;
+    }
+    Vec2 vec(const fb::Vec2* p, const char* what) const {
+        if (!p) fail(std::string("missing point in ") + what);
+        return {finite(p->x(), what), finite(p->y(), what)};
+    }
+    std::vector<Vec2> pts(const flatbuffers::Vector<const fb::Vec2*>* v, const char* what) const {
+        std::vector<Vec2> out;
+        if (!v) return out;
+        out.reserve(v->size());
+        for (const fb::Vec2* p : *v) out.push_back(vec(p, what));
+        return out;
+    }
+    Ring ring(const fb::Ring* r, const char* what) const {
+        if (!r) fail(std::string("missing ring in ") + what);
+        return pts(r->points(), what);
+    }
+    OsmRef osm(const fb::OsmRef* r) const {
+        if (!r) return {};
+        if (r->type() > fb::OsmType::MAX) fail("invalid OSM object type");
+        return {static_cast<OsmType>(r->type()), r->id()};
+    }
+    int index(int i, size_t count, const char* what) const {
+        if (i < -1 || i >= static_cast<int64_t>(count))
+            fail(std::string(what) + " index " + std::to_string(i) + " out of range");
+        return i;
+    }
+};
+
+std::string str(const flatbuffers::String* s) { return s ? s->str() : std::string(); }
+
+}  // namespace
+
+std::vector<uint8_t> encode_scene(const Scene& scene) {
+    Builder b(1 << 16);
+    b.ForceDefaults(true);  // a field equal to its default is still written: stable layout
+    const SceneHeader& h = scene.header;
+
+    std::vector<flatbuffers::Offset<fb::KeyValue>> options;
+    for (const auto& [k, v] : h.options)
+        options.push_back(fb::CreateKeyValue(b, b.CreateString(k), b.CreateString(v)));
+    fb::Vec2 bmin = to_fb(h.bounds_min), bmax = to_fb(h.bounds_max);
+    auto header = fb::CreateHeader(b, h.format_major, h.format_minor, b.CreateString(h.generator),
+                                   h.origin_lat, h.origin_lon, b.CreateString(h.projection),
+                                   &bmin, &bmax, h.seed, b.CreateVector(options),
+                                   b.CreateString(h.source));
+
+    std::vector<flatbuffers::Offset<fb::Building>> buildings;
+    for (const Building& x : scene.buildings) {
+        std::vector<flatbuffers::Offset<fb::Ring>> holes;
+        for (const Ring& r : x.holes) holes.push_back(ring(b, r));
+        fb::OsmRef osm = to_fb(x.osm);
+        buildings.push_back(fb::CreateBuilding(
+            b, &osm, ring(b, x.outer), b.CreateVector(holes), static_cast<float>(x.min_height),
+            static_cast<float>(x.height), static_cast<int16_t>(x.levels),
+            static_cast<fb::HeightSource>(x.height_source), b.CreateString(x.type), x.is_part));
+    }
+
+    std::vector<flatbuffers::Offset<fb::RoadEdge>> roads;
+    for (const RoadEdge& x : scene.roads) {
+        fb::OsmRef osm = to_fb(x.osm);
+        roads.push_back(fb::CreateRoadEdge(
+            b, &osm, x.from_node, x.to_node, points(b, x.centreline), points(b, x.quad),
+            static_cast<float>(x.width), static_cast<fb::RoadClass>(x.road_class),
+            static_cast<uint8_t>(x.lanes), x.oneway, x.bridge, x.from_joint, x.to_joint,
+            x.sidewalk_left, x.sidewalk_right));
+    }
+
+    std::vector<flatbuffers::Offset<fb::Joint>> joints;
+    for (const Joint& x : scene.joints) {
+        fb::OsmRef osm = to_fb(x.osm);
+        joints.push_back(
+            fb::CreateJoint(b, &osm, points(b, x.polygon), b.CreateVector(x.edges)));
+    }
+
+    std::vector<flatbuffers::Offset<fb::Sidewalk>> sidewalks;
+    for (const Sidewalk& x : scene.sidewalks)
+        sidewalks.push_back(fb::CreateSidewalk(b, static_cast<fb::SidewalkKind>(x.kind),
+                                               points(b, x.polygon), x.road, x.joint,
+                                               static_cast<float>(x.curb_height)));
+
+    std::vector<flatbuffers::Offset<fb::Lamp>> lamps;
+    for (const Lamp& x : scene.lamps) {
+        fb::OsmRef osm = to_fb(x.osm);
+        fb::Vec3 pos = to_fb(x.position);
+        lamps.push_back(fb::CreateLamp(b, &osm, &pos, static_cast<float>(x.height),
+                                       static_cast<fb::LampSource>(x.source)));
+    }
+
+    fb::Vec2 gmin = to_fb(scene.ground.min), gmax = to_fb(scene.ground.max);
+    auto ground = fb::CreateGround(b, &gmin, &gmax, static_cast<float>(scene.ground.z));
+
+    auto root = fb::CreateScene(b, header, b.CreateVector(buildings), b.CreateVector(roads),
+                                b.CreateVector(joints), b.CreateVector(sidewalks),
+                                b.CreateVector(lamps), ground);
+    fb::FinishSceneBuffer(b, root);
+    return {b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize()};
+}
+
+Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
+    Checker check{name};
+    if (size == 0) check.fail("empty file, not a citygen scene");
+    if (size < 8 || !fb::SceneBufferHasIdentifier(data))
+        check.fail("not a citygen scene (wrong file identifier)");
+    flatbuffers::Verifier verifier(data, size, 64, 100000000);
+    if (!fb::VerifySceneBuffer(verifier)) check.fail("corrupt or truncated scene (verification failed)");
+
+    const fb::Scene* in = fb::GetScene(data);
+    const fb::Header* h = in->header();
+    if (!h) check.fail("scene has no header");
+    if (h->format_major() > kSceneFormatMajor)
+        check.fail("scene format " + std::to_string(h->format_major()) + "." +
+                   std::to_string(h->format_minor()) + " is newer than this program reads (" +
+                   std::to_string(kSceneFormatMajor) + ".x); update citygen");
+
+    Scene s;
+    SceneHeader& out = s.header;
+    out.format_major = h->format_major();
+    out.format_minor = h->format_minor();
+    out.generator = str(h->generator());
+    out.origin_lat = h->origin_lat();
+    out.origin_lon = h->origin_lon();
+    if (!std::isfinite(out.origin_lat) || !std::isfinite(out.origin_lon) ||
+        std::fabs(out.origin_lat) > 90 || std::fabs(out.origin_lon) > 180)
+        check.fail("origin is not a valid latitude/longitude");
+    out.projection = str(h->projection());
+    out.bounds_min = check.vec(h->bounds_min(), "header bounds");
+    out.bounds_max = check.vec(h->bounds_max(), "header bounds");
+    out.seed = h->seed();
+    if (h->options())
+        for (const fb::KeyValue* kv : *h->options())
+            out.options.emplace_back(str(kv->key()), str(kv->value()));
+    out.source = str(h->source());
+
+    if (in->buildings())
+        for (const fb::Building* x : *in->buildings()) {
+            Building bld;
+            bld.osm = check.osm(x->osm());
+            bld.outer = check.ring(x->outer(), "building outline");
+            if (x->holes())
+                for (const fb::Ring* r : *x->holes()) bld.holes.push_back(check.ring(r, "building hole"));
+            bld.min_height = check.finite(x->min_height(), "building height");
+            bld.height = check.finite(x->height(), "building height");
+            bld.levels = x->levels();
+            if (x->height_source() > fb::HeightSource::MAX) check.fail("invalid height source");
+            bld.height_source = static_cast<HeightSource>(x->height_source());
+            bld.type = str(x->type());
+            bld.is_part = x->is_part();
+            s.buildings.push_back(std::move(bld));
+        }
+
+    const size_t road_count = in->roads() ? in->roads()->size() : 0;
+    const size_t joint_count = in->joints() ? in->joints()->size() : 0;
+
+    if (in->roads())
+        for (const fb::RoadEdge* x : *in->roads()) {
+            RoadEdge r;
+            r.osm = check.osm(x->osm());
+            r.from_node = x->from_node();
+            r.to_node = x->to_node();
+            r.centreline = check.pts(x->centreline(), "road centreline");
+            r.quad = check.pts(x->quad(), "road quadrangle");
+            r.width = check.finite(x->width(), "road width");
+            if (x->road_class() > fb::RoadClass::MAX) check.fail("invalid road class");
+            r.road_class = static_cast<RoadClass>(x->road_class());
+            r.lanes = x->lanes();
+            r.oneway = x->oneway();
+            r.bridge = x->bridge();
+            r.from_joint = check.index(x->from_joint(), joint_count, "road joint");
+            r.to_joint = check.index(x->to_joint(), joint_count, "road joint");
+            r.sidewalk_left = x->sidewalk_left();
+            r.sidewalk_right = x->sidewalk_right();
+            s.roads.push_back(std::move(r));
+        }
+
+    if (in->joints())
+        for (const fb::Joint* x : *in->joints()) {
+            Joint j;
+            j.osm = check.osm(x->osm());
+            j.polygon = check.pts(x->polygon(), "joint polygon");
+            if (x->edges())
+                for (uint32_t e : *x->edges()) {
+                    if (e >= road_count) check.fail("joint edge index " + std::to_string(e) + " out of range");
+                    j.edges.push_back(e);
+                }
+            s.joints.push_back(std::move(j));
+        }
+
+    if (in->sidewalks())
+        for (const fb::Sidewalk* x : *in->sidewalks()) {
+            Sidewalk w;
+            if (x->kind() > fb::SidewalkKind::MAX) check.fail("invalid sidewalk kind");
+            w.kind = static_cast<SidewalkKind>(x->kind());
+            w.polygon = check.pts(x->polygon(), "sidewalk polygon");
+            w.road = check.index(x->road(), road_count, "sidewalk road");
+            w.joint = check.index(x->joint(), joint_count, "sidewalk joint");
+            w.curb_height = check.finite(x->curb_height(), "sidewalk curb height");
+            s.sidewalks.push_back(std::move(w));
+        }
+
+    if (in->lamps())
+        for (const fb::Lamp* x : *in->lamps()) {
+            Lamp l;
+            l.osm = check.osm(x->osm());
+            if (!x->position()) check.fail("lamp without position");
+            l.position = {check.finite(x->position()->x(), "lamp position"),
+                          check.finite(x->position()->y(), "lamp position"),
+                          check.finite(x->position()->z(), "lamp position")};
+            l.height = check.finite(x->height(), "lamp height");
+            if (x->source() > fb::LampSource::MAX) check.fail("invalid lamp source");
+            l.source = static_cast<LampSource>(x->source());
+            s.lamps.push_back(l);
+        }
+
+    if (const fb::Ground* g = in->ground()) {
+        s.ground.min = check.vec(g->min(), "ground");
+        s.ground.max = check.vec(g->max(), "ground");
+        s.ground.z = check.finite(g->z(), "ground");
+    }
+    return s;
+}
+
+Scene load_scene(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open scene file (" + std::strerror(errno) + ")");
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) throw Error(path + ": read error");
+    return decode_scene(bytes.data(), bytes.size(), path);
+}
+
+void write_file_atomically(const std::string& path, const void* data, size_t size) {
+    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw Error(path + ": cannot write (" + std::strerror(errno) + ")");
+    bool ok = std::fwrite(data, 1, size, f) == size;
+    ok = (std::fflush(f) == 0) && ok;
+    ok = (::fsync(::fileno(f)) == 0) && ok;
+    ok = (std::fclose(f) == 0) && ok;
+    if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
+        const std::string reason = std::strerror(errno);
+        std::remove(tmp.c_str());
+        throw Error(path + ": cannot write (" + reason + ")");
+    }
+}
+
+void save_scene(const Scene& scene, const std::string& path) {
+    const std::vector<uint8_t> bytes = encode_scene(scene);
+    write_file_atomically(path, bytes.data(), bytes.size());
+}
+
+}  // namespace citygen

@@ -1,0 +1,180 @@
+#include "scene_summary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace citygen {
+
+namespace {
+
+const char* road_class_name(RoadClass c) {
+    static const char* names[] = {"motorway", "trunk", "primary", "secondary", "tertiary",
+                                  "unclassified", "residential", "living_street", "service", "other"};
+    const auto i = static_cast<size_t>(c);
+    return i < sizeof names / sizeof *names ? names[i] : "?";
+}
+
+// Largest distance between corresponding points, or infinity when the counts differ.
+double max_point_distance(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+    if (a.size() != b.size()) return INFINITY;
+    double d = 0;
+    for (size_t i = 0; i < a.size(); ++i) d = std::max(d, length(a[i] - b[i]));
+    return d;
+}
+
+std::string metres(double d) {
+    if (!std::isfinite(d)) return "a different number of points";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3f m", d);
+    return buf;
+}
+
+// Objects keyed by a stable identity string; repeated identities get #0, #1, ... in file order.
+template <typename T, typename KeyFn>
+std::map<std::string, const T*> keyed(const std::vector<T>& items, KeyFn key) {
+    std::map<std::string, const T*> out;
+    std::map<std::string, int> seen;
+    for (const T& item : items) {
+        const std::string k = key(item);
+        out[k + "#" + std::to_string(seen[k]++)] = &item;
+    }
+    return out;
+}
+
+// Compares two keyed collections; `compare` returns "" when equal, else what changed.
+template <typename T, typename CompareFn>
+void diff_kind(const char* kind, const std::map<std::string, const T*>& a,
+               const std::map<std::string, const T*>& b, CompareFn compare,
+               std::vector<SceneChange>& out) {
+    for (const auto& [k, x] : a) {
+        auto it = b.find(k);
+        if (it == b.end()) {
+            out.push_back({"removed", std::string(kind) + " " + k, ""});
+        } else {
+            std::string detail = compare(*x, *it->second);
+            if (!detail.empty()) out.push_back({"changed", std::string(kind) + " " + k, detail});
+        }
+    }
+    for (const auto& [k, x] : b)
+        if (!a.count(k)) out.push_back({"added", std::string(kind) + " " + k, ""});
+}
+
+}  // namespace
+
+void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
+    const SceneHeader& h = s.header;
+    std::fprintf(out, "scene: %s\n", name.c_str());
+    std::fprintf(out, "format_version: %u.%u\n", h.format_major, h.format_minor);
+    std::fprintf(out, "generator: %s\n", h.generator.c_str());
+    std::fprintf(out, "source: %s\n", h.source.c_str());
+    std::fprintf(out, "origin: %.7f, %.7f (lat, lon; %s)\n", h.origin_lat, h.origin_lon,
+                 h.projection.c_str());
+    std::fprintf(out, "bounds: [%.1f, %.1f] - [%.1f, %.1f] m (%.0f x %.0f m)\n", h.bounds_min.x,
+                 h.bounds_min.y, h.bounds_max.x, h.bounds_max.y, h.bounds_max.x - h.bounds_min.x,
+                 h.bounds_max.y - h.bounds_min.y);
+    std::fprintf(out, "seed: %llu\n", static_cast<unsigned long long>(h.seed));
+
+    size_t holes = 0, parts = 0, tagged_heights = 0;
+    for (const Building& b : s.buildings) {
+        holes += b.holes.size();
+        parts += b.is_part;
+        tagged_heights += b.height_source != HeightSource::Random;
+    }
+    std::fprintf(out, "buildings: %zu\n", s.buildings.size());
+    std::fprintf(out, "building_parts: %zu\n", parts);
+    std::fprintf(out, "building_holes: %zu\n", holes);
+    std::fprintf(out, "buildings_with_tagged_height: %zu\n", tagged_heights);
+    std::fprintf(out, "roads: %zu\n", s.roads.size());
+    std::map<std::string, size_t> per_class;
+    for (const RoadEdge& r : s.roads) ++per_class[road_class_name(r.road_class)];
+    for (const auto& [c, n] : per_class) std::fprintf(out, "roads_%s: %zu\n", c.c_str(), n);
+    std::fprintf(out, "joints: %zu\n", s.joints.size());
+    size_t corners = 0;
+    for (const Sidewalk& w : s.sidewalks) corners += w.kind == SidewalkKind::Corner;
+    std::fprintf(out, "sidewalks: %zu (%zu strips, %zu corners)\n", s.sidewalks.size(),
+                 s.sidewalks.size() - corners, corners);
+    size_t generated = 0;
+    for (const Lamp& l : s.lamps) generated += l.source == LampSource::Generated;
+    std::fprintf(out, "lamps: %zu (%zu tagged, %zu generated)\n", s.lamps.size(),
+                 s.lamps.size() - generated, generated);
+    std::fprintf(out, "ground: [%.1f, %.1f] - [%.1f, %.1f] m at z=%.2f\n", s.ground.min.x,
+                 s.ground.min.y, s.ground.max.x, s.ground.max.y, s.ground.z);
+    std::fprintf(out, "options:\n");
+    for (const auto& [k, v] : h.options) std::fprintf(out, "  %s = %s\n", k.c_str(), v.c_str());
+}
+
+std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol) {
+    std::vector<SceneChange> out;
+    if (a.header.format_major != b.header.format_major || a.header.format_minor != b.header.format_minor)
+        out.push_back({"changed", "header", "format version differs"});
+    if (a.header.options != b.header.options) out.push_back({"changed", "header", "parse options differ"});
+
+    auto building_key = [](const Building& x) { return to_string(x.osm) + (x.is_part ? "/part" : ""); };
+    diff_kind("building", keyed(a.buildings, building_key), keyed(b.buildings, building_key),
+              [tol](const Building& x, const Building& y) -> std::string {
+                  double d = max_point_distance(x.outer, y.outer);
+                  if (d > tol) return "outline moved " + metres(d);
+                  if (x.holes.size() != y.holes.size()) return "number of holes differs";
+                  for (size_t i = 0; i < x.holes.size(); ++i)
+                      if ((d = max_point_distance(x.holes[i], y.holes[i])) > tol) return "hole moved " + metres(d);
+                  if (std::fabs(x.height - y.height) > tol || std::fabs(x.min_height - y.min_height) > tol)
+                      return "height changed by " + metres(std::max(std::fabs(x.height - y.height),
+                                                                    std::fabs(x.min_height - y.min_height)));
+                  return "";
+              },
+              out);
+
+    auto road_key = [](const RoadEdge& x) {
+        return to_string(x.osm) + ":" + std::to_string(x.from_node) + "-" + std::to_string(x.to_node);
+    };
+    diff_kind("road", keyed(a.roads, road_key), keyed(b.roads, road_key),
+              [tol](const RoadEdge& x, const RoadEdge& y) -> std::string {
+                  double d = max_point_distance(x.quad, y.quad);
+                  if (d > tol) return "quadrangle moved " + metres(d);
+                  if ((d = max_point_distance(x.centreline, y.centreline)) > tol) return "centreline moved " + metres(d);
+                  if (std::fabs(x.width - y.width) > tol) return "width changed by " + metres(std::fabs(x.width - y.width));
+                  if (x.sidewalk_left != y.sidewalk_left || x.sidewalk_right != y.sidewalk_right) return "sidewalks differ";
+                  return "";
+              },
+              out);
+
+    auto joint_key = [](const Joint& x) { return to_string(x.osm); };
+    diff_kind("joint", keyed(a.joints, joint_key), keyed(b.joints, joint_key),
+              [tol](const Joint& x, const Joint& y) -> std::string {
+                  double d = max_point_distance(x.polygon, y.polygon);
+                  return d > tol ? "polygon moved " + metres(d) : "";
+              },
+              out);
+
+    // Sidewalks are keyed by the OSM identity of the road or joint they belong to.
+    auto sidewalk_key = [](const Scene& s) {
+        return [&s](const Sidewalk& x) {
+            if (x.kind == SidewalkKind::Strip && x.road >= 0) {
+                const RoadEdge& r = s.roads[x.road];
+                return "strip " + to_string(r.osm) + ":" + std::to_string(r.from_node) + "-" + std::to_string(r.to_node);
+            }
+            if (x.kind == SidewalkKind::Corner && x.joint >= 0) return "corner " + to_string(s.joints[x.joint].osm);
+            return std::string(x.kind == SidewalkKind::Strip ? "strip" : "corner");
+        };
+    };
+    diff_kind("sidewalk", keyed(a.sidewalks, sidewalk_key(a)), keyed(b.sidewalks, sidewalk_key(b)),
+              [tol](const Sidewalk& x, const Sidewalk& y) -> std::string {
+                  double d = max_point_distance(x.polygon, y.polygon);
+                  return d > tol ? "polygon moved " + metres(d) : "";
+              },
+              out);
+
+    auto lamp_key = [](const Lamp& x) {
+        return std::string(x.source == LampSource::Tagged ? "tagged " : "generated ") + to_string(x.osm);
+    };
+    diff_kind("lamp", keyed(a.lamps, lamp_key), keyed(b.lamps, lamp_key),
+              [tol](const Lamp& x, const Lamp& y) -> std::string {
+                  double d = length(x.position - y.position);
+                  return d > tol ? "moved " + metres(d) : "";
+              },
+              out);
+    return out;
+}
+
+}  // namespace citygen

@@ -1,0 +1,116 @@
+// osmparse: OpenStreetMap data in, citygen scene out. Also --info and --diff on scenes.
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "error.h"
+#include "pipeline.h"
+#include "scene_io.h"
+#include "scene_summary.h"
+
+using namespace citygen;
+
+namespace {
+
+int run_info(const std::string& path) {
+    print_scene_info(load_scene(path), path, stdout);
+    return 0;
+}
+
+int run_diff(const std::vector<std::string>& files, double tolerance) {
+    const Scene a = load_scene(files[0]);
+    const Scene b = load_scene(files[1]);
+    const std::vector<SceneChange> changes = diff_scenes(a, b, tolerance);
+    for (const SceneChange& c : changes)
+        std::printf("%-8s %s%s%s\n", c.what.c_str(), c.object.c_str(), c.detail.empty() ? "" : ": ",
+                    c.detail.c_str());
+    std::printf("%zu difference%s beyond %.3f m\n", changes.size(), changes.size() == 1 ? "" : "s",
+                tolerance);
+    return changes.empty() ? 0 : 1;
+}
+
+std::vector<std::string> split_list(const std::string& text) {
+    std::vector<std::string> out;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');)
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"osmparse: turn OpenStreetMap data into a citygen scene"};
+    app.set_version_flag("--version", std::string("citygen osmparse ") + CITYGEN_VERSION);
+
+    ParseJob job;
+    ParseParams& p = job.params;
+    std::string output, info_file, geojson;
+    std::vector<std::string> diff_files;
+    double tolerance = 0.01;
+    std::string ignore_types;
+
+    app.add_option("input", job.input, "OSM input: .osm, .osm.gz, .osm.bz2 or .osm.pbf");
+    app.add_option("-o,--output", output, "scene file to write");
+    app.add_option("--info", info_file, "print a summary of a scene file and exit");
+    app.add_option("--diff", diff_files, "compare two scene files; exit 0 only if they match")
+        ->expected(2);
+    app.add_option("--tolerance", tolerance, "distance in metres below which --diff ignores moves")
+        ->check(CLI::Range(0.0, 1e6))->capture_default_str();
+    app.add_option("--seed", p.seed, "seed for every random choice")->capture_default_str();
+    app.add_option("--building-min-h", p.buildings.random_min_height,
+                   "lowest random height (m) for buildings with no height tags")
+        ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
+    app.add_option("--building-max-h", p.buildings.random_max_height,
+                   "highest random height (m) for buildings with no height tags")
+        ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
+    app.add_option("--simplify-angle", p.buildings.simplify_angle_deg,
+                   "merge footprint edges whose direction changes by less than this (degrees)")
+        ->check(CLI::Range(0.0, 45.0))->capture_default_str();
+    app.add_option("--ignore-building-types", ignore_types,
+                   "comma-separated building=* values to skip (default: roof,carport,ruins,...)");
+    app.add_option("--road-merge-angle", p.roads.merge_angle_deg,
+                   "merge consecutive road edges turning less than this at degree-2 nodes (degrees)")
+        ->check(CLI::Range(0.0, 90.0))->capture_default_str();
+    app.add_option("--road-min-width", p.roads.min_width,
+                   "roads narrowed below this width (m) near buildings are dropped")
+        ->check(CLI::Range(0.0, 100.0))->capture_default_str();
+    app.add_option("--lamp-spacing", p.lamps.spacing, "distance between generated street lamps (m)")
+        ->check(CLI::Range(1.0, 10000.0))->capture_default_str();
+    app.add_option("--geojson", geojson, "also write the scene as GeoJSON in WGS84");
+    app.add_flag("-q,--quiet", job.quiet, "no progress and no report on stderr");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "osmparse: %s (see --help)\n", e.what());
+        return 2;
+    }
+
+    try {
+        if (!info_file.empty()) return run_info(info_file);
+        if (!diff_files.empty()) return run_diff(diff_files, tolerance);
+        if (job.input.empty() || output.empty())
+            throw Error("need an input file and -o OUTPUT.scene (see --help)");
+        if (p.buildings.random_min_height > p.buildings.random_max_height)
+            throw Error("--building-min-h is larger than --building-max-h");
+        if (!ignore_types.empty()) p.buildings.ignore_types = split_list(ignore_types);
+        p.buildings.seed = p.seed;
+
+        ParseReport report;
+        const Scene scene = parse_osm_to_scene(job, report);
+        save_scene(scene, output);
+        if (!job.quiet) report.print(stderr);
+        return 0;
+    } catch (const Error& e) {
+        std::fprintf(stderr, "osmparse: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "osmparse: unexpected error: %s\n", e.what());
+        return 1;
+    }
+}

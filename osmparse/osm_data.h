@@ -1,0 +1,70 @@
+// What the read stage keeps of an OSM file: only the objects later stages use, with
+// their tags and WGS84 locations. Plain data, no libosmium types, so stages and tests
+// can build it by hand.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene.h"
+
+namespace citygen {
+
+struct LatLon {
+    double lat = 0, lon = 0;
+};
+
+struct OsmTags {
+    std::vector<std::pair<std::string, std::string>> entries;
+
+    // The value of `key`, or nullptr when the tag is absent.
+    const char* get(const char* key) const {
+        for (const auto& [k, v] : entries)
+            if (k == key) return v.c_str();
+        return nullptr;
+    }
+    bool has(const char* key, const char* value) const {
+        const char* v = get(key);
+        return v && std::strcmp(v, value) == 0;
+    }
+};
+
+struct OsmNode {
+    int64_t id = 0;
+    LatLon location;
+    OsmTags tags;
+};
+
+// A way with the locations of its nodes. Ways clipped at the extract edge are cut into
+// the runs of nodes that are present; each run keeps the way's id.
+struct OsmWay {
+    int64_t id = 0;
+    OsmTags tags;
+    std::vector<int64_t> nodes;
+    std::vector<LatLon> locations;  // one per node
+};
+
+struct OsmPolygon {
+    std::vector<LatLon> outer;               // closed: first point repeated at the end
+    std::vector<std::vector<LatLon>> inners;
+};
+
+// A building or building:part area: a closed way or a multipolygon relation,
+// assembled by libosmium into outer rings, each with its inner rings.
+struct OsmArea {
+    OsmRef ref;
+    OsmTags tags;
+    std::vector<OsmPolygon> polygons;
+};
+
+struct OsmData {
+    std::vector<OsmNode> street_lamps;  // highway=street_lamp nodes
+    std::vector<OsmWay> highways;       // every way with a highway=* tag
+    std::vector<OsmArea> building_areas;  // building=* and building:part=*
+    LatLon min{90, 180}, max{-90, -180};  // bounds of every kept location
+};
+
+}  // namespace citygen

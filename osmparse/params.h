@@ -1,0 +1,59 @@
+// Every option osmparse runs with, grouped by the stage that uses it. The defaults here
+// are the one definition; the CLI (main.cpp) and the scene header (to_key_values) read them.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace citygen {
+
+struct BuildingParams {
+    uint64_t seed = 1;
+    double random_min_height = 8;    // --building-min-h: used only when nothing is tagged
+    double random_max_height = 30;   // --building-max-h
+    double level_height = 3.0;       // metres per building:levels
+    double simplify_angle_deg = 5;   // --simplify-angle: merge edges turning less than this
+    double min_area = 4.0;           // slivers below this many square metres are dropped
+    double max_height = 1000;        // tagged heights above this are absurd
+    std::vector<std::string> ignore_types{"roof", "carport", "ruins", "construction",
+                                          "proposed", "demolished", "no"};
+};
+
+struct RoadParams {
+    // highway=* values that are carriageways.
+    std::vector<std::string> classes{"motorway", "motorway_link", "trunk", "trunk_link",
+                                     "primary", "primary_link", "secondary", "secondary_link",
+                                     "tertiary", "tertiary_link", "unclassified", "residential",
+                                     "living_street", "service"};
+    double merge_angle_deg = 10;     // --road-merge-angle
+    double lane_width = 3.0;         // metres per lane when `lanes` is tagged
+    double min_width = 2.0;          // --road-min-width: narrower roads are dropped
+    double max_width = 100;          // tagged widths above this are absurd
+    double miter_limit = 2.0;        // miter length / half width before bevelling
+};
+
+struct SidewalkParams {
+    double width = 2.0;
+    double curb_height = 0.15;
+};
+
+struct LampParams {
+    double spacing = 28;             // --lamp-spacing
+    double min_distance_to_tagged = 12;
+    double height = 6;
+};
+
+struct ParseParams {
+    BuildingParams buildings;
+    RoadParams roads;
+    SidewalkParams sidewalks;
+    LampParams lamps;
+    uint64_t seed = 1;
+
+    // Every parameter as text, sorted by key, for the scene header and --info.
+    std::vector<std::pair<std::string, std::string>> to_key_values() const;
+};
+
+}  // namespace citygen

@@ -1,0 +1,74 @@
+// osmparse from top to bottom: each stage is a function from data to data.
+#include "pipeline.h"
+
+#include <chrono>
+
+#include "projection.h"
+#include "read_osm.h"
+
+namespace citygen {
+
+namespace {
+
+// Times one stage and records it in the report.
+template <typename F>
+auto timed(ParseReport& report, const char* stage, F&& f) {
+    const auto start = std::chrono::steady_clock::now();
+    auto result = f();
+    report.stage_time(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    return result;
+}
+
+std::string base_name(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+// The origin is the centre of the data's bounding box, so coordinates stay small.
+Projection projection_for(const OsmData& osm) {
+    if (osm.min.lat > osm.max.lat) return Projection(0, 0);  // nothing located
+    return Projection(0.5 * (osm.min.lat + osm.max.lat), 0.5 * (osm.min.lon + osm.max.lon));
+}
+
+SceneHeader make_header(const ParseJob& job, const Projection& projection) {
+    SceneHeader h;
+    h.generator = std::string("citygen osmparse ") + CITYGEN_VERSION;
+    h.origin_lat = projection.origin_lat();
+    h.origin_lon = projection.origin_lon();
+    h.projection = Projection::name();
+    h.seed = job.params.seed;
+    h.options = job.params.to_key_values();
+    h.source = base_name(job.input);
+    return h;
+}
+
+// Bounds of everything in the scene, and a ground plane a little larger.
+void set_bounds_and_ground(Scene& scene) {
+    Box2 box;
+    for (const Building& b : scene.buildings) for (Vec2 p : b.outer) box.extend(p);
+    for (const RoadEdge& r : scene.roads) for (Vec2 p : r.quad) box.extend(p);
+    for (const Joint& j : scene.joints) for (Vec2 p : j.polygon) box.extend(p);
+    for (const Sidewalk& s : scene.sidewalks) for (Vec2 p : s.polygon) box.extend(p);
+    for (const Lamp& l : scene.lamps) box.extend({l.position.x, l.position.y});
+    if (box.empty()) box.extend({0, 0});
+    scene.header.bounds_min = box.min;
+    scene.header.bounds_max = box.max;
+    constexpr double kGroundMargin = 50;  // metres of ground beyond the data on each side
+    scene.ground.min = box.min - Vec2(kGroundMargin, kGroundMargin);
+    scene.ground.max = box.max + Vec2(kGroundMargin, kGroundMargin);
+    scene.ground.z = 0;
+}
+
+}  // namespace
+
+Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
+    const OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
+    const Projection projection = projection_for(osm);
+
+    Scene scene;
+    scene.header = make_header(job, projection);
+    set_bounds_and_ground(scene);
+    return scene;
+}
+
+}  // namespace citygen

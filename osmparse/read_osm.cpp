@@ -1,0 +1,203 @@
+#include "read_osm.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include <osmium/area/assembler.hpp>
+#include <osmium/area/multipolygon_manager.hpp>
+#include <osmium/handler.hpp>
+#include <osmium/handler/node_locations_for_ways.hpp>
+#include <osmium/index/map/sparse_mem_array.hpp>
+#include <osmium/io/any_input.hpp>
+#include <osmium/relations/relations_manager.hpp>
+#include <osmium/tags/tags_filter.hpp>
+#include <osmium/visitor.hpp>
+
+#include "error.h"
+#include "progress.h"
+
+namespace citygen {
+
+namespace {
+
+using LocationIndex =
+    osmium::index::map::SparseMemArray<osmium::unsigned_object_id_type, osmium::Location>;
+using LocationHandler = osmium::handler::NodeLocationsForWays<LocationIndex, LocationIndex>;
+
+bool is_building_tags(const osmium::TagList& tags) {
+    return tags.has_key("building") || tags.has_key("building:part");
+}
+
+OsmTags copy_tags(const osmium::TagList& tags) {
+    OsmTags out;
+    for (const osmium::Tag& t : tags) out.entries.emplace_back(t.key(), t.value());
+    return out;
+}
+
+LatLon to_latlon(osmium::Location l) { return {l.lat(), l.lon()}; }
+
+// Keeps what later stages need. Called after the location handler has filled in the
+// node locations of each way.
+class Collector : public osmium::handler::Handler {
+public:
+    Collector(OsmData& data, ParseReport& report) : data_(data), report_(report) {}
+
+    void node(const osmium::Node& node) {
+        if (!node.tags().has_tag("highway", "street_lamp")) return;
+        report_.read("tagged street lamps");
+        if (!node.location().valid()) {
+            report_.dropped("tagged street lamps", "invalid location");
+            return;
+        }
+        extend(node.location());
+        data_.street_lamps.push_back({node.id(), to_latlon(node.location()), copy_tags(node.tags())});
+    }
+
+    void way(const osmium::Way& way) {
+        if (!way.tags().has_key("highway")) return;
+        report_.read("highway ways");
+        // Cut the way into runs of nodes whose locations are known.
+        bool clipped = false;
+        int runs_kept = 0;
+        OsmWay run;
+        auto flush = [&] {
+            if (run.nodes.size() >= 2) {
+                data_.highways.push_back(run);
+                ++runs_kept;
+            }
+            run.nodes.clear();
+            run.locations.clear();
+        };
+        for (const osmium::NodeRef& ref : way.nodes()) {
+            if (!ref.location().valid()) {
+                clipped = true;
+                flush();
+                continue;
+            }
+            if (run.nodes.empty()) {
+                run.id = way.id();
+                run.tags = copy_tags(way.tags());
+            }
+            run.nodes.push_back(ref.ref());
+            run.locations.push_back(to_latlon(ref.location()));
+            extend(ref.location());
+        }
+        flush();
+        if (runs_kept == 0) report_.dropped("highway ways", "nodes missing from extract");
+        else if (clipped) report_.note("highway ways", "clipped at extract edge");
+    }
+
+    void area(const osmium::Area& area) {
+        OsmArea out;
+        out.ref = {area.from_way() ? OsmType::Way : OsmType::Relation, area.orig_id()};
+        out.tags = copy_tags(area.tags());
+        for (const osmium::OuterRing& outer : area.outer_rings()) {
+            OsmPolygon polygon;
+            for (const osmium::NodeRef& ref : outer) polygon.outer.push_back(to_latlon(ref.location()));
+            for (const osmium::InnerRing& inner : area.inner_rings(outer)) {
+                polygon.inners.emplace_back();
+                for (const osmium::NodeRef& ref : inner)
+                    polygon.inners.back().push_back(to_latlon(ref.location()));
+            }
+            out.polygons.push_back(std::move(polygon));
+        }
+        if (out.polygons.empty()) return;
+        for (const OsmPolygon& p : out.polygons)
+            for (const LatLon& l : p.outer) extend(osmium::Location(l.lon, l.lat));
+        data_.building_areas.push_back(std::move(out));
+    }
+
+private:
+    void extend(osmium::Location l) {
+        data_.min.lat = std::min(data_.min.lat, l.lat());
+        data_.min.lon = std::min(data_.min.lon, l.lon());
+        data_.max.lat = std::max(data_.max.lat, l.lat());
+        data_.max.lon = std::max(data_.max.lon, l.lon());
+    }
+    OsmData& data_;
+    ParseReport& report_;
+};
+
+// Counts building ways and relations as they are read, before assembly.
+class BuildingCounter : public osmium::handler::Handler {
+public:
+    explicit BuildingCounter(ParseReport& report) : report_(report) {}
+    void way(const osmium::Way& way) {
+        if (is_building_tags(way.tags()) && way.is_closed()) report_.read("building ways");
+        else if (is_building_tags(way.tags())) report_.dropped("building ways", "not closed or clipped");
+    }
+    void relation(const osmium::Relation& rel) {
+        if (is_building_tags(rel.tags()) && rel.tags().has_tag("type", "multipolygon"))
+            report_.read("building relations");
+    }
+
+private:
+    ParseReport& report_;
+};
+
+void check_input_file(const std::string& path) {
+    struct stat st {};
+    if (::stat(path.c_str(), &st) != 0)
+        throw Error(path + ": cannot open input (" + std::strerror(errno) + ")");
+    if (S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, not an OSM file");
+    if (st.st_size == 0) throw Error(path + ": empty file, not OSM data");
+}
+
+}  // namespace
+
+OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
+    check_input_file(path);
+    OsmData data;
+    try {
+        const osmium::io::File file(path);
+
+        osmium::TagsFilter building_filter{false};
+        building_filter.add_rule(true, osmium::TagMatcher{"building"});
+        building_filter.add_rule(true, osmium::TagMatcher{"building:part"});
+        osmium::area::Assembler::config_type assembler_config;
+        osmium::area::MultipolygonManager<osmium::area::Assembler> multipolygons{assembler_config,
+                                                                                building_filter};
+        // Pass 1: which relations are building multipolygons, and which ways they need.
+        osmium::relations::read_relations(file, multipolygons);
+
+        // Pass 2: everything else, with node locations filled into ways.
+        LocationIndex positive, negative;
+        LocationHandler locations{positive, negative};
+        locations.ignore_errors();  // clipped extracts: missing nodes are normal, counted later
+        Collector collector{data, report};
+        BuildingCounter building_counter{report};
+
+        osmium::io::Reader reader{file, osmium::osm_entity_bits::object};
+        Progress progress("reading", reader.file_size(), quiet);
+        uint64_t last_offset = 0;
+        while (osmium::memory::Buffer buffer = reader.read()) {
+            osmium::apply(buffer, locations, building_counter, collector,
+                          multipolygons.handler([&collector](osmium::memory::Buffer&& areas) {
+                              osmium::apply(areas, collector);
+                          }));
+            const uint64_t offset = reader.offset();
+            progress.advance(offset - last_offset);
+            last_offset = offset;
+        }
+        reader.close();
+        progress.finish();
+
+        const osmium::area::area_stats& stats = multipolygons.stats();
+        const auto broken = static_cast<int64_t>(stats.area_really_complex_case +
+                                                 stats.no_way_in_mp_relation + stats.open_rings);
+        if (broken) report.dropped("building areas", "broken polygon (could not assemble)", broken);
+        int64_t incomplete = 0;
+        multipolygons.for_each_incomplete_relation([&](const osmium::relations::RelationHandle&) { ++incomplete; });
+        if (incomplete) report.dropped("building relations", "members missing from extract", incomplete);
+        report.read("building areas", static_cast<int64_t>(data.building_areas.size()));
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error(path + ": cannot read OSM data: " + e.what());
+    }
+    return data;
+}
+
+}  // namespace citygen

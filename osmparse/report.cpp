@@ -1,0 +1,63 @@
+#include "report.h"
+
+namespace citygen {
+
+ParseReport::Row& ParseReport::row(const std::string& kind) {
+    for (auto& [k, r] : rows_)
+        if (k == kind) return r;
+    rows_.emplace_back(kind, Row{});
+    return rows_.back().second;
+}
+
+namespace {
+template <typename Rows>
+const auto* find_row(const Rows& rows, const std::string& kind) {
+    for (const auto& entry : rows)
+        if (entry.first == kind) return &entry.second;
+    return static_cast<decltype(&rows.front().second)>(nullptr);
+}
+int64_t lookup(const std::map<std::string, int64_t>& m, const std::string& key) {
+    auto it = m.find(key);
+    return it == m.end() ? 0 : it->second;
+}
+}  // namespace
+
+int64_t ParseReport::read_count(const std::string& kind) const {
+    const auto* r = find_row(rows_, kind);
+    return r ? r->read : 0;
+}
+int64_t ParseReport::kept_count(const std::string& kind) const {
+    const auto* r = find_row(rows_, kind);
+    return r ? r->kept : 0;
+}
+int64_t ParseReport::dropped_count(const std::string& kind, const std::string& reason) const {
+    const auto* r = find_row(rows_, kind);
+    return r ? lookup(r->dropped, reason) : 0;
+}
+int64_t ParseReport::note_count(const std::string& kind, const std::string& what) const {
+    const auto* r = find_row(rows_, kind);
+    return r ? lookup(r->notes, what) : 0;
+}
+
+void ParseReport::print(std::FILE* out) const {
+    std::fprintf(out, "%-22s %10s %10s  %s\n", "object", "read", "kept", "dropped / notes");
+    for (const auto& [kind, r] : rows_) {
+        std::fprintf(out, "%-22s %10lld %10lld\n", kind.c_str(), static_cast<long long>(r.read),
+                     static_cast<long long>(r.kept));
+        for (const auto& [reason, n] : r.dropped)
+            std::fprintf(out, "%-22s %10s %10s  dropped %lld: %s\n", "", "", "",
+                         static_cast<long long>(n), reason.c_str());
+        for (const auto& [what, n] : r.notes)
+            std::fprintf(out, "%-22s %10s %10s  %lld %s\n", "", "", "", static_cast<long long>(n),
+                         what.c_str());
+    }
+    double total = 0;
+    std::fprintf(out, "%-22s %10s\n", "stage", "seconds");
+    for (const auto& [stage, s] : times_) {
+        std::fprintf(out, "%-22s %10.3f\n", stage.c_str(), s);
+        total += s;
+    }
+    std::fprintf(out, "%-22s %10.3f\n", "total", total);
+}
+
+}  // namespace citygen

@@ -1,0 +1,151 @@
+// Scene file round trip and the loader's refusal of bad bytes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+
+#include "error.h"
+#include "scene_io.h"
+#include "scene_generated.h"
+
+using namespace citygen;
+
+namespace {
+
+Scene small_scene() {
+    Scene s;
+    s.header.generator = "test";
+    s.header.origin_lat = 43.7;
+    s.header.origin_lon = 7.4;
+    s.header.projection = "transverse-mercator";
+    s.header.options = {{"seed", "1"}};
+    Building b;
+    b.osm = {OsmType::Way, 42};
+    b.outer = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+    b.holes = {{{2, 2}, {2, 4}, {4, 4}, {4, 2}}};
+    b.height = 12;
+    s.buildings.push_back(b);
+    RoadEdge r;
+    r.osm = {OsmType::Way, 7};
+    r.centreline = {{0, -5}, {10, -5}};
+    r.quad = {{0, -7}, {10, -7}, {10, -3}, {0, -3}};
+    r.width = 4;
+    r.to_joint = 0;
+    s.roads.push_back(r);
+    Joint j;
+    j.osm = {OsmType::Node, 3};
+    j.polygon = {{10, -7}, {12, -7}, {12, -3}, {10, -3}};
+    j.edges = {0};
+    s.joints.push_back(j);
+    Lamp l;
+    l.osm = {OsmType::Node, 9};
+    l.position = {1, 2, 0};
+    s.lamps.push_back(l);
+    return s;
+}
+
+std::string temp_path(const char* name) { return ::testing::TempDir() + name; }
+
+std::vector<uint8_t> read_all(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::string load_error(const std::vector<uint8_t>& bytes) {
+    try {
+        decode_scene(bytes.data(), bytes.size(), "x.scene");
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(SceneIo, RoundTripKeepsEverything) {
+    const Scene s = small_scene();
+    const std::vector<uint8_t> bytes = encode_scene(s);
+    const Scene t = decode_scene(bytes.data(), bytes.size(), "mem");
+    ASSERT_EQ(t.buildings.size(), 1u);
+    EXPECT_EQ(t.buildings[0].osm.id, 42);
+    EXPECT_EQ(t.buildings[0].holes.size(), 1u);
+    EXPECT_FLOAT_EQ(t.buildings[0].height, 12);
+    ASSERT_EQ(t.roads.size(), 1u);
+    EXPECT_EQ(t.roads[0].to_joint, 0);
+    EXPECT_EQ(t.joints[0].edges, std::vector<uint32_t>{0});
+    EXPECT_EQ(t.lamps[0].position.y, 2);
+    EXPECT_EQ(t.header.options, s.header.options);
+    EXPECT_EQ(encode_scene(t), bytes) << "re-encoding must give identical bytes";
+}
+
+TEST(SceneIo, RejectsWrongIdentifier) {
+    std::vector<uint8_t> bytes = encode_scene(small_scene());
+    bytes[4] = 'X';
+    EXPECT_NE(load_error(bytes).find("wrong file identifier"), std::string::npos);
+}
+
+TEST(SceneIo, RejectsTruncatedFile) {
+    std::vector<uint8_t> bytes = encode_scene(small_scene());
+    bytes.resize(bytes.size() / 2);
+    EXPECT_NE(load_error(bytes).find("x.scene: corrupt or truncated"), std::string::npos);
+}
+
+TEST(SceneIo, RejectsEmptyFile) {
+    EXPECT_NE(load_error({}).find("empty file"), std::string::npos);
+}
+
+TEST(SceneIo, RejectsNewerMajorVersion) {
+    Scene s = small_scene();
+    s.header.format_major = kSceneFormatMajor + 1;
+    EXPECT_NE(load_error(encode_scene(s)).find("newer than this program reads"), std::string::npos);
+}
+
+TEST(SceneIo, RejectsIndexOutOfRange) {
+    Scene s = small_scene();
+    s.roads[0].to_joint = 5;
+    EXPECT_NE(load_error(encode_scene(s)).find("out of range"), std::string::npos);
+    s = small_scene();
+    s.joints[0].edges = {3};
+    EXPECT_NE(load_error(encode_scene(s)).find("out of range"), std::string::npos);
+}
+
+TEST(SceneIo, RejectsNonFiniteCoordinate) {
+    Scene s = small_scene();
+    s.buildings[0].outer[1].x = NAN;
+    EXPECT_NE(load_error(encode_scene(s)).find("non-finite coordinate"), std::string::npos);
+}
+
+TEST(SceneIo, RandomCorruptionNeverCrashes) {
+    const std::vector<uint8_t> good = encode_scene(small_scene());
+    for (size_t i = 8; i < good.size(); ++i) {
+        std::vector<uint8_t> bad = good;
+        bad[i] ^= 0xA5;
+        try {
+            decode_scene(bad.data(), bad.size(), "x");
+        } catch (const Error&) {
+        }
+    }
+    SUCCEED() << "every corrupted byte was either rejected or decoded safely";
+}
+
+TEST(SceneIo, SaveIsAtomicAndLeavesNoPartialFile) {
+    const std::string path = temp_path("citygen_atomic.scene");
+    save_scene(small_scene(), path);
+    const std::vector<uint8_t> before = read_all(path);
+    ASSERT_FALSE(before.empty());
+    // A directory that does not exist: the write fails, nothing is left behind.
+    EXPECT_THROW(save_scene(small_scene(), temp_path("no_such_dir/x.scene")), Error);
+    EXPECT_EQ(read_all(path), before);
+    std::remove(path.c_str());
+}
+
+TEST(SceneIo, LoadMissingFileNamesIt) {
+    try {
+        load_scene("/nonexistent/city.scene");
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent/city.scene"), std::string::npos);
+    }
+}
