@@ -3,6 +3,7 @@
 
 #include <chrono>
 
+#include "build_buildings.h"
 #include "projection.h"
 #include "read_osm.h"
 
@@ -67,6 +68,9 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
 
     Scene scene;
     scene.header = make_header(job, projection);
+    scene.buildings = timed(report, "buildings", [&] {
+        return build_buildings(osm, projection, job.params.buildings, report);
+    });
     set_bounds_and_ground(scene);
     return scene;
 }
