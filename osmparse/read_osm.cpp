@@ -194,30 +194,40 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
         osmium::area::Assembler::config_type assembler_config;
         osmium::area::MultipolygonManager<osmium::area::Assembler> multipolygons{assembler_config,
                                                                                 building_filter};
-        // Pass 1: which relations are building multipolygons, and which ways they need.
-        osmium::relations::read_relations(file, multipolygons);
+        // The file is parsed once into memory and then walked twice: multipolygon
+        // assembly must know the relations (at the end of the file) before it sees their
+        // member ways, and parsing XML twice would cost more than keeping the objects.
+        std::vector<osmium::memory::Buffer> buffers;
+        {
+            osmium::io::Reader reader{file, osmium::osm_entity_bits::object};
+            Progress progress("reading", reader.file_size(), quiet);
+            uint64_t last_offset = 0;
+            while (osmium::memory::Buffer buffer = reader.read()) {
+                buffers.push_back(std::move(buffer));
+                const uint64_t offset = reader.offset();
+                progress.advance(offset - last_offset);
+                last_offset = offset;
+            }
+            reader.close();
+        }
 
-        // Pass 2: everything else, with node locations filled into ways.
+        // Walk 1: which relations are building multipolygons, and which ways they need.
+        for (const osmium::memory::Buffer& buffer : buffers) osmium::apply(buffer, multipolygons);
+        multipolygons.prepare_for_lookup();
+
+        // Walk 2: everything else, with node locations filled into ways.
         LocationIndex positive, negative;
         LocationHandler locations{positive, negative};
         locations.ignore_errors();  // clipped extracts: missing nodes are normal, counted later
         Collector collector{data, report};
         BuildingCounter building_counter{report};
-
-        osmium::io::Reader reader{file, osmium::osm_entity_bits::object};
-        Progress progress("reading", reader.file_size(), quiet);
-        uint64_t last_offset = 0;
-        while (osmium::memory::Buffer buffer = reader.read()) {
+        for (osmium::memory::Buffer& buffer : buffers) {
             osmium::apply(buffer, locations, building_counter, collector,
                           multipolygons.handler([&collector](osmium::memory::Buffer&& areas) {
                               osmium::apply(areas, collector);
                           }));
-            const uint64_t offset = reader.offset();
-            progress.advance(offset - last_offset);
-            last_offset = offset;
         }
-        reader.close();
-        progress.finish();
+        buffers.clear();
 
         int64_t incomplete = 0;
         multipolygons.for_each_incomplete_relation([&](const osmium::relations::RelationHandle&) { ++incomplete; });
