@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "clean_footprint.h"
+#include "rng.h"
 
 using namespace citygen;
 
@@ -192,4 +193,38 @@ TEST(CleanFootprint, InteriorPointOfConcaveRing) {
     Ring reversed = notched;
     std::reverse(reversed.begin(), reversed.end());
     EXPECT_TRUE(point_in_ring(interior_point(reversed), reversed));
+}
+
+TEST(CleanFootprint, RandomTanglesAlwaysGiveValidPolygons) {
+    // Random rings are mostly self-intersecting: whatever comes out must keep every promise.
+    Rng rng(2024);
+    size_t kept_polygons = 0, repaired = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const int n = 4 + static_cast<int>(rng.next_u32() % 12);
+        Ring outer, hole;
+        for (int i = 0; i < n; ++i) {
+            // Snap some points to a coarse grid so touching vertices and collinear edges occur.
+            double x = rng.next_double() * 50, y = rng.next_double() * 50;
+            if (rng.next_u32() % 3 == 0) x = std::round(x / 10) * 10, y = std::round(y / 10) * 10;
+            outer.push_back(round_to_stored_precision({x, y}));
+        }
+        for (int i = 0; i < 4; ++i) hole.push_back(round_to_stored_precision({20 + rng.next_double() * 10, 20 + rng.next_double() * 10}));
+        ParseReport report;
+        const auto polygons = clean_footprint(outer, {hole}, BuildingParams{}, report, "buildings");
+        expect_valid(polygons);
+        for (const Footprint& f : polygons)
+            for (const Ring& h : f.holes)
+                for (const Ring& other : f.holes)
+                    if (&h != &other) {
+                        for (size_t i = 0; i < h.size(); ++i) ASSERT_FALSE(point_in_ring(h[i], other));
+                    }
+        kept_polygons += polygons.size();
+        repaired += report.note_count("buildings", "self-intersection repaired by splitting");
+        if (HasFailure()) {
+            ADD_FAILURE() << "trial " << trial;
+            return;
+        }
+    }
+    EXPECT_GT(kept_polygons, 1000u);
+    EXPECT_GT(repaired, 500u);
 }
