@@ -194,25 +194,35 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
         osmium::area::Assembler::config_type assembler_config;
         osmium::area::MultipolygonManager<osmium::area::Assembler> multipolygons{assembler_config,
                                                                                 building_filter};
-        // The file is parsed once into memory and then walked twice: multipolygon
-        // assembly must know the relations (at the end of the file) before it sees their
-        // member ways, and parsing XML twice would cost more than keeping the objects.
+        // Multipolygon assembly must know the relations (at the end of the file) before it
+        // sees their member ways, so the input is walked twice. XML is parsed once and
+        // kept in memory: parsing is the slow part. PBF decodes fast enough to be read
+        // twice, which keeps memory low on big cities.
+        const bool keep_in_memory = file.format() != osmium::io::file_format::pbf;
         std::vector<osmium::memory::Buffer> buffers;
-        {
-            osmium::io::Reader reader{file, osmium::osm_entity_bits::object};
+        auto read_all = [&](osmium::osm_entity_bits::type entities, auto&& use_buffer) {
+            osmium::io::Reader reader{file, entities};
             Progress progress("reading", reader.file_size(), quiet);
             uint64_t last_offset = 0;
             while (osmium::memory::Buffer buffer = reader.read()) {
-                buffers.push_back(std::move(buffer));
+                use_buffer(buffer);
                 const uint64_t offset = reader.offset();
                 progress.advance(offset - last_offset);
                 last_offset = offset;
             }
             reader.close();
-        }
+        };
 
         // Walk 1: which relations are building multipolygons, and which ways they need.
-        for (const osmium::memory::Buffer& buffer : buffers) osmium::apply(buffer, multipolygons);
+        if (keep_in_memory) {
+            read_all(osmium::osm_entity_bits::object, [&](osmium::memory::Buffer& buffer) {
+                osmium::apply(buffer, multipolygons);
+                buffers.push_back(std::move(buffer));
+            });
+        } else {
+            read_all(osmium::osm_entity_bits::relation,
+                     [&](osmium::memory::Buffer& buffer) { osmium::apply(buffer, multipolygons); });
+        }
         multipolygons.prepare_for_lookup();
 
         // Walk 2: everything else, with node locations filled into ways.
@@ -221,13 +231,18 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
         locations.ignore_errors();  // clipped extracts: missing nodes are normal, counted later
         Collector collector{data, report};
         BuildingCounter building_counter{report};
-        for (osmium::memory::Buffer& buffer : buffers) {
+        auto collect = [&](osmium::memory::Buffer& buffer) {
             osmium::apply(buffer, locations, building_counter, collector,
                           multipolygons.handler([&collector](osmium::memory::Buffer&& areas) {
                               osmium::apply(areas, collector);
                           }));
+        };
+        if (keep_in_memory) {
+            for (osmium::memory::Buffer& buffer : buffers) collect(buffer);
+            buffers.clear();
+        } else {
+            read_all(osmium::osm_entity_bits::object, collect);
         }
-        buffers.clear();
 
         int64_t incomplete = 0;
         multipolygons.for_each_incomplete_relation([&](const osmium::relations::RelationHandle&) { ++incomplete; });
