@@ -127,18 +127,24 @@ Ring merge_small_turns(const Ring& ring, double angle_deg) {
         }
     }
     auto at = [&](size_t k) { return ring[(start + k) % n]; };
-    // Grow a chord from the anchor while every original edge it replaces points within
-    // max_angle of it; so a gentle curve is not flattened into one straight edge.
+    // Grow a run of edges from the anchor while the directions of all its edges stay
+    // within max_angle of each other; the run becomes one edge. Comparing the whole run,
+    // not just neighbours, means a gentle curve is never flattened into one straight edge.
     Ring out{at(0)};
     size_t anchor = 0;
-    for (size_t k = 2; k <= n; ++k) {
-        const Vec2 chord = at(k) - at(anchor);
-        bool fits = true;
-        for (size_t m = anchor; m < k && fits; ++m) fits = angle_between(at(m + 1) - at(m), chord) < max_angle;
-        if (!fits) {
-            out.push_back(at(k - 1));
-            anchor = k - 1;
+    double lowest = 0, highest = 0;  // directions relative to the run's first edge
+    for (size_t k = 1; k < n; ++k) {
+        const Vec2 first = at(anchor + 1) - at(anchor), edge = at(k + 1) - at(k);
+        const double direction = std::atan2(cross(first, edge), dot(first, edge));
+        const double new_lowest = std::min(lowest, direction), new_highest = std::max(highest, direction);
+        if (new_highest - new_lowest < max_angle) {
+            lowest = new_lowest;
+            highest = new_highest;
+            continue;
         }
+        out.push_back(at(k));  // a corner: start a new run here
+        anchor = k;
+        lowest = highest = 0;
     }
     return out;
 }

@@ -29,8 +29,8 @@ inline Vec2 round_to_stored_precision(Vec2 p) {
 
 // The whole clean-up of one polygon, in this order:
 //  1. drop repeated vertices (closer than kFootprintTolerance) and collinear ones or spikes;
-//  2. merge consecutive edges whose direction differs by less than simplify_angle_deg
-//     (kept only if it leaves the ring simple);
+//  2. merge runs of consecutive edges whose directions all lie within simplify_angle_deg
+//     of each other into one edge (kept only if it leaves the ring simple);
 //  3. a ring that is still self-intersecting or self-touching is split at its crossings
 //     into simple pieces (a bow-tie becomes two triangles; a piece inside another becomes
 //     its hole); pieces that cannot be made simple are dropped;

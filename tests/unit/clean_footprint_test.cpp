@@ -60,8 +60,8 @@ TEST(CleanFootprint, MergesSmallTurnsButKeepsRealCorners) {
     const double kink = 5 * std::tan(2 * M_PI / 180);
     const Ring ring{{0, 0}, {5, kink}, {10, 0}, {10, 10}, {0, 10}};
     EXPECT_EQ(merge_small_turns(ring, 5).size(), 4u);
-    EXPECT_EQ(merge_small_turns(ring, 3).size(), 4u);
-    EXPECT_EQ(merge_small_turns(ring, 1).size(), 5u);  // 4 degree turn: kept
+    EXPECT_EQ(merge_small_turns(ring, 3).size(), 5u);  // 4 degree turn: kept
+    EXPECT_EQ(merge_small_turns(ring, 1).size(), 5u);
     EXPECT_EQ(merge_small_turns(ring, 0).size(), 5u);
 }
 
@@ -70,9 +70,10 @@ TEST(CleanFootprint, GentleCurveIsNotFlattened) {
     Ring circle;
     for (int i = 0; i < 360; ++i) circle.push_back({10 * std::cos(i * M_PI / 180), 10 * std::sin(i * M_PI / 180)});
     const Ring merged = merge_small_turns(circle, 5);
-    EXPECT_GE(merged.size(), 30u);
-    EXPECT_LE(merged.size(), 80u);
-    EXPECT_NEAR(signed_area(merged), M_PI * 100, 0.03 * M_PI * 100);
+    // Runs whose directions spread less than 5 degrees: at most 6 one-degree edges each.
+    EXPECT_GE(merged.size(), 60u);
+    EXPECT_LE(merged.size(), 90u);
+    EXPECT_NEAR(signed_area(merged), M_PI * 100, 0.005 * M_PI * 100);
 }
 
 TEST(CleanFootprint, MergeDoesNotDependOnStartVertex) {
