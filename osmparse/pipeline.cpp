@@ -4,6 +4,9 @@
 #include <chrono>
 
 #include "build_buildings.h"
+#include "build_road_graph.h"
+#include "build_road_polygons.h"
+#include "narrow_roads.h"
 #include "projection.h"
 #include "read_osm.h"
 
@@ -71,6 +74,17 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     scene.buildings = timed(report, "buildings", [&] {
         return build_buildings(osm, projection, job.params.buildings, report);
     });
+    const RoadGraph road_graph = timed(report, "road graph", [&] {
+        return build_road_graph(osm, projection, job.params.roads, report);
+    });
+    const RoadGraph narrowed_graph = timed(report, "roads vs buildings", [&] {
+        return narrow_roads(road_graph, scene.buildings, job.params.roads, report);
+    });
+    RoadSurface surface = timed(report, "road polygons", [&] {
+        return build_road_polygons(narrowed_graph, job.params.roads, report);
+    });
+    scene.roads = surface.roads;
+    scene.joints = surface.joints;
     set_bounds_and_ground(scene);
     return scene;
 }

@@ -1,0 +1,83 @@
+#include "narrow_roads.h"
+
+#include <set>
+
+#include "polygon_overlap.h"
+#include "road_layout.h"
+
+namespace citygen {
+
+namespace {
+
+constexpr double kNarrowStep = 0.85;  // width kept per step
+constexpr int kLayoutRounds = 6;
+
+bool overlaps(const BuildingIndex& index, const Ring& piece) {
+    double largest = 0;
+    index.overlap(piece, &largest);
+    return largest > kRoadBuildingOverlapTolerance;
+}
+
+}  // namespace
+
+RoadGraph narrow_roads(RoadGraph graph, const std::vector<Building>& buildings,
+                       const RoadParams& params, ParseReport& report) {
+    const BuildingIndex index(buildings);
+    std::vector<bool> keep(graph.edges.size(), true), narrowed(graph.edges.size(), false);
+    auto narrow = [&](size_t e) {
+        graph.edges[e].width *= kNarrowStep;
+        narrowed[e] = true;
+        if (graph.edges[e].width < params.min_width) keep[e] = false;
+    };
+
+    // 1. The edge's whole rectangle, as in the thesis.
+    for (size_t e = 0; e < graph.edges.size(); ++e) {
+        const RoadGraphEdge& edge = graph.edges[e];
+        while (keep[e]) {
+            const double h = 0.5 * edge.width;
+            if (!overlaps(index, quad_for_cuts(edge, {h, h}, {}, {}))) break;
+            narrow(e);
+        }
+    }
+    auto compact = [&] {
+        RoadGraph kept;
+        std::vector<bool> kept_narrowed;
+        for (size_t e = 0; e < graph.edges.size(); ++e) {
+            if (keep[e]) {
+                kept.edges.push_back(graph.edges[e]);
+                kept_narrowed.push_back(narrowed[e]);
+            } else {
+                report.dropped("road edges", "narrower than road-min-width beside a building");
+            }
+        }
+        graph = std::move(kept);
+        narrowed = std::move(kept_narrowed);
+        keep.assign(graph.edges.size(), true);
+    };
+    compact();
+
+    // 2. Miters and joints reach beyond the rectangles: check the laid-out pieces.
+    for (int round = 0; round < kLayoutRounds; ++round) {
+        const std::vector<SideWidths> widths = [&] {
+            std::vector<SideWidths> w;
+            for (const RoadGraphEdge& e : graph.edges) w.push_back({0.5 * e.width, 0.5 * e.width});
+            return w;
+        }();
+        const RoadLayout layout = layout_road_polygons(graph, widths, params.miter_limit);
+        std::set<size_t> offending;
+        for (size_t e = 0; e < graph.edges.size(); ++e)
+            if (!layout.quads[e].empty() && overlaps(index, layout.quads[e])) offending.insert(e);
+        for (const NodeLayout& node : layout.nodes)
+            if (!node.joint.empty() && overlaps(index, node.joint))
+                for (const NodeLayout::End& end : node.ends) offending.insert(end.edge);
+        if (offending.empty()) break;
+        for (size_t e : offending) narrow(e);
+        compact();
+    }
+    int64_t count = 0;
+    for (bool n : narrowed) count += n;
+    if (count) report.note("road edges", "narrowed beside a building", count);
+    return graph;
+}
+
+}  // namespace citygen

@@ -1,0 +1,314 @@
+#include "road_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace citygen {
+
+namespace {
+
+constexpr double kMaxCutFraction = 0.45;  // no cut reaches past this share of an edge
+constexpr double kStraightCos = 0.99996;  // cos(0.5 deg): closer to straight needs no miter
+constexpr double kDedupe = 1e-4;          // metres: closer points are one point
+constexpr double kMinJointArea = 1e-3;    // square metres
+
+// Intersection of p1 + s*d1 and p2 + u*d2; false when (nearly) parallel.
+bool intersect_lines(Vec2 p1, Vec2 d1, Vec2 p2, Vec2 d2, double& s, double& u) {
+    const double den = cross(d1, d2);
+    if (std::fabs(den) < 1e-9) return false;
+    const Vec2 w = p2 - p1;
+    s = cross(w, d2) / den;
+    u = cross(w, d1) / den;
+    return true;
+}
+
+// One edge as seen from a node.
+struct EndGeometry {
+    Vec2 dir, normal;          // leaving the node; normal points left
+    double half_left, half_right;
+    double max_cut;
+    Vec2 left_at(Vec2 p, double t) const { return p + normal * half_left + dir * t; }
+    Vec2 right_at(Vec2 p, double t) const { return p - normal * half_right + dir * t; }
+};
+
+EndGeometry end_geometry(const RoadGraphEdge& e, SideWidths w, bool at_from) {
+    EndGeometry g;
+    const Vec2 along = at_from ? e.to - e.from : e.from - e.to;
+    g.dir = normalize(along);
+    g.normal = perp_left(g.dir);
+    g.half_left = at_from ? w.left : w.right;
+    g.half_right = at_from ? w.right : w.left;
+    g.max_cut = kMaxCutFraction * length(along);
+    return g;
+}
+
+void push_distinct(Ring& ring, Vec2 p) {
+    if (ring.empty() || length(ring.back() - p) > kDedupe) ring.push_back(p);
+}
+
+// Cuts on the miter of a degree-2 node; false when the miter is not acceptable.
+bool miter_cuts(Vec2 p, const EndGeometry& a, const EndGeometry& b, double miter_limit, bool forced,
+                EdgeEndCut& cut_a, EdgeEndCut& cut_b) {
+    if (dot(a.dir, b.dir) < -kStraightCos) {  // straight on: square cuts through the node
+        cut_a = cut_b = {0, 0};
+        return true;
+    }
+    double s_ab, u_ab, s_ba, u_ba;
+    if (!intersect_lines(p + a.normal * a.half_left, a.dir, p - b.normal * b.half_right, b.dir, s_ab, u_ab) ||
+        !intersect_lines(p + b.normal * b.half_left, b.dir, p - a.normal * a.half_right, a.dir, s_ba, u_ba))
+        return false;
+    cut_a = {s_ab, u_ba};
+    cut_b = {s_ba, u_ab};
+    const double reach = miter_limit * std::max({a.half_left, a.half_right, b.half_left, b.half_right});
+    const bool within_limit = length(a.left_at(p, s_ab) - p) <= reach && length(b.left_at(p, s_ba) - p) <= reach;
+    auto fits = [](double t, const EndGeometry& g) { return std::fabs(t) <= g.max_cut; };
+    const bool fits_edges = fits(s_ab, a) && fits(u_ba, a) && fits(s_ba, b) && fits(u_ab, b);
+    if (forced) {
+        auto clamp = [](double& t, const EndGeometry& g) { t = std::clamp(t, -g.max_cut, g.max_cut); };
+        clamp(cut_a.t_left, a); clamp(cut_a.t_right, a); clamp(cut_b.t_left, b); clamp(cut_b.t_right, b);
+        return true;
+    }
+    return within_limit && fits_edges;
+}
+
+// How far each end of a junction would have to be cut back for the offset lines of
+// neighbouring edges to meet (unlimited by the edge's length).
+double joint_demand(const NodeLayout& node, const std::vector<EndGeometry>& geo, size_t end) {
+    const size_t k = geo.size();
+    double demand = 0;
+    for (size_t side = 0; side < 2; ++side) {
+        const size_t i = side == 0 ? end : (end + k - 1) % k;  // gap on the left, then on the right
+        const size_t j = (i + 1) % k;
+        const EndGeometry &gi = geo[i], &gj = geo[j];
+        double gap = std::atan2(cross(gi.dir, gj.dir), dot(gi.dir, gj.dir));
+        if (gap <= 0) gap += 2 * M_PI;
+        if (gap >= M_PI - 1e-3) continue;
+        double s, u;
+        if (!intersect_lines(gi.left_at(node.position, 0), gi.dir, gj.right_at(node.position, 0), gj.dir, s, u))
+            continue;
+        demand = std::max(demand, side == 0 ? s : u);
+    }
+    return demand;
+}
+
+// The joint polygon of a node and each edge's square cut (thesis: sort by angle,
+// intersect neighbouring offset lines).
+void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
+    const size_t k = node.ends.size();
+    std::vector<double> demand_left(k, 0), demand_right(k, 0);
+    for (size_t i = 0; i < k; ++i) {
+        const size_t j = (i + 1) % k;
+        const EndGeometry &gi = geo[i], &gj = geo[j];
+        node.ends[i].gap_points.clear();
+        double gap = std::atan2(cross(gi.dir, gj.dir), dot(gi.dir, gj.dir));
+        if (gap <= 0) gap += 2 * M_PI;
+        if (k == 1 || gap >= M_PI - 1e-3) continue;  // open or straight side: a plain bevel
+        double s, u;
+        if (!intersect_lines(gi.left_at(node.position, 0), gi.dir, gj.right_at(node.position, 0), gj.dir, s, u))
+            continue;
+        // Near-parallel neighbours and short edges: the true corner lies too far out,
+        // so the corner is cut short on both edges.
+        s = std::clamp(s, 0.0, gi.max_cut);
+        u = std::clamp(u, 0.0, gj.max_cut);
+        demand_left[i] = s;
+        demand_right[j] = u;
+        node.ends[i].gap_points.push_back(gi.left_at(node.position, s));
+        node.ends[i].gap_points.push_back(gj.right_at(node.position, u));
+    }
+    for (size_t i = 0; i < k; ++i) node.ends[i].trim = std::max(demand_left[i], demand_right[i]);
+    // Where neighbours were cut short their quads still overlap, and their square cuts
+    // may cross: the crossing point then stands for both cut ends and the corner.
+    std::vector<bool> cuts_cross(k, false);
+    std::vector<Vec2> crossing(k);
+    for (size_t i = 0; i < k && k > 1; ++i) {
+        const size_t j = (i + 1) % k;
+        const Vec2 ri = geo[i].right_at(node.position, node.ends[i].trim), li = geo[i].left_at(node.position, node.ends[i].trim);
+        const Vec2 rj = geo[j].right_at(node.position, node.ends[j].trim), lj = geo[j].left_at(node.position, node.ends[j].trim);
+        double s, u;
+        if (intersect_lines(ri, li - ri, rj, lj - rj, s, u) && s > 0 && s < 1 && u > 0 && u < 1) {
+            cuts_cross[i] = true;
+            crossing[i] = ri + (li - ri) * s;
+        }
+    }
+    Ring ring;
+    for (size_t i = 0; i < k; ++i) {
+        NodeLayout::End& end = node.ends[i];
+        const size_t prev = (i + k - 1) % k;
+        push_distinct(ring, cuts_cross[prev] ? crossing[prev] : geo[i].right_at(node.position, end.trim));
+        if (cuts_cross[i]) {
+            end.gap_points = {crossing[i]};
+            push_distinct(ring, crossing[i]);
+            continue;
+        }
+        push_distinct(ring, geo[i].left_at(node.position, end.trim));
+        for (Vec2 q : end.gap_points) push_distinct(ring, q);
+    }
+    while (ring.size() > 1 && length(ring.front() - ring.back()) <= kDedupe) ring.pop_back();
+    node.joint.clear();
+    node.joint_is_hull = false;
+    if (ring.size() >= 3 && signed_area(ring) > kMinJointArea && ring_is_simple(ring)) {
+        node.joint = ring;
+        return;
+    }
+    // Rare tangles of short edges: the points sorted by angle around the node form a
+    // star-shaped polygon, simple by construction; failing that, their convex hull.
+    Ring star = ring;
+    std::sort(star.begin(), star.end(), [&](Vec2 a, Vec2 b) {
+        return std::atan2(a.y - node.position.y, a.x - node.position.x) <
+               std::atan2(b.y - node.position.y, b.x - node.position.x);
+    });
+    if (star.size() >= 3 && signed_area(star) > kMinJointArea && ring_is_simple(star)) {
+        node.joint = star;
+        node.joint_is_hull = true;
+        return;
+    }
+    Ring hull = convex_hull(ring);
+    if (hull.size() >= 3 && signed_area(hull) > kMinJointArea) {
+        node.joint = hull;
+        node.joint_is_hull = true;
+    }
+}
+
+bool quad_is_valid(const Ring& q) {
+    return q.size() == 4 && ring_is_convex(q) && signed_area(q) > 1e-3;
+}
+
+}  // namespace
+
+Ring quad_for_cuts(const RoadGraphEdge& e, SideWidths w, EdgeEndCut from, EdgeEndCut to) {
+    const Vec2 d = normalize(e.to - e.from), n = perp_left(d);
+    return {e.from - n * w.right + d * from.t_right, e.to - n * w.right - d * to.t_left,
+            e.to + n * w.left - d * to.t_right, e.from + n * w.left + d * from.t_left};
+}
+
+Ring convex_hull(std::vector<Vec2> p) {
+    std::sort(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+    if (p.size() < 3) return p;
+    Ring h(2 * p.size());
+    size_t k = 0;
+    for (size_t i = 0; i < p.size(); ++i) {
+        while (k >= 2 && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+        while (k >= t && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    h.resize(k - 1);
+    return h;
+}
+
+RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWidths>& widths,
+                                double miter_limit, const RoadLayout* follow) {
+    const size_t n = graph.edges.size();
+    RoadLayout out;
+    out.from_cut.assign(n, {});
+    out.to_cut.assign(n, {});
+    out.quads.assign(n, {});
+
+    std::map<int64_t, NodeLayout> nodes;
+    for (uint32_t e = 0; e < n; ++e) {
+        const RoadGraphEdge& edge = graph.edges[e];
+        NodeLayout& a = nodes[edge.from_node];
+        a.node = edge.from_node;
+        a.position = edge.from;
+        a.ends.push_back({e, true, 0, {}});
+        NodeLayout& b = nodes[edge.to_node];
+        b.node = edge.to_node;
+        b.position = edge.to;
+        b.ends.push_back({e, false, 0, {}});
+    }
+
+    // Pass 1: order the ends at every node, choose miters, and note how far every joint
+    // would like to cut each edge back.
+    std::vector<double> from_demand(n, 0), to_demand(n, 0), from_fixed(n, 0), to_fixed(n, 0);
+    std::vector<std::vector<EndGeometry>> node_geo;
+    node_geo.reserve(nodes.size());
+    size_t follow_index = 0;
+    for (auto& [id, node] : nodes) {
+        auto geometry_of = [&](const NodeLayout::End& end) {
+            return end_geometry(graph.edges[end.edge], widths[end.edge], end.at_from);
+        };
+        std::sort(node.ends.begin(), node.ends.end(), [&](const NodeLayout::End& a, const NodeLayout::End& b) {
+            const EndGeometry ga = geometry_of(a), gb = geometry_of(b);
+            const double aa = std::atan2(ga.dir.y, ga.dir.x), ab = std::atan2(gb.dir.y, gb.dir.x);
+            if (aa != ab) return aa < ab;
+            return a.edge != b.edge ? a.edge < b.edge : a.at_from < b.at_from;
+        });
+        node_geo.emplace_back();
+        std::vector<EndGeometry>& geo = node_geo.back();
+        for (const NodeLayout::End& end : node.ends) geo.push_back(geometry_of(end));
+        auto cut_of = [&](const NodeLayout::End& end) -> EdgeEndCut& {
+            return end.at_from ? out.from_cut[end.edge] : out.to_cut[end.edge];
+        };
+
+        const NodeLayout* followed = nullptr;
+        if (follow) {
+            // Both layouts come from the same graph, so their sorted node lists match.
+            followed = &follow->nodes[follow_index++];
+        }
+        const size_t k = node.ends.size();
+        if (k == 1) {
+            node.kind = JoinKind::End;
+            cut_of(node.ends[0]) = {0, 0};
+            continue;
+        }
+        if (k == 2 && (!followed || followed->kind == JoinKind::Miter)) {
+            EdgeEndCut ca, cb;
+            if (miter_cuts(node.position, geo[0], geo[1], miter_limit, followed != nullptr, ca, cb)) {
+                node.kind = JoinKind::Miter;
+                cut_of(node.ends[0]) = ca;
+                cut_of(node.ends[1]) = cb;
+                for (int i = 0; i < 2; ++i) {
+                    const EdgeEndCut& c = i == 0 ? ca : cb;
+                    const NodeLayout::End& end = node.ends[i];
+                    (end.at_from ? from_fixed : to_fixed)[end.edge] = std::max({0.0, c.t_left, c.t_right});
+                }
+                continue;
+            }
+        }
+        node.kind = JoinKind::Joint;
+        for (size_t i = 0; i < k; ++i) {
+            const NodeLayout::End& end = node.ends[i];
+            (end.at_from ? from_demand : to_demand)[end.edge] = joint_demand(node, geo, i);
+        }
+    }
+
+    // Pass 2: share each edge's length between the joints at its two ends, keeping 10%
+    // of it (and whatever a miter at either end needs) for the quad.
+    std::vector<double> from_allowed(n), to_allowed(n);
+    for (uint32_t e = 0; e < n; ++e) {
+        const double len = length(graph.edges[e].to - graph.edges[e].from);
+        const double room = std::max(0.0, 0.9 * len - from_fixed[e] - to_fixed[e]);
+        const double wanted = from_demand[e] + to_demand[e];
+        const double scale = wanted > room ? room / wanted : 1.0;
+        from_allowed[e] = from_demand[e] * scale;
+        to_allowed[e] = to_demand[e] * scale;
+    }
+
+    // Pass 3: joint polygons with the shared-out cuts.
+    size_t node_index = 0;
+    for (auto& [id, node] : nodes) {
+        std::vector<EndGeometry>& geo = node_geo[node_index++];
+        if (node.kind != JoinKind::Joint) continue;
+        for (size_t i = 0; i < geo.size(); ++i) {
+            const NodeLayout::End& end = node.ends[i];
+            geo[i].max_cut = end.at_from ? from_allowed[end.edge] : to_allowed[end.edge];
+        }
+        layout_joint(node, geo);
+        for (const NodeLayout::End& end : node.ends)
+            (end.at_from ? out.from_cut[end.edge] : out.to_cut[end.edge]) = {end.trim, end.trim};
+    }
+
+    for (uint32_t e = 0; e < n; ++e) {
+        Ring q = quad_for_cuts(graph.edges[e], widths[e], out.from_cut[e], out.to_cut[e]);
+        if (quad_is_valid(q)) out.quads[e] = std::move(q);
+    }
+    out.nodes.reserve(nodes.size());
+    for (auto& [id, node] : nodes) out.nodes.push_back(std::move(node));
+    return out;
+}
+
+}  // namespace citygen
