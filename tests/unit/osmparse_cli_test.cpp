@@ -118,4 +118,6 @@ TEST(GoodInput, WritesTheSceneAndReportsCounts) {
     const CommandResult info = run_command(quoted(osmparse_binary()) + " --info " + quoted(dir.file("ok.scene")));
     EXPECT_EQ(info.exit_code, 0);
     EXPECT_NE(info.out.find("building_parts: 2"), std::string::npos) << info.out;
+    EXPECT_NE(info.out.find("building_heights: 6.0 - 30.0 m, median 12.0 m (1 from height, 2 from levels, 0 random)"),
+              std::string::npos) << info.out;
 }
