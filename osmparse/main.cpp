@@ -9,6 +9,7 @@
 #include "pipeline.h"
 #include "scene_io.h"
 #include "scene_summary.h"
+#include "write_geojson.h"
 
 using namespace citygen;
 
@@ -104,6 +105,7 @@ int main(int argc, char** argv) {
         ParseReport report;
         const Scene scene = parse_osm_to_scene(job, report);
         save_scene(scene, output);
+        if (!geojson.empty()) write_geojson(scene, geojson);
         if (!job.quiet) report.print(stderr);
         return 0;
     } catch (const Error& e) {

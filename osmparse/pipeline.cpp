@@ -6,7 +6,9 @@
 #include "build_buildings.h"
 #include "build_road_graph.h"
 #include "build_road_polygons.h"
+#include "build_sidewalks.h"
 #include "narrow_roads.h"
+#include "place_lamps.h"
 #include "projection.h"
 #include "read_osm.h"
 
@@ -85,6 +87,13 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     });
     scene.roads = surface.roads;
     scene.joints = surface.joints;
+    scene.sidewalks = timed(report, "sidewalks", [&] {
+        return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
+                               job.params.roads.miter_limit, report);
+    });
+    scene.lamps = timed(report, "street lamps", [&] {
+        return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
+    });
     set_bounds_and_ground(scene);
     return scene;
 }

@@ -1,0 +1,186 @@
+#include "build_sidewalks.h"
+
+#include <map>
+
+#include "narrow_roads.h"
+#include "polygon_overlap.h"
+#include "road_layout.h"
+
+namespace citygen {
+
+namespace {
+
+constexpr double kSidewalkStep = 0.25;      // metres of width given up per step
+constexpr double kMinSidewalkWidth = 0.75;  // narrower is no sidewalk
+constexpr double kMaxRoadOverlap = 0.5;     // square metres of another road a piece may cover
+constexpr double kMinPieceArea = 0.01;
+
+void push_distinct(Ring& ring, Vec2 p) {
+    if (ring.empty() || length(ring.back() - p) > 1e-4) ring.push_back(p);
+}
+
+struct Frame {
+    Vec2 from, to, d, n;
+};
+Frame frame_of(const RoadGraphEdge& e) {
+    const Vec2 d = normalize(e.to - e.from);
+    return {e.from, e.to, d, perp_left(d)};
+}
+
+}  // namespace
+
+std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface& surface,
+                                      const std::vector<Building>& buildings,
+                                      const SidewalkParams& params, double miter_limit,
+                                      ParseReport& report) {
+    const BuildingIndex building_index(buildings);
+    const std::vector<SideWidths> inner = carriageway_widths(graph);
+    const size_t n = graph.edges.size();
+
+    // 1. Sidewalk width per side, narrowed where the band would reach into a building.
+    std::vector<SideWidths> walk(n);
+    for (size_t e = 0; e < n; ++e) {
+        const RoadGraphEdge& edge = graph.edges[e];
+        for (int side = 0; side < 2; ++side) {
+            if (!(side == 0 ? edge.sidewalk_left : edge.sidewalk_right)) continue;
+            double w = params.width;
+            for (; w >= kMinSidewalkWidth; w -= kSidewalkStep) {
+                const Frame f = frame_of(edge);
+                const double h = 0.5 * edge.width;
+                const Vec2 off = side == 0 ? f.n : f.n * -1.0;
+                Ring band{f.from + off * h, f.to + off * h, f.to + off * (h + w), f.from + off * (h + w)};
+                if (signed_area(band) < 0) band = {band[3], band[2], band[1], band[0]};
+                double largest = 0;
+                building_index.overlap(band, &largest);
+                if (largest <= kRoadBuildingOverlapTolerance) break;
+            }
+            if (w < kMinSidewalkWidth) {
+                report.dropped("sidewalk sides", "no room beside a building");
+                continue;
+            }
+            if (w < params.width) report.note("sidewalk sides", "narrowed beside a building");
+            report.kept("sidewalk sides");
+            (side == 0 ? walk[e].left : walk[e].right) = w;
+        }
+    }
+    std::vector<SideWidths> outer(n);
+    for (size_t e = 0; e < n; ++e) outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
+    const RoadLayout& in = surface.layout;
+    const RoadLayout out = layout_road_polygons(graph, outer, miter_limit, &in);
+
+    // Other roads, to keep sidewalks off them (a polygon index reuses the footprint grid).
+    std::vector<Building> road_pieces;
+    for (const RoadEdge& r : surface.roads) road_pieces.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
+    for (const Joint& j : surface.joints) road_pieces.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
+    const BuildingIndex road_index(road_pieces);
+    std::map<int64_t, int> joint_of_node;
+    for (size_t j = 0; j < surface.joints.size(); ++j) joint_of_node[surface.joints[j].osm.id] = static_cast<int>(j);
+
+    std::vector<Sidewalk> result;
+    auto emit = [&](SidewalkKind kind, Ring polygon, int road, int joint) {
+        const char* what = kind == SidewalkKind::Strip ? "sidewalk strips" : "sidewalk corners";
+        report.read(what);
+        if (polygon.size() < 3 || signed_area(polygon) < kMinPieceArea || !ring_is_simple(polygon)) {
+            report.dropped(what, "degenerate (tangled junction)");
+            return;
+        }
+        double largest = 0;
+        building_index.overlap(polygon, &largest);
+        if (largest > kRoadBuildingOverlapTolerance) {
+            report.dropped(what, "overlaps a building");
+            return;
+        }
+        road_index.overlap(polygon, &largest);
+        if (largest > kMaxRoadOverlap) {
+            report.dropped(what, "lies on another road");
+            return;
+        }
+        report.kept(what);
+        result.push_back({kind, std::move(polygon), road, joint, params.curb_height});
+    };
+
+    // Where a strip ends: at a joint both its lines stop at the outline's square cut.
+    std::vector<const NodeLayout*> node_of_from(n, nullptr), node_of_to(n, nullptr);
+    for (const NodeLayout& node : in.nodes)
+        for (const NodeLayout::End& end : node.ends) (end.at_from ? node_of_from : node_of_to)[end.edge] = &node;
+    auto strip_cut = [&](size_t e, bool at_from, bool left_of_leaving, double& t_in, double& t_out) {
+        const EdgeEndCut& ci = at_from ? in.from_cut[e] : in.to_cut[e];
+        const EdgeEndCut& co = at_from ? out.from_cut[e] : out.to_cut[e];
+        t_in = left_of_leaving ? ci.t_left : ci.t_right;
+        t_out = left_of_leaving ? co.t_left : co.t_right;
+        const NodeLayout* node = at_from ? node_of_from[e] : node_of_to[e];
+        if (node && node->kind == JoinKind::Joint) t_in = t_out = std::max(t_in, t_out);
+    };
+
+    // 2. Strips along every edge side with a sidewalk.
+    for (size_t e = 0; e < n; ++e) {
+        const int road = surface.road_of_edge[e];
+        if (road < 0) continue;
+        const Frame f = frame_of(graph.edges[e]);
+        if (walk[e].left > 0) {
+            double s_in, s_out, e_in, e_out;
+            strip_cut(e, true, true, s_in, s_out);
+            strip_cut(e, false, false, e_in, e_out);
+            emit(SidewalkKind::Strip,
+                 {f.from + f.n * inner[e].left + f.d * s_in, f.to + f.n * inner[e].left - f.d * e_in,
+                  f.to + f.n * outer[e].left - f.d * e_out, f.from + f.n * outer[e].left + f.d * s_out},
+                 road, -1);
+        }
+        if (walk[e].right > 0) {
+            double s_in, s_out, e_in, e_out;
+            strip_cut(e, true, false, s_in, s_out);
+            strip_cut(e, false, true, e_in, e_out);
+            emit(SidewalkKind::Strip,
+                 {f.from - f.n * outer[e].right + f.d * s_out, f.to - f.n * outer[e].right - f.d * e_out,
+                  f.to - f.n * inner[e].right - f.d * e_in, f.from - f.n * inner[e].right + f.d * s_in},
+                 road, -1);
+        }
+    }
+
+    // 3. Corner pieces: in each gap of a joint, the band between the carriageway's joint
+    // boundary and the outline's, from one strip's end to the next.
+    for (size_t k = 0; k < in.nodes.size(); ++k) {
+        const NodeLayout& ni = in.nodes[k];
+        const NodeLayout& no = out.nodes[k];
+        if (ni.kind != JoinKind::Joint || ni.joint.empty()) continue;
+        auto it = joint_of_node.find(ni.node);
+        const int joint = it == joint_of_node.end() ? -1 : it->second;
+        const size_t m = ni.ends.size();
+        for (size_t i = 0; i < m; ++i) {
+            const size_t j = (i + 1) % m;
+            const NodeLayout::End &ei = ni.ends[i], &ej = ni.ends[j];
+            // The gap lies on i's left and j's right (relative to leaving the node).
+            const double walk_i = ei.at_from ? walk[ei.edge].left : walk[ei.edge].right;
+            const double walk_j = ej.at_from ? walk[ej.edge].right : walk[ej.edge].left;
+            if (walk_i <= 0 && walk_j <= 0) continue;
+            if (ni.joint_is_hull || no.joint_is_hull) {
+                report.dropped("sidewalk corners", "tangled junction");
+                continue;
+            }
+            auto line_point = [&](const NodeLayout::End& end, bool left, const std::vector<SideWidths>& w, double t) {
+                const RoadGraphEdge& g = graph.edges[end.edge];
+                const Vec2 dir = normalize(end.at_from ? g.to - g.from : g.from - g.to);
+                const double half = end.at_from ? (left ? w[end.edge].left : w[end.edge].right)
+                                                : (left ? w[end.edge].right : w[end.edge].left);
+                return ni.position + perp_left(dir) * (left ? half : -half) + dir * t;
+            };
+            const double ts_i = std::max(ei.trim, no.ends[i].trim), ts_j = std::max(ej.trim, no.ends[j].trim);
+            Ring piece;
+            push_distinct(piece, line_point(ei, true, inner, ts_i));
+            push_distinct(piece, line_point(ei, true, outer, ts_i));
+            push_distinct(piece, line_point(ei, true, outer, no.ends[i].trim));
+            for (Vec2 q : no.ends[i].gap_points) push_distinct(piece, q);
+            push_distinct(piece, line_point(ej, false, outer, no.ends[j].trim));
+            push_distinct(piece, line_point(ej, false, outer, ts_j));
+            push_distinct(piece, line_point(ej, false, inner, ts_j));
+            push_distinct(piece, line_point(ej, false, inner, ej.trim));
+            for (auto q = ei.gap_points.rbegin(); q != ei.gap_points.rend(); ++q) push_distinct(piece, *q);
+            push_distinct(piece, line_point(ei, true, inner, ei.trim));
+            while (piece.size() > 1 && length(piece.front() - piece.back()) <= 1e-4) piece.pop_back();
+            emit(SidewalkKind::Corner, std::move(piece), -1, joint);
+        }
+    }
+    return result;
+}
+
+}  // namespace citygen
