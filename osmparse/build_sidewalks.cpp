@@ -1,5 +1,6 @@
 #include "build_sidewalks.h"
 
+#include <cmath>
 #include <map>
 
 #include "narrow_roads.h"
@@ -79,8 +80,11 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
     std::vector<Sidewalk> result;
     auto emit = [&](SidewalkKind kind, Ring polygon, int road, int joint) {
         const char* what = kind == SidewalkKind::Strip ? "sidewalk strips" : "sidewalk corners";
+        // Nothing between carriageway and outline (e.g. where a road without sidewalks
+        // cuts through): not a piece at all.
+        if (polygon.size() < 3 || std::fabs(signed_area(polygon)) < kMinPieceArea) return;
         report.read(what);
-        if (polygon.size() < 3 || signed_area(polygon) < kMinPieceArea || !ring_is_simple(polygon)) {
+        if (signed_area(polygon) < 0 || !ring_is_simple(polygon)) {
             report.dropped(what, "degenerate (tangled junction)");
             return;
         }

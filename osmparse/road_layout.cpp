@@ -145,6 +145,18 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
         for (Vec2 q : end.gap_points) push_distinct(ring, q);
     }
     while (ring.size() > 1 && length(ring.front() - ring.back()) <= kDedupe) ring.pop_back();
+    // Drop spikes: a vertex where the boundary runs out and straight back along itself.
+    for (bool removed = true; removed && ring.size() > 3;) {
+        removed = false;
+        for (size_t i = 0, m = ring.size(); i < m; ++i) {
+            const Vec2 a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
+            if (std::fabs(cross(b - a, c - b)) < 1e-9 * (1 + length(b - a) * length(c - b)) && dot(b - a, c - b) < 0) {
+                ring.erase(ring.begin() + static_cast<long>(i));
+                removed = true;
+                break;
+            }
+        }
+    }
     node.joint.clear();
     node.joint_is_hull = false;
     if (ring.size() >= 3 && signed_area(ring) > kMinJointArea && ring_is_simple(ring)) {
