@@ -72,6 +72,14 @@ bool miter_cuts(Vec2 p, const EndGeometry& a, const EndGeometry& b, double miter
     return within_limit && fits_edges;
 }
 
+// Near-parallel neighbours meet far out (half width / tan(half the angle)); a joint
+// reaching that far would swallow the roads, so corners are cut at this distance and
+// the two quads overlap beyond it, as the roads themselves do.
+constexpr double kCornerReachInHalfWidths = 3;
+double corner_reach(const EndGeometry& i, const EndGeometry& j) {
+    return kCornerReachInHalfWidths * std::max({i.half_left, i.half_right, j.half_left, j.half_right});
+}
+
 // How far each end of a junction would have to be cut back for the offset lines of
 // neighbouring edges to meet (unlimited by the edge's length).
 double joint_demand(const NodeLayout& node, const std::vector<EndGeometry>& geo, size_t end) {
@@ -87,7 +95,7 @@ double joint_demand(const NodeLayout& node, const std::vector<EndGeometry>& geo,
         double s, u;
         if (!intersect_lines(gi.left_at(node.position, 0), gi.dir, gj.right_at(node.position, 0), gj.dir, s, u))
             continue;
-        demand = std::max(demand, side == 0 ? s : u);
+        demand = std::max(demand, std::min(side == 0 ? s : u, corner_reach(gi, gj)));
     }
     return demand;
 }
@@ -109,8 +117,8 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
             continue;
         // Near-parallel neighbours and short edges: the true corner lies too far out,
         // so the corner is cut short on both edges.
-        s = std::clamp(s, 0.0, gi.max_cut);
-        u = std::clamp(u, 0.0, gj.max_cut);
+        s = std::clamp(s, 0.0, std::min(gi.max_cut, corner_reach(gi, gj)));
+        u = std::clamp(u, 0.0, std::min(gj.max_cut, corner_reach(gi, gj)));
         demand_left[i] = s;
         demand_right[j] = u;
         node.ends[i].gap_points.push_back(gi.left_at(node.position, s));
