@@ -15,6 +15,10 @@ RoadSurface build_road_polygons(const RoadGraph& graph, const RoadParams& params
     out.road_of_edge.assign(graph.edges.size(), -1);
     for (size_t e = 0; e < graph.edges.size(); ++e) {
         const RoadGraphEdge& g = graph.edges[e];
+        if (out.layout.absorbed[e]) {
+            report.note("road edges", "absorbed into a merged junction");
+            continue;
+        }
         if (out.layout.quads[e].empty()) {
             report.dropped("road edges", "too short for its junctions");
             continue;
@@ -43,6 +47,7 @@ RoadSurface build_road_polygons(const RoadGraph& graph, const RoadParams& params
             report.note("road joints", "nothing left of the polygon");
             continue;
         }
+        if (!node.members.empty()) report.note("road joints", "merged from nearby junctions");
         if (node.joint_is_hull) report.note("road joints", "star or hull polygon stands in for a tangled one");
         Joint j;
         j.osm = {OsmType::Node, node.node};

@@ -166,7 +166,7 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
                 const Vec2 dir = normalize(end.at_from ? g.to - g.from : g.from - g.to);
                 const double half = end.at_from ? (left ? w[end.edge].left : w[end.edge].right)
                                                 : (left ? w[end.edge].right : w[end.edge].left);
-                return ni.position + perp_left(dir) * (left ? half : -half) + dir * t;
+                return end.origin + perp_left(dir) * (left ? half : -half) + dir * t;
             };
             const double ts_i = std::max(ei.trim, no.ends[i].trim), ts_j = std::max(ej.trim, no.ends[j].trim);
             Ring piece;

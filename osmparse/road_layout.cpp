@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 
 namespace citygen {
@@ -12,6 +13,7 @@ constexpr double kMaxCutFraction = 0.45;  // no cut reaches past this share of a
 constexpr double kStraightCos = 0.99996;  // cos(0.5 deg): closer to straight needs no miter
 constexpr double kDedupe = 1e-4;          // metres: closer points are one point
 constexpr double kMinJointArea = 1e-3;    // square metres
+constexpr double kMaxJunctionSpan = 25;   // metres: junctions merged into one joint stay this small
 
 // Intersection of p1 + s*d1 and p2 + u*d2; false when (nearly) parallel.
 bool intersect_lines(Vec2 p1, Vec2 d1, Vec2 p2, Vec2 d2, double& s, double& u) {
@@ -23,18 +25,19 @@ bool intersect_lines(Vec2 p1, Vec2 d1, Vec2 p2, Vec2 d2, double& s, double& u) {
     return true;
 }
 
-// One edge as seen from a node.
+// One edge as seen from the node it leaves (its origin).
 struct EndGeometry {
-    Vec2 dir, normal;          // leaving the node; normal points left
+    Vec2 origin, dir, normal;  // leaving the node; normal points left
     double half_left, half_right;
     double max_cut;
-    Vec2 left_at(Vec2 p, double t) const { return p + normal * half_left + dir * t; }
-    Vec2 right_at(Vec2 p, double t) const { return p - normal * half_right + dir * t; }
+    Vec2 left_at(double t) const { return origin + normal * half_left + dir * t; }
+    Vec2 right_at(double t) const { return origin - normal * half_right + dir * t; }
 };
 
 EndGeometry end_geometry(const RoadGraphEdge& e, SideWidths w, bool at_from) {
     EndGeometry g;
     const Vec2 along = at_from ? e.to - e.from : e.from - e.to;
+    g.origin = at_from ? e.from : e.to;
     g.dir = normalize(along);
     g.normal = perp_left(g.dir);
     g.half_left = at_from ? w.left : w.right;
@@ -55,13 +58,13 @@ bool miter_cuts(Vec2 p, const EndGeometry& a, const EndGeometry& b, double miter
         return true;
     }
     double s_ab, u_ab, s_ba, u_ba;
-    if (!intersect_lines(p + a.normal * a.half_left, a.dir, p - b.normal * b.half_right, b.dir, s_ab, u_ab) ||
-        !intersect_lines(p + b.normal * b.half_left, b.dir, p - a.normal * a.half_right, a.dir, s_ba, u_ba))
+    if (!intersect_lines(a.left_at(0), a.dir, b.right_at(0), b.dir, s_ab, u_ab) ||
+        !intersect_lines(b.left_at(0), b.dir, a.right_at(0), a.dir, s_ba, u_ba))
         return false;
     cut_a = {s_ab, u_ba};
     cut_b = {s_ba, u_ab};
     const double reach = miter_limit * std::max({a.half_left, a.half_right, b.half_left, b.half_right});
-    const bool within_limit = length(a.left_at(p, s_ab) - p) <= reach && length(b.left_at(p, s_ba) - p) <= reach;
+    const bool within_limit = length(a.left_at(s_ab) - p) <= reach && length(b.left_at(s_ba) - p) <= reach;
     auto fits = [](double t, const EndGeometry& g) { return std::fabs(t) <= g.max_cut; };
     const bool fits_edges = fits(s_ab, a) && fits(u_ba, a) && fits(s_ba, b) && fits(u_ab, b);
     if (forced) {
@@ -82,7 +85,7 @@ double corner_reach(const EndGeometry& i, const EndGeometry& j) {
 
 // How far each end of a junction would have to be cut back for the offset lines of
 // neighbouring edges to meet (unlimited by the edge's length).
-double joint_demand(const NodeLayout& node, const std::vector<EndGeometry>& geo, size_t end) {
+double joint_demand(const std::vector<EndGeometry>& geo, size_t end) {
     const size_t k = geo.size();
     double demand = 0;
     for (size_t side = 0; side < 2; ++side) {
@@ -93,7 +96,7 @@ double joint_demand(const NodeLayout& node, const std::vector<EndGeometry>& geo,
         if (gap <= 0) gap += 2 * M_PI;
         if (gap >= M_PI - 1e-3) continue;
         double s, u;
-        if (!intersect_lines(gi.left_at(node.position, 0), gi.dir, gj.right_at(node.position, 0), gj.dir, s, u))
+        if (!intersect_lines(gi.left_at(0), gi.dir, gj.right_at(0), gj.dir, s, u))
             continue;
         demand = std::max(demand, std::min(side == 0 ? s : u, corner_reach(gi, gj)));
     }
@@ -113,7 +116,7 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
         if (gap <= 0) gap += 2 * M_PI;
         if (k == 1 || gap >= M_PI - 1e-3) continue;  // open or straight side: a plain bevel
         double s, u;
-        if (!intersect_lines(gi.left_at(node.position, 0), gi.dir, gj.right_at(node.position, 0), gj.dir, s, u))
+        if (!intersect_lines(gi.left_at(0), gi.dir, gj.right_at(0), gj.dir, s, u))
             continue;
         // Near-parallel neighbours and short edges: the true corner lies too far out,
         // so the corner is cut short on both edges.
@@ -121,8 +124,8 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
         u = std::clamp(u, 0.0, std::min(gj.max_cut, corner_reach(gi, gj)));
         demand_left[i] = s;
         demand_right[j] = u;
-        node.ends[i].gap_points.push_back(gi.left_at(node.position, s));
-        node.ends[i].gap_points.push_back(gj.right_at(node.position, u));
+        node.ends[i].gap_points.push_back(gi.left_at(s));
+        node.ends[i].gap_points.push_back(gj.right_at(u));
     }
     for (size_t i = 0; i < k; ++i) node.ends[i].trim = std::max(demand_left[i], demand_right[i]);
     // Where neighbours were cut short their quads still overlap, and their square cuts
@@ -131,8 +134,8 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
     std::vector<Vec2> crossing(k);
     for (size_t i = 0; i < k && k > 1; ++i) {
         const size_t j = (i + 1) % k;
-        const Vec2 ri = geo[i].right_at(node.position, node.ends[i].trim), li = geo[i].left_at(node.position, node.ends[i].trim);
-        const Vec2 rj = geo[j].right_at(node.position, node.ends[j].trim), lj = geo[j].left_at(node.position, node.ends[j].trim);
+        const Vec2 ri = geo[i].right_at(node.ends[i].trim), li = geo[i].left_at(node.ends[i].trim);
+        const Vec2 rj = geo[j].right_at(node.ends[j].trim), lj = geo[j].left_at(node.ends[j].trim);
         double s, u;
         if (intersect_lines(ri, li - ri, rj, lj - rj, s, u) && s > 0 && s < 1 && u > 0 && u < 1) {
             cuts_cross[i] = true;
@@ -143,13 +146,13 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
     for (size_t i = 0; i < k; ++i) {
         NodeLayout::End& end = node.ends[i];
         const size_t prev = (i + k - 1) % k;
-        push_distinct(ring, cuts_cross[prev] ? crossing[prev] : geo[i].right_at(node.position, end.trim));
+        push_distinct(ring, cuts_cross[prev] ? crossing[prev] : geo[i].right_at(end.trim));
         if (cuts_cross[i]) {
             end.gap_points = {crossing[i]};
             push_distinct(ring, crossing[i]);
             continue;
         }
-        push_distinct(ring, geo[i].left_at(node.position, end.trim));
+        push_distinct(ring, geo[i].left_at(end.trim));
         for (Vec2 q : end.gap_points) push_distinct(ring, q);
     }
     while (ring.size() > 1 && length(ring.front() - ring.back()) <= kDedupe) ring.pop_back();
@@ -227,6 +230,7 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
     out.from_cut.assign(n, {});
     out.to_cut.assign(n, {});
     out.quads.assign(n, {});
+    out.absorbed.assign(n, false);
 
     std::map<int64_t, NodeLayout> nodes;
     for (uint32_t e = 0; e < n; ++e) {
@@ -234,45 +238,55 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
         NodeLayout& a = nodes[edge.from_node];
         a.node = edge.from_node;
         a.position = edge.from;
-        a.ends.push_back({e, true, 0, {}});
+        a.ends.push_back({e, true, edge.from, 0, {}});
         NodeLayout& b = nodes[edge.to_node];
         b.node = edge.to_node;
         b.position = edge.to;
-        b.ends.push_back({e, false, 0, {}});
+        b.ends.push_back({e, false, edge.to, 0, {}});
     }
+    auto geometry_of = [&](const NodeLayout::End& end) {
+        return end_geometry(graph.edges[end.edge], widths[end.edge], end.at_from);
+    };
+    auto geometry_at = [&](const NodeLayout& node) {
+        std::vector<EndGeometry> geo;
+        for (const NodeLayout::End& end : node.ends) geo.push_back(geometry_of(end));
+        return geo;
+    };
+    // Counter-clockwise around the node; in a merged junction the ends leave from
+    // different nodes, so the angle is taken around the centre to a point well out.
+    auto sort_ends = [&](NodeLayout& node) {
+        auto key = [&](const NodeLayout::End& end) {
+            const EndGeometry g = geometry_of(end);
+            const Vec2 far = g.origin - node.position + g.dir * 50.0;
+            return std::atan2(far.y, far.x);
+        };
+        std::sort(node.ends.begin(), node.ends.end(), [&](const NodeLayout::End& a, const NodeLayout::End& b) {
+            const double ka = key(a), kb = key(b);
+            if (ka != kb) return ka < kb;
+            return a.edge != b.edge ? a.edge < b.edge : a.at_from < b.at_from;
+        });
+    };
+    std::vector<double> from_demand(n, 0), to_demand(n, 0), from_fixed(n, 0), to_fixed(n, 0);
+    auto demand_of = [&](const NodeLayout::End& end) -> double& {
+        return end.at_from ? from_demand[end.edge] : to_demand[end.edge];
+    };
+    auto cut_of = [&](const NodeLayout::End& end) -> EdgeEndCut& {
+        return end.at_from ? out.from_cut[end.edge] : out.to_cut[end.edge];
+    };
+    std::map<int64_t, const NodeLayout*> followed_nodes;
+    if (follow)
+        for (const NodeLayout& f : follow->nodes) followed_nodes[f.node] = &f;
 
     // Pass 1: order the ends at every node, choose miters, and note how far every joint
     // would like to cut each edge back.
-    std::vector<double> from_demand(n, 0), to_demand(n, 0), from_fixed(n, 0), to_fixed(n, 0);
-    std::vector<std::vector<EndGeometry>> node_geo;
-    node_geo.reserve(nodes.size());
-    size_t follow_index = 0;
     for (auto& [id, node] : nodes) {
-        auto geometry_of = [&](const NodeLayout::End& end) {
-            return end_geometry(graph.edges[end.edge], widths[end.edge], end.at_from);
-        };
-        std::sort(node.ends.begin(), node.ends.end(), [&](const NodeLayout::End& a, const NodeLayout::End& b) {
-            const EndGeometry ga = geometry_of(a), gb = geometry_of(b);
-            const double aa = std::atan2(ga.dir.y, ga.dir.x), ab = std::atan2(gb.dir.y, gb.dir.x);
-            if (aa != ab) return aa < ab;
-            return a.edge != b.edge ? a.edge < b.edge : a.at_from < b.at_from;
-        });
-        node_geo.emplace_back();
-        std::vector<EndGeometry>& geo = node_geo.back();
-        for (const NodeLayout::End& end : node.ends) geo.push_back(geometry_of(end));
-        auto cut_of = [&](const NodeLayout::End& end) -> EdgeEndCut& {
-            return end.at_from ? out.from_cut[end.edge] : out.to_cut[end.edge];
-        };
-
-        const NodeLayout* followed = nullptr;
-        if (follow) {
-            // Both layouts come from the same graph, so their sorted node lists match.
-            followed = &follow->nodes[follow_index++];
-        }
+        sort_ends(node);
+        const std::vector<EndGeometry> geo = geometry_at(node);
+        auto it = followed_nodes.find(id);
+        const NodeLayout* followed = it == followed_nodes.end() ? nullptr : it->second;
         const size_t k = node.ends.size();
         if (k == 1) {
             node.kind = JoinKind::End;
-            cut_of(node.ends[0]) = {0, 0};
             continue;
         }
         if (k == 2 && (!followed || followed->kind == JoinKind::Miter)) {
@@ -290,13 +304,84 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
             }
         }
         node.kind = JoinKind::Joint;
-        for (size_t i = 0; i < k; ++i) {
-            const NodeLayout::End& end = node.ends[i];
-            (end.at_from ? from_demand : to_demand)[end.edge] = joint_demand(node, geo, i);
+        for (size_t i = 0; i < k; ++i) demand_of(node.ends[i]) = joint_demand(geo, i);
+    }
+
+    // Pass 2: junctions closer together than their roads are wide become one joint
+    // (osm2streets does the same): the short edges between them are absorbed.
+    if (follow) {
+        out.absorbed = follow->absorbed;
+    } else {
+        std::map<int64_t, int64_t> parent;
+        std::map<int64_t, std::vector<Vec2>> members;
+        std::function<int64_t(int64_t)> root = [&](int64_t v) {
+            auto it = parent.find(v);
+            if (it == parent.end() || it->second == v) return v;
+            return it->second = root(it->second);
+        };
+        for (uint32_t e = 0; e < n; ++e) {
+            const RoadGraphEdge& edge = graph.edges[e];
+            if (nodes[edge.from_node].kind != JoinKind::Joint || nodes[edge.to_node].kind != JoinKind::Joint) continue;
+            if (from_demand[e] + to_demand[e] <= 0.9 * length(edge.to - edge.from)) continue;
+            const int64_t a = root(edge.from_node), b = root(edge.to_node);
+            if (a == b) continue;
+            std::vector<Vec2> pa = members.count(a) ? members[a] : std::vector<Vec2>{edge.from};
+            std::vector<Vec2> pb = members.count(b) ? members[b] : std::vector<Vec2>{edge.to};
+            double span = 0;
+            for (Vec2 p : pa)
+                for (Vec2 q : pb) span = std::max(span, length(p - q));
+            if (span > kMaxJunctionSpan) continue;
+            parent[a] = parent[b] = std::min(a, b);
+            parent[std::max(a, b)] = std::min(a, b);
+            pa.insert(pa.end(), pb.begin(), pb.end());
+            members[std::min(a, b)] = pa;
+        }
+        for (uint32_t e = 0; e < n; ++e)
+            out.absorbed[e] = root(graph.edges[e].from_node) == root(graph.edges[e].to_node) &&
+                              parent.count(graph.edges[e].from_node);
+    }
+    {
+        // Merge the nodes joined by absorbed edges into one node keyed by the smallest id.
+        std::map<int64_t, int64_t> parent;
+        std::function<int64_t(int64_t)> root = [&](int64_t v) {
+            auto it = parent.find(v);
+            if (it == parent.end() || it->second == v) return v;
+            return it->second = root(it->second);
+        };
+        for (uint32_t e = 0; e < n; ++e) {
+            if (!out.absorbed[e]) continue;
+            const int64_t a = root(graph.edges[e].from_node), b = root(graph.edges[e].to_node);
+            if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        }
+        std::map<int64_t, std::vector<int64_t>> clusters;
+        for (const auto& [v, p] : parent) clusters[root(v)].push_back(v);
+        for (auto& [r, rest] : clusters) {
+            NodeLayout merged;
+            merged.node = r;
+            merged.kind = JoinKind::Joint;
+            merged.members = {r};
+            merged.members.insert(merged.members.end(), rest.begin(), rest.end());
+            std::sort(merged.members.begin(), merged.members.end());
+            Vec2 sum;
+            for (int64_t m : merged.members) {
+                const NodeLayout& node = nodes[m];
+                sum = sum + node.position;
+                for (const NodeLayout::End& end : node.ends) {
+                    if (out.absorbed[end.edge]) continue;
+                    merged.ends.push_back(end);
+                    (end.at_from ? from_fixed : to_fixed)[end.edge] = 0;
+                }
+            }
+            merged.position = sum * (1.0 / merged.members.size());
+            for (int64_t m : merged.members) nodes.erase(m);
+            sort_ends(merged);
+            const std::vector<EndGeometry> geo = geometry_at(merged);
+            for (size_t i = 0; i < merged.ends.size(); ++i) demand_of(merged.ends[i]) = joint_demand(geo, i);
+            nodes[r] = std::move(merged);
         }
     }
 
-    // Pass 2: share each edge's length between the joints at its two ends, keeping 10%
+    // Pass 3: share each edge's length between the joints at its two ends, keeping 10%
     // of it (and whatever a miter at either end needs) for the quad.
     std::vector<double> from_allowed(n), to_allowed(n);
     for (uint32_t e = 0; e < n; ++e) {
@@ -308,21 +393,20 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
         to_allowed[e] = to_demand[e] * scale;
     }
 
-    // Pass 3: joint polygons with the shared-out cuts.
-    size_t node_index = 0;
+    // Pass 4: joint polygons with the shared-out cuts.
     for (auto& [id, node] : nodes) {
-        std::vector<EndGeometry>& geo = node_geo[node_index++];
-        if (node.kind != JoinKind::Joint) continue;
+        if (node.kind != JoinKind::Joint || node.ends.empty()) continue;
+        std::vector<EndGeometry> geo = geometry_at(node);
         for (size_t i = 0; i < geo.size(); ++i) {
             const NodeLayout::End& end = node.ends[i];
             geo[i].max_cut = end.at_from ? from_allowed[end.edge] : to_allowed[end.edge];
         }
         layout_joint(node, geo);
-        for (const NodeLayout::End& end : node.ends)
-            (end.at_from ? out.from_cut[end.edge] : out.to_cut[end.edge]) = {end.trim, end.trim};
+        for (const NodeLayout::End& end : node.ends) cut_of(end) = {end.trim, end.trim};
     }
 
     for (uint32_t e = 0; e < n; ++e) {
+        if (out.absorbed[e]) continue;
         Ring q = quad_for_cuts(graph.edges[e], widths[e], out.from_cut[e], out.to_cut[e]);
         if (quad_is_valid(q)) out.quads[e] = std::move(q);
     }

@@ -30,12 +30,14 @@ struct EdgeEndCut {
 };
 
 struct NodeLayout {
-    int64_t node = 0;
-    Vec2 position;
+    int64_t node = 0;               // the smallest id of `members` for a merged junction
+    std::vector<int64_t> members;   // nodes merged into this junction; empty for a plain node
+    Vec2 position;                  // the node, or the centre of the merged nodes
     JoinKind kind = JoinKind::End;
     struct End {
         uint32_t edge = 0;
         bool at_from = true;          // the edge leaves this node at its `from` end
+        Vec2 origin;                  // the node it leaves (differs from `position` in merged junctions)
         double trim = 0;              // a joint's square cut across the edge
         std::vector<Vec2> gap_points; // boundary between this end's left side and the next end's right side
     };
@@ -46,7 +48,8 @@ struct NodeLayout {
 
 struct RoadLayout {
     std::vector<EdgeEndCut> from_cut, to_cut;  // per edge
-    std::vector<Ring> quads;                    // per edge, CCW; empty when it would fold
+    std::vector<Ring> quads;                    // per edge, CCW; empty when it would fold or is absorbed
+    std::vector<bool> absorbed;                 // per edge: inside a merged junction
     std::vector<NodeLayout> nodes;              // sorted by node id
 };
 
@@ -55,8 +58,8 @@ struct RoadLayout {
 // A degree-2 node gets a miter when both offset-line intersections lie within
 // miter_limit half widths of the node and cut neither edge beyond 45% of its length;
 // otherwise it is treated like a junction. No cut goes beyond 45% of an edge's length,
-// so quads never fold; at short edges and near-parallel neighbours the joint is cut
-// short instead.
+// so quads never fold. Junctions joined by an edge shorter than their joints need
+// (within 25 m) are merged into one joint polygon and the edge is absorbed.
 RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWidths>& widths,
                                 double miter_limit, const RoadLayout* follow = nullptr);
 

@@ -103,12 +103,14 @@ TEST(RoadFixtures, DeadEndEndsSquare) {
         }
 }
 
-TEST(RoadFixtures, ShortEdgeBetweenJunctionsKeepsAQuad) {
-    // The two junctions are closer than the roads are wide, so the residential roads
-    // reach into the other junction and the pieces overlap there (merging such joints
-    // into one is future work). What must hold: valid pieces and no hole.
-    const Scene s = parse_fixture("short_edge", false);
-    EXPECT_EQ(s.joints.size(), 2u);
+TEST(RoadFixtures, JunctionsCloserThanTheirRoadsAreWideMerge) {
+    // The two junctions are 3 m apart on a 9 m primary road with 6 m side streets: one
+    // joint covers both, the 3 m edge is absorbed, and the strict checks hold.
+    const Scene s = parse_fixture("short_edge");
+    ASSERT_EQ(s.joints.size(), 1u);
+    EXPECT_EQ(s.joints[0].edges.size(), 4u);
+    EXPECT_EQ(s.roads.size(), 4u);
+    for (const RoadEdge& r : s.roads) EXPECT_GT(length(r.centreline[1] - r.centreline[0]), 4);
     auto covered = [&](Vec2 p) {
         for (const RoadEdge& r : s.roads)
             if (point_in_ring(p, r.quad)) return true;
@@ -116,19 +118,13 @@ TEST(RoadFixtures, ShortEdgeBetweenJunctionsKeepsAQuad) {
             if (point_in_ring(p, j.polygon)) return true;
         return false;
     };
-    // Sample the junction area between both residential roads and the primary's edges
-    // (local metres of the scene: the fixture's origin is the data's centre).
-    const Vec2 centre = (s.roads[0].centreline[1] + s.roads[2].centreline[0]) * 0.5;
-    for (double x = -2.9; x <= 5.9; x += 0.1)
+    // No hole anywhere between both side streets and the primary's edges (local metres:
+    // the fixture's junction nodes are the west end of road 2 and the east end of road 0).
+    const Vec2 west = s.roads[0].centreline[1], east = s.roads[1].centreline[0];
+    const Vec2 along = normalize(east - west), across = perp_left(along);
+    for (double x = -2.9; x <= length(east - west) + 2.9; x += 0.1)
         for (double y = -4.4; y <= 4.4; y += 0.1)
-            EXPECT_TRUE(covered(centre + Vec2(x - 1.5, y))) << x << "," << y;
-    bool found = false;
-    for (const RoadEdge& r : s.roads)
-        if (length(r.centreline[1] - r.centreline[0]) < 4) {
-            found = true;
-            EXPECT_GT(signed_area(r.quad), 0.1);
-        }
-    EXPECT_TRUE(found) << "the 3 m edge was lost";
+            EXPECT_TRUE(covered(west + along * x + across * y)) << x << "," << y;
 }
 
 TEST(RoadFixtures, NearlyParallelRoadsGiveASimpleJoint) {
