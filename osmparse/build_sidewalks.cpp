@@ -20,6 +20,19 @@ void push_distinct(Ring& ring, Vec2 p) {
     if (ring.empty() || length(ring.back() - p) > 1e-4) ring.push_back(p);
 }
 
+// A strip [a, b, c, d] has its end cuts a-d and b-c. On the inside of a tight curve (a
+// small roundabout's island) the outline's cuts cross before the strip ends: the strip
+// is then the triangle from its carriageway side (a-b, or c-d) up to the crossing.
+Ring untwist_strip(const Ring& q, bool carriageway_first) {
+    const Vec2 a = q[0], b = q[1], c = q[2], d = q[3];
+    if (!segments_intersect(a, d, b, c)) return q;
+    const Vec2 ad = d - a, bc = c - b;
+    const double den = cross(ad, bc);
+    if (std::fabs(den) < 1e-12) return q;
+    const Vec2 x = a + ad * (cross(b - a, bc) / den);
+    return carriageway_first ? Ring{a, b, x} : Ring{x, c, d};
+}
+
 struct Frame {
     Vec2 from, to, d, n;
 };
@@ -126,8 +139,9 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             strip_cut(e, true, true, s_in, s_out);
             strip_cut(e, false, false, e_in, e_out);
             emit(SidewalkKind::Strip,
-                 {f.from + f.n * inner[e].left + f.d * s_in, f.to + f.n * inner[e].left - f.d * e_in,
-                  f.to + f.n * outer[e].left - f.d * e_out, f.from + f.n * outer[e].left + f.d * s_out},
+                 untwist_strip({f.from + f.n * inner[e].left + f.d * s_in, f.to + f.n * inner[e].left - f.d * e_in,
+                                f.to + f.n * outer[e].left - f.d * e_out, f.from + f.n * outer[e].left + f.d * s_out},
+                               true),
                  road, -1);
         }
         if (walk[e].right > 0) {
@@ -135,8 +149,9 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             strip_cut(e, true, false, s_in, s_out);
             strip_cut(e, false, true, e_in, e_out);
             emit(SidewalkKind::Strip,
-                 {f.from - f.n * outer[e].right + f.d * s_out, f.to - f.n * outer[e].right - f.d * e_out,
-                  f.to - f.n * inner[e].right - f.d * e_in, f.from - f.n * inner[e].right + f.d * s_in},
+                 untwist_strip({f.from - f.n * outer[e].right + f.d * s_out, f.to - f.n * outer[e].right - f.d * e_out,
+                                f.to - f.n * inner[e].right - f.d * e_in, f.from - f.n * inner[e].right + f.d * s_in},
+                               false),
                  road, -1);
         }
     }

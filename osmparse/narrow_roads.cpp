@@ -56,22 +56,40 @@ RoadGraph narrow_roads(RoadGraph graph, const std::vector<Building>& buildings,
     };
     compact();
 
-    // 2. Miters and joints reach beyond the rectangles: check the laid-out pieces.
+    // 2. Miters and joints reach beyond the rectangles: check the laid-out pieces. After
+    // the first round only pieces at nodes whose edges were narrowed can have changed.
+    std::set<int64_t> dirty;
     for (int round = 0; round < kLayoutRounds; ++round) {
-        const std::vector<SideWidths> widths = [&] {
-            std::vector<SideWidths> w;
-            for (const RoadGraphEdge& e : graph.edges) w.push_back({0.5 * e.width, 0.5 * e.width});
-            return w;
-        }();
+        auto needs_check = [&](int64_t node) { return round == 0 || dirty.count(node) > 0; };
+        std::vector<SideWidths> widths;
+        for (const RoadGraphEdge& e : graph.edges) widths.push_back({0.5 * e.width, 0.5 * e.width});
         const RoadLayout layout = layout_road_polygons(graph, widths, params.miter_limit);
         std::set<size_t> offending;
         for (size_t e = 0; e < graph.edges.size(); ++e)
-            if (!layout.quads[e].empty() && overlaps(index, layout.quads[e])) offending.insert(e);
-        for (const NodeLayout& node : layout.nodes)
-            if (!node.joint.empty() && overlaps(index, node.joint))
+            if (!layout.quads[e].empty() && (needs_check(graph.edges[e].from_node) || needs_check(graph.edges[e].to_node)) &&
+                overlaps(index, layout.quads[e]))
+                offending.insert(e);
+        for (const NodeLayout& node : layout.nodes) {
+            bool check = needs_check(node.node);
+            for (int64_t m : node.members) check = check || needs_check(m);
+            if (check && !node.joint.empty() && overlaps(index, node.joint))
                 for (const NodeLayout::End& end : node.ends) offending.insert(end.edge);
+        }
         if (offending.empty()) break;
-        for (size_t e : offending) narrow(e);
+        dirty.clear();
+        for (size_t e : offending) {
+            narrow(e);
+            dirty.insert(graph.edges[e].from_node);
+            dirty.insert(graph.edges[e].to_node);
+        }
+        // A narrowed edge also changes the merged junction its node belongs to.
+        for (const NodeLayout& node : layout.nodes) {
+            bool touched = dirty.count(node.node) > 0;
+            for (int64_t m : node.members) touched = touched || dirty.count(m) > 0;
+            if (!touched) continue;
+            dirty.insert(node.node);
+            dirty.insert(node.members.begin(), node.members.end());
+        }
         compact();
     }
     int64_t count = 0;
