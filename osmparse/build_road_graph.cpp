@@ -41,17 +41,29 @@ RoadClass road_class_of(const std::string& highway) {
     return it == table.end() ? RoadClass::Other : it->second;
 }
 
-double default_road_width(const std::string& highway) {
-    // Whole carriageway, kerb to kerb, in metres. Typical European urban values; links
-    // and service roads are one lane plus margin. Keep README's table in sync.
-    static const std::map<std::string, double> table{
-        {"motorway", 11.0},     {"motorway_link", 5.0}, {"trunk", 10.0},    {"trunk_link", 5.0},
-        {"primary", 9.0},       {"primary_link", 5.0},  {"secondary", 8.0}, {"secondary_link", 5.0},
-        {"tertiary", 7.0},      {"tertiary_link", 5.0}, {"unclassified", 5.5},
-        {"residential", 6.0},   {"living_street", 5.0}, {"service", 3.5},
+double default_road_width(const std::string& highway, bool oneway) {
+    // Whole carriageway, kerb to kerb, in metres: typical European urban values. One-way
+    // roads (and roundabouts) carry fewer lanes; links and motorway carriageways are
+    // one-way anyway. Keep README's table in sync.
+    struct Widths {
+        double two_way, one_way;
+    };
+    static const std::map<std::string, Widths> table{
+        {"motorway", {11.0, 11.0}},     {"motorway_link", {5.0, 5.0}}, {"trunk", {10.0, 7.0}},
+        {"trunk_link", {5.0, 5.0}},     {"primary", {9.0, 6.5}},       {"primary_link", {5.0, 5.0}},
+        {"secondary", {8.0, 6.0}},      {"secondary_link", {5.0, 5.0}}, {"tertiary", {7.0, 5.0}},
+        {"tertiary_link", {5.0, 5.0}},  {"unclassified", {5.5, 4.0}},  {"residential", {6.0, 4.0}},
+        {"living_street", {5.0, 3.5}},  {"service", {3.5, 3.0}},
     };
     auto it = table.find(highway);
-    return it == table.end() ? 5.0 : it->second;
+    if (it == table.end()) return oneway ? 3.5 : 5.0;
+    return oneway ? it->second.one_way : it->second.two_way;
+}
+
+bool is_oneway(const OsmTags& tags) {
+    const char* v = tags.get("oneway");
+    if (v) return is_yes(v) || !std::strcmp(v, "-1");
+    return tags.has("highway", "motorway") || tags.has("junction", "roundabout") || tags.has("junction", "circular");
 }
 
 std::optional<std::string> carriageway_exclusion(const OsmTags& tags, const RoadParams& params) {
@@ -77,7 +89,7 @@ double road_width(const OsmTags& tags, const RoadParams& params, ParseReport* re
         if (report) report->note("road edges", "lanes tag unusable, fell back");
     }
     const char* highway = tags.get("highway");
-    return default_road_width(highway ? highway : "");
+    return default_road_width(highway ? highway : "", is_oneway(tags));
 }
 
 SidewalkSides sidewalk_sides(const OsmTags& tags) {
@@ -188,9 +200,7 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
         proto.width = road_width(tags, params, &report);
         if (std::optional<double> lanes = parse_osm_count(tags.get("lanes")); lanes && *lanes <= kMaxLanes)
             proto.lanes = static_cast<int>(*lanes);
-        const char* oneway = tags.get("oneway");
-        proto.oneway = is_yes(oneway) || (oneway && !std::strcmp(oneway, "-1")) ||
-                       highway == "motorway" || tags.has("junction", "roundabout");
+        proto.oneway = is_oneway(tags);
         proto.bridge = tags.get("bridge") && !tags.has("bridge", "no");
         const SidewalkSides sides = sidewalk_sides(tags);
         proto.sidewalk_left = sides.left;

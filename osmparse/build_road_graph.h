@@ -40,11 +40,16 @@ RoadClass road_class_of(const std::string& highway);
 // Why a highway way is not a carriageway, or nullopt when it is one.
 std::optional<std::string> carriageway_exclusion(const OsmTags& tags, const RoadParams& params);
 
-// Default carriageway width in metres per highway=* value: the one table (see README).
-double default_road_width(const std::string& highway);
+// Default carriageway width in metres per highway=* value, two-way or one-way: the one
+// table (see README).
+double default_road_width(const std::string& highway, bool oneway);
+
+// oneway=yes|true|1|-1, or implied (motorway, junction=roundabout|circular) unless
+// oneway=* says otherwise.
+bool is_oneway(const OsmTags& tags);
 
 // Width of a carriageway: `width` (any unit parse_osm_length knows), else `lanes` x
-// params.lane_width, else default_road_width(). Unparseable or absurd values (width
+// params.lane_width, else default_road_width() for the way's class and is_oneway(). Unparseable or absurd values (width
 // outside [1, params.max_width], lanes outside [1, 12]) fall back to the next rule and
 // are noted in `report` under "road edges" when a report is given.
 double road_width(const OsmTags& tags, const RoadParams& params, ParseReport* report);

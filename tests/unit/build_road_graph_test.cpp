@@ -44,7 +44,7 @@ TEST(BuildRoadGraph, SplitsAtSharedNodesAndMergesCollinearRuns) {
     EXPECT_EQ(g.edges[3].from_node, 5);
     EXPECT_EQ(g.edges[0].road_class, RoadClass::Residential);
     EXPECT_EQ(g.edges[2].road_class, RoadClass::Service);
-    EXPECT_DOUBLE_EQ(g.edges[2].width, default_road_width("service"));
+    EXPECT_DOUBLE_EQ(g.edges[2].width, default_road_width("service", false));
     EXPECT_TRUE(g.edges[0].sidewalk_left && g.edges[0].sidewalk_right);
     EXPECT_FALSE(g.edges[2].sidewalk_left || g.edges[2].sidewalk_right);
     EXPECT_EQ(report.note_count("road edges", "merged collinear pieces"), 1);

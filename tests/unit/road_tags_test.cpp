@@ -21,10 +21,10 @@ TEST(RoadTags, LanesTimesLaneWidthThenClassDefault) {
     RoadParams p;
     p.lane_width = 3.25;
     EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "primary"}, {"lanes", "3"}}), p, nullptr), 9.75);
-    EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "primary"}}), p, nullptr), default_road_width("primary"));
-    EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "service"}}), p, nullptr), default_road_width("service"));
-    EXPECT_GT(default_road_width("motorway"), default_road_width("residential"));
-    EXPECT_GT(default_road_width("residential"), default_road_width("service"));
+    EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "primary"}}), p, nullptr), default_road_width("primary", false));
+    EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "service"}}), p, nullptr), default_road_width("service", false));
+    EXPECT_GT(default_road_width("motorway", false), default_road_width("residential", false));
+    EXPECT_GT(default_road_width("residential", false), default_road_width("service", false));
 }
 
 TEST(RoadTags, AbsurdValuesFallBackAndAreCounted) {
@@ -33,11 +33,11 @@ TEST(RoadTags, AbsurdValuesFallBackAndAreCounted) {
     // Absurd width falls back to lanes, absurd lanes fall back to the class table.
     EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "tertiary"}, {"width", "500"}, {"lanes", "2"}}), p, &report), 6);
     EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "tertiary"}, {"width", "wide"}, {"lanes", "40"}}), p, &report),
-                     default_road_width("tertiary"));
+                     default_road_width("tertiary", false));
     EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "tertiary"}, {"width", "0.2"}}), p, &report),
-                     default_road_width("tertiary"));
+                     default_road_width("tertiary", false));
     EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "tertiary"}, {"width", "3;4"}}), p, &report),
-                     default_road_width("tertiary"));
+                     default_road_width("tertiary", false));
     EXPECT_EQ(report.note_count("road edges", "width tag unusable, fell back"), 4);
     EXPECT_EQ(report.note_count("road edges", "lanes tag unusable, fell back"), 1);
 }
@@ -56,6 +56,23 @@ TEST(RoadTags, WhichWaysAreCarriageways) {
     EXPECT_FALSE(carriageway_exclusion(tags({{"highway", "primary"}, {"tunnel", "no"}}), p));
     p.classes = {"primary"};
     EXPECT_TRUE(carriageway_exclusion(tags({{"highway", "residential"}}), p));
+}
+
+TEST(RoadTags, OneWayRoadsDefaultNarrower) {
+    RoadParams p;
+    EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "residential"}, {"oneway", "yes"}}), p, nullptr),
+                     default_road_width("residential", true));
+    EXPECT_LT(default_road_width("residential", true), default_road_width("residential", false));
+    EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "tertiary"}, {"junction", "roundabout"}}), p, nullptr),
+                     default_road_width("tertiary", true));
+    EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "tertiary"}, {"junction", "roundabout"}, {"oneway", "no"}}), p, nullptr),
+                     default_road_width("tertiary", false));
+    // Tags still win over the table.
+    EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "residential"}, {"oneway", "yes"}, {"lanes", "2"}}), p, nullptr), 6);
+    EXPECT_TRUE(is_oneway(tags({{"highway", "primary"}, {"oneway", "-1"}})));
+    EXPECT_TRUE(is_oneway(tags({{"highway", "motorway"}})));
+    EXPECT_FALSE(is_oneway(tags({{"highway", "motorway"}, {"oneway", "no"}})));
+    EXPECT_FALSE(is_oneway(tags({{"highway", "primary"}})));
 }
 
 TEST(RoadTags, ClassMapping) {
