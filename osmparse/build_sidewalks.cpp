@@ -1,5 +1,6 @@
 #include "build_sidewalks.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -91,7 +92,8 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
     for (size_t j = 0; j < surface.joints.size(); ++j) joint_of_node[surface.joints[j].osm.id] = static_cast<int>(j);
 
     std::vector<Sidewalk> result;
-    auto emit = [&](SidewalkKind kind, Ring polygon, int road, int joint) {
+    // `in_cleared_band`: a strip within the side's band, already cleared of buildings.
+    auto emit = [&](SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band) {
         const char* what = kind == SidewalkKind::Strip ? "sidewalk strips" : "sidewalk corners";
         // Nothing between carriageway and outline (e.g. where a road without sidewalks
         // cuts through): not a piece at all.
@@ -102,7 +104,7 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             return;
         }
         double largest = 0;
-        building_index.overlap(polygon, &largest);
+        if (!in_cleared_band) building_index.overlap(polygon, &largest);
         if (largest > kRoadBuildingOverlapTolerance) {
             report.dropped(what, "overlaps a building");
             return;
@@ -138,21 +140,23 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             double s_in, s_out, e_in, e_out;
             strip_cut(e, true, true, s_in, s_out);
             strip_cut(e, false, false, e_in, e_out);
+            const bool in_band = std::min({s_in, s_out, e_in, e_out}) >= 0;
             emit(SidewalkKind::Strip,
                  untwist_strip({f.from + f.n * inner[e].left + f.d * s_in, f.to + f.n * inner[e].left - f.d * e_in,
                                 f.to + f.n * outer[e].left - f.d * e_out, f.from + f.n * outer[e].left + f.d * s_out},
                                true),
-                 road, -1);
+                 road, -1, in_band);
         }
         if (walk[e].right > 0) {
             double s_in, s_out, e_in, e_out;
             strip_cut(e, true, false, s_in, s_out);
             strip_cut(e, false, true, e_in, e_out);
+            const bool in_band = std::min({s_in, s_out, e_in, e_out}) >= 0;
             emit(SidewalkKind::Strip,
                  untwist_strip({f.from - f.n * outer[e].right + f.d * s_out, f.to - f.n * outer[e].right - f.d * e_out,
                                 f.to - f.n * inner[e].right - f.d * e_in, f.from - f.n * inner[e].right + f.d * s_in},
                                false),
-                 road, -1);
+                 road, -1, in_band);
         }
     }
 
@@ -196,7 +200,7 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             for (auto q = ei.gap_points.rbegin(); q != ei.gap_points.rend(); ++q) push_distinct(piece, *q);
             push_distinct(piece, line_point(ei, true, inner, ei.trim));
             while (piece.size() > 1 && length(piece.front() - piece.back()) <= 1e-4) piece.pop_back();
-            emit(SidewalkKind::Corner, std::move(piece), -1, joint);
+            emit(SidewalkKind::Corner, std::move(piece), -1, joint, false);
         }
     }
     return result;

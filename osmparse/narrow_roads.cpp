@@ -1,5 +1,6 @@
 #include "narrow_roads.h"
 
+#include <algorithm>
 #include <set>
 
 #include "polygon_overlap.h"
@@ -65,10 +66,15 @@ RoadGraph narrow_roads(RoadGraph graph, const std::vector<Building>& buildings,
         for (const RoadGraphEdge& e : graph.edges) widths.push_back({0.5 * e.width, 0.5 * e.width});
         const RoadLayout layout = layout_road_polygons(graph, widths, params.miter_limit);
         std::set<size_t> offending;
-        for (size_t e = 0; e < graph.edges.size(); ++e)
-            if (!layout.quads[e].empty() && (needs_check(graph.edges[e].from_node) || needs_check(graph.edges[e].to_node)) &&
+        for (size_t e = 0; e < graph.edges.size(); ++e) {
+            // A quad with no negative cut lies inside its rectangle, cleared above.
+            const EdgeEndCut &a = layout.from_cut[e], &b = layout.to_cut[e];
+            const bool within_rectangle = std::min({a.t_left, a.t_right, b.t_left, b.t_right}) >= 0;
+            if (!layout.quads[e].empty() && !within_rectangle &&
+                (needs_check(graph.edges[e].from_node) || needs_check(graph.edges[e].to_node)) &&
                 overlaps(index, layout.quads[e]))
                 offending.insert(e);
+        }
         for (const NodeLayout& node : layout.nodes) {
             bool check = needs_check(node.node);
             for (int64_t m : node.members) check = check || needs_check(m);

@@ -5,22 +5,38 @@
 
 namespace citygen {
 
-double clipped_area(const Ring& subject, const Ring& clip_in) {
-    Ring clip = clip_in;
-    if (signed_area(clip) < 0) std::reverse(clip.begin(), clip.end());
-    Ring poly = subject;
-    for (size_t i = 0, n = clip.size(); i < n && !poly.empty(); ++i) {
-        const Vec2 a = clip[i], b = clip[(i + 1) % n];
-        auto inside = [&](Vec2 p) { return cross(b - a, p - a) >= 0; };
-        Ring out;
+double clipped_area(const Ring& subject, const Ring& clip) {
+    const size_t n = clip.size();
+    if (n < 3 || subject.size() < 3) return 0;
+    const bool ccw = signed_area(clip) > 0;
+    auto edge = [&](size_t i, Vec2& a, Vec2& b) {  // clip edges with the inside on the left
+        a = clip[ccw ? i : (n - i) % n];
+        b = clip[ccw ? (i + 1) % n : (2 * n - i - 1) % n];
+    };
+    // Most candidate pairs only touch: one clip edge with the whole subject outside it.
+    for (size_t i = 0; i < n; ++i) {
+        Vec2 a, b;
+        edge(i, a, b);
+        bool all_outside = true;
+        for (Vec2 p : subject)
+            if (cross(b - a, p - a) > 0) {
+                all_outside = false;
+                break;
+            }
+        if (all_outside) return 0;
+    }
+    // Sutherland-Hodgman, ping-ponging between two buffers.
+    thread_local Ring poly, out;
+    poly.assign(subject.begin(), subject.end());
+    for (size_t i = 0; i < n && !poly.empty(); ++i) {
+        Vec2 a, b;
+        edge(i, a, b);
+        out.clear();
         for (size_t j = 0, m = poly.size(); j < m; ++j) {
             const Vec2 p = poly[j], q = poly[(j + 1) % m];
-            const bool pin = inside(p), qin = inside(q);
-            if (pin) out.push_back(p);
-            if (pin != qin) {
-                const double dp = cross(b - a, p - a), dq = cross(b - a, q - a);
-                out.push_back(p + (q - p) * (dp / (dp - dq)));
-            }
+            const double dp = cross(b - a, p - a), dq = cross(b - a, q - a);
+            if (dp >= 0) out.push_back(p);
+            if ((dp >= 0) != (dq >= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
         }
         poly.swap(out);
     }

@@ -255,16 +255,18 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
     // Counter-clockwise around the node; in a merged junction the ends leave from
     // different nodes, so the angle is taken around the centre to a point well out.
     auto sort_ends = [&](NodeLayout& node) {
-        auto key = [&](const NodeLayout::End& end) {
+        std::vector<std::pair<double, NodeLayout::End>> keyed;
+        keyed.reserve(node.ends.size());
+        for (const NodeLayout::End& end : node.ends) {
             const EndGeometry g = geometry_of(end);
             const Vec2 far = g.origin - node.position + g.dir * 50.0;
-            return std::atan2(far.y, far.x);
-        };
-        std::sort(node.ends.begin(), node.ends.end(), [&](const NodeLayout::End& a, const NodeLayout::End& b) {
-            const double ka = key(a), kb = key(b);
-            if (ka != kb) return ka < kb;
-            return a.edge != b.edge ? a.edge < b.edge : a.at_from < b.at_from;
+            keyed.emplace_back(std::atan2(far.y, far.x), end);
+        }
+        std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
+            if (a.first != b.first) return a.first < b.first;
+            return a.second.edge != b.second.edge ? a.second.edge < b.second.edge : a.second.at_from < b.second.at_from;
         });
+        for (size_t i = 0; i < keyed.size(); ++i) node.ends[i] = std::move(keyed[i].second);
     };
     std::vector<double> from_demand(n, 0), to_demand(n, 0), from_fixed(n, 0), to_fixed(n, 0);
     auto demand_of = [&](const NodeLayout::End& end) -> double& {
