@@ -10,7 +10,8 @@ namespace citygen {
 
 namespace {
 
-constexpr double kNarrowStep = 0.85;  // width kept per step
+constexpr double kNarrowStep = 0.85;     // width kept per step
+constexpr double kNarrowestRoad = 0.5;   // metres: even with --road-min-width 0, narrower is gone
 constexpr int kLayoutRounds = 6;
 
 bool overlaps(const BuildingIndex& index, const Ring& piece) {
@@ -28,7 +29,7 @@ RoadGraph narrow_roads(RoadGraph graph, const std::vector<Building>& buildings,
     auto narrow = [&](size_t e) {
         graph.edges[e].width *= kNarrowStep;
         narrowed[e] = true;
-        if (graph.edges[e].width < params.min_width) keep[e] = false;
+        if (graph.edges[e].width < std::max(params.min_width, kNarrowestRoad)) keep[e] = false;
     };
 
     // 1. The edge's whole rectangle, as in the thesis.
