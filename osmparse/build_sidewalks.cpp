@@ -34,6 +34,25 @@ Ring untwist_strip(const Ring& q, bool carriageway_first) {
     return carriageway_first ? Ring{a, b, x} : Ring{x, c, d};
 }
 
+// A clipped ring without repeated points or spikes (where clipping ran along an edge).
+Ring clean_piece(Ring ring) {
+    Ring out;
+    for (Vec2 p : ring) push_distinct(out, p);
+    while (out.size() > 1 && length(out.front() - out.back()) <= 1e-4) out.pop_back();
+    for (bool removed = true; removed && out.size() > 3;) {
+        removed = false;
+        for (size_t i = 0, m = out.size(); i < m; ++i) {
+            const Vec2 a = out[(i + m - 1) % m], b = out[i], c = out[(i + 1) % m];
+            if (std::fabs(cross(b - a, c - b)) <= 1e-9 * (1 + length(b - a) * length(c - b))) {
+                out.erase(out.begin() + static_cast<long>(i));  // collinear or a spike
+                removed = true;
+                break;
+            }
+        }
+    }
+    return out;
+}
+
 struct Frame {
     Vec2 from, to, d, n;
 };
@@ -128,7 +147,10 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
         t_in = left_of_leaving ? ci.t_left : ci.t_right;
         t_out = left_of_leaving ? co.t_left : co.t_right;
         const NodeLayout* node = at_from ? node_of_from[e] : node_of_to[e];
-        if (node && node->kind == JoinKind::Joint) t_in = t_out = std::max(t_in, t_out);
+        // At a joint the strip starts where the outline's joint ends; beside the
+        // carriageway's joint arm it lies outside the carriageway, so this is safe even
+        // where the carriageway's cut reaches further.
+        if (node && node->kind == JoinKind::Joint) t_in = t_out;
     };
 
     // 2. Strips along every edge side with a sidewalk.
@@ -160,12 +182,14 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
         }
     }
 
-    // 3. Corner pieces: in each gap of a joint, the band between the carriageway's joint
-    // boundary and the outline's, from one strip's end to the next.
+    // 3. Corner pieces: in each gap of a joint, the part of the outline's joint polygon
+    // outside both carriageways, i.e. beyond the left line of one road and the right
+    // line of the next. Where the gap is wider than a half turn that region is not
+    // convex, so it is cut in two along the gap's bisector.
     for (size_t k = 0; k < in.nodes.size(); ++k) {
         const NodeLayout& ni = in.nodes[k];
         const NodeLayout& no = out.nodes[k];
-        if (ni.kind != JoinKind::Joint || ni.joint.empty()) continue;
+        if (ni.kind != JoinKind::Joint || no.joint.empty()) continue;
         auto it = joint_of_node.find(ni.node);
         const int joint = it == joint_of_node.end() ? -1 : it->second;
         const size_t m = ni.ends.size();
@@ -176,31 +200,32 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             const double walk_i = ei.at_from ? walk[ei.edge].left : walk[ei.edge].right;
             const double walk_j = ej.at_from ? walk[ej.edge].right : walk[ej.edge].left;
             if (walk_i <= 0 && walk_j <= 0) continue;
-            if (ni.joint_is_hull || no.joint_is_hull) {
-                report.dropped("sidewalk corners", "tangled junction");
-                continue;
-            }
-            auto line_point = [&](const NodeLayout::End& end, bool left, const std::vector<SideWidths>& w, double t) {
+            auto dir_of = [&](const NodeLayout::End& end) {
                 const RoadGraphEdge& g = graph.edges[end.edge];
-                const Vec2 dir = normalize(end.at_from ? g.to - g.from : g.from - g.to);
-                const double half = end.at_from ? (left ? w[end.edge].left : w[end.edge].right)
-                                                : (left ? w[end.edge].right : w[end.edge].left);
-                return end.origin + perp_left(dir) * (left ? half : -half) + dir * t;
+                return normalize(end.at_from ? g.to - g.from : g.from - g.to);
             };
-            const double ts_i = std::max(ei.trim, no.ends[i].trim), ts_j = std::max(ej.trim, no.ends[j].trim);
-            Ring piece;
-            push_distinct(piece, line_point(ei, true, inner, ts_i));
-            push_distinct(piece, line_point(ei, true, outer, ts_i));
-            push_distinct(piece, line_point(ei, true, outer, no.ends[i].trim));
-            for (Vec2 q : no.ends[i].gap_points) push_distinct(piece, q);
-            push_distinct(piece, line_point(ej, false, outer, no.ends[j].trim));
-            push_distinct(piece, line_point(ej, false, outer, ts_j));
-            push_distinct(piece, line_point(ej, false, inner, ts_j));
-            push_distinct(piece, line_point(ej, false, inner, ej.trim));
-            for (auto q = ei.gap_points.rbegin(); q != ei.gap_points.rend(); ++q) push_distinct(piece, *q);
-            push_distinct(piece, line_point(ei, true, inner, ei.trim));
-            while (piece.size() > 1 && length(piece.front() - piece.back()) <= 1e-4) piece.pop_back();
-            emit(SidewalkKind::Corner, std::move(piece), -1, joint, false);
+            auto half_of = [&](const NodeLayout::End& end, bool left) {
+                const SideWidths& w = inner[end.edge];
+                return end.at_from == left ? w.left : w.right;
+            };
+            const Vec2 di = dir_of(ei), dj = dir_of(ej);
+            const Vec2 pi = ei.origin + perp_left(di) * half_of(ei, true);
+            const Vec2 pj = ej.origin - perp_left(dj) * half_of(ej, false);
+            const std::pair<Vec2, Vec2> beyond_i{pi, pi + di}, beyond_j{pj, pj - dj};
+            double gap = std::atan2(cross(di, dj), dot(di, dj));
+            if (gap <= 0) gap += 2 * M_PI;
+            if (gap < M_PI - 1e-3) {
+                emit(SidewalkKind::Corner, clean_piece(clip_to_half_planes(no.joint, {beyond_i, beyond_j})), -1, joint,
+                     false);
+            } else {
+                const double half = 0.5 * gap;
+                const Vec2 bisector{di.x * std::cos(half) - di.y * std::sin(half), di.x * std::sin(half) + di.y * std::cos(half)};
+                const Vec2 centre = ni.position;
+                emit(SidewalkKind::Corner,
+                     clean_piece(clip_to_half_planes(no.joint, {beyond_i, {centre + bisector, centre}})), -1, joint, false);
+                emit(SidewalkKind::Corner,
+                     clean_piece(clip_to_half_planes(no.joint, {beyond_j, {centre, centre + bisector}})), -1, joint, false);
+            }
         }
     }
     return result;

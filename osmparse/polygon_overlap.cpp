@@ -43,6 +43,22 @@ double clipped_area(const Ring& subject, const Ring& clip) {
     return poly.size() < 3 ? 0.0 : std::fabs(signed_area(poly));
 }
 
+Ring clip_to_half_planes(const Ring& subject, const std::vector<std::pair<Vec2, Vec2>>& lines) {
+    Ring poly = subject, out;
+    for (const auto& [a, b] : lines) {
+        out.clear();
+        for (size_t j = 0, m = poly.size(); j < m; ++j) {
+            const Vec2 p = poly[j], q = poly[(j + 1) % m];
+            const double dp = cross(b - a, p - a), dq = cross(b - a, q - a);
+            if (dp >= 0) out.push_back(p);
+            if ((dp >= 0) != (dq >= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
+        }
+        poly.swap(out);
+        if (poly.size() < 3) return {};
+    }
+    return poly;
+}
+
 std::vector<Ring> triangulate(const Ring& polygon) {
     std::vector<Vec2> p = polygon;
     if (signed_area(p) < 0) std::reverse(p.begin(), p.end());

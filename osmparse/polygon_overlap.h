@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "geometry.h"
@@ -16,6 +17,10 @@ namespace citygen {
 // Area of the part of `subject` (any simple polygon, either orientation) inside the
 // convex polygon `clip`.
 double clipped_area(const Ring& subject, const Ring& clip);
+
+// The part of `subject` on the left of every directed line (a, b) (Sutherland-Hodgman).
+// Exact for a result in one piece; callers check the ring is simple.
+Ring clip_to_half_planes(const Ring& subject, const std::vector<std::pair<Vec2, Vec2>>& lines);
 
 // Triangles (CCW) covering a simple polygon.
 std::vector<Ring> triangulate(const Ring& polygon);
