@@ -85,6 +85,22 @@ void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
     std::fprintf(out, "building_parts: %zu\n", parts);
     std::fprintf(out, "building_holes: %zu\n", holes);
     std::fprintf(out, "buildings_with_tagged_height: %zu\n", tagged_heights);
+    if (!s.buildings.empty()) {
+        std::vector<double> heights;
+        size_t from_tag = 0, from_levels = 0, vertices = 0;
+        for (const Building& b : s.buildings) {
+            heights.push_back(b.height);
+            from_tag += b.height_source == HeightSource::Tagged;
+            from_levels += b.height_source == HeightSource::Levels;
+            vertices += b.outer.size();
+            for (const Ring& hole : b.holes) vertices += hole.size();
+        }
+        std::sort(heights.begin(), heights.end());
+        std::fprintf(out, "building_heights: %.1f - %.1f m, median %.1f m (%zu from height, %zu from levels, %zu random)\n",
+                     heights.front(), heights.back(), heights[heights.size() / 2], from_tag, from_levels,
+                     s.buildings.size() - from_tag - from_levels);
+        std::fprintf(out, "building_vertices: %zu\n", vertices);
+    }
     std::fprintf(out, "roads: %zu\n", s.roads.size());
     std::map<std::string, size_t> per_class;
     for (const RoadEdge& r : s.roads) ++per_class[road_class_name(r.road_class)];

@@ -9,6 +9,7 @@
 #include "pipeline.h"
 #include "scene_io.h"
 #include "scene_summary.h"
+#include "write_geojson.h"
 
 using namespace citygen;
 
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
     std::string output, info_file, geojson;
     std::vector<std::string> diff_files;
     double tolerance = 0.01;
-    std::string ignore_types;
+    std::string ignore_types, road_classes;
 
     app.add_option("input", job.input, "OSM input: .osm, .osm.gz, .osm.bz2 or .osm.pbf");
     app.add_option("-o,--output", output, "scene file to write");
@@ -71,6 +72,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.0, 45.0))->capture_default_str();
     app.add_option("--ignore-building-types", ignore_types,
                    "comma-separated building=* values to skip (default: roof,carport,ruins,...)");
+    app.add_option("--road-classes", road_classes,
+                   "comma-separated highway=* values that are carriageways (default: motorway ... service)");
     app.add_option("--road-merge-angle", p.roads.merge_angle_deg,
                    "merge consecutive road edges turning less than this at degree-2 nodes (degrees)")
         ->check(CLI::Range(0.0, 90.0))->capture_default_str();
@@ -99,11 +102,13 @@ int main(int argc, char** argv) {
         if (p.buildings.random_min_height > p.buildings.random_max_height)
             throw Error("--building-min-h is larger than --building-max-h");
         if (!ignore_types.empty()) p.buildings.ignore_types = split_list(ignore_types);
+        if (!road_classes.empty()) p.roads.classes = split_list(road_classes);
         p.buildings.seed = p.seed;
 
         ParseReport report;
         const Scene scene = parse_osm_to_scene(job, report);
         save_scene(scene, output);
+        if (!geojson.empty()) write_geojson(scene, geojson);
         if (!job.quiet) report.print(stderr);
         return 0;
     } catch (const Error& e) {

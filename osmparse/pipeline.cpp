@@ -3,6 +3,12 @@
 
 #include <chrono>
 
+#include "build_buildings.h"
+#include "build_road_graph.h"
+#include "build_road_polygons.h"
+#include "build_sidewalks.h"
+#include "narrow_roads.h"
+#include "place_lamps.h"
 #include "projection.h"
 #include "read_osm.h"
 
@@ -67,6 +73,27 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
 
     Scene scene;
     scene.header = make_header(job, projection);
+    scene.buildings = timed(report, "buildings", [&] {
+        return build_buildings(osm, projection, job.params.buildings, report);
+    });
+    const RoadGraph road_graph = timed(report, "road graph", [&] {
+        return build_road_graph(osm, projection, job.params.roads, report);
+    });
+    const RoadGraph narrowed_graph = timed(report, "roads vs buildings", [&] {
+        return narrow_roads(road_graph, scene.buildings, job.params.roads, report);
+    });
+    RoadSurface surface = timed(report, "road polygons", [&] {
+        return build_road_polygons(narrowed_graph, job.params.roads, report);
+    });
+    scene.roads = surface.roads;
+    scene.joints = surface.joints;
+    scene.sidewalks = timed(report, "sidewalks", [&] {
+        return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
+                               job.params.roads.miter_limit, report);
+    });
+    scene.lamps = timed(report, "street lamps", [&] {
+        return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
+    });
     set_bounds_and_ground(scene);
     return scene;
 }

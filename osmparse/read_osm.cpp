@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <unordered_map>
 
 #include <osmium/area/assembler.hpp>
 #include <osmium/area/multipolygon_manager.hpp>
@@ -56,6 +57,7 @@ public:
     }
 
     void way(const osmium::Way& way) {
+        if (is_building_tags(way.tags()) && way.is_closed()) keep_building_way_ring(way);
         if (!way.tags().has_key("highway")) return;
         report_.read("highway ways");
         // Cut the way into runs of nodes whose locations are known.
@@ -103,13 +105,36 @@ public:
             }
             out.polygons.push_back(std::move(polygon));
         }
-        if (out.polygons.empty()) return;
+        if (area.from_way()) {
+            // libosmium refuses self-intersecting rings (it yields an empty area); hand
+            // the raw outline to the footprint clean-up instead, which can repair it.
+            auto raw = building_way_rings_.find(area.orig_id());
+            if (out.polygons.empty() && raw != building_way_rings_.end()) {
+                out.polygons.push_back({std::move(raw->second), {}});
+                report_.note("building areas", "invalid outline passed on for repair");
+            }
+            if (raw != building_way_rings_.end()) building_way_rings_.erase(raw);
+        }
+        if (out.polygons.empty()) {
+            report_.dropped("building areas", "invalid multipolygon (could not assemble)");
+            return;
+        }
         for (const OsmPolygon& p : out.polygons)
             for (const LatLon& l : p.outer) extend(osmium::Location(l.lon, l.lat));
         data_.building_areas.push_back(std::move(out));
     }
 
 private:
+    // The raw outline of a closed building way, kept until its area arrives.
+    void keep_building_way_ring(const osmium::Way& way) {
+        std::vector<LatLon> ring;
+        ring.reserve(way.nodes().size());
+        for (const osmium::NodeRef& ref : way.nodes()) {
+            if (!ref.location().valid()) return;  // clipped: counted by BuildingCounter
+            ring.push_back(to_latlon(ref.location()));
+        }
+        building_way_rings_[way.id()] = std::move(ring);
+    }
     void extend(osmium::Location l) {
         data_.min.lat = std::min(data_.min.lat, l.lat());
         data_.min.lon = std::min(data_.min.lon, l.lon());
@@ -118,6 +143,7 @@ private:
     }
     OsmData& data_;
     ParseReport& report_;
+    std::unordered_map<int64_t, std::vector<LatLon>> building_way_rings_;
 };
 
 // Counts building ways and relations as they are read, before assembly.
@@ -125,8 +151,17 @@ class BuildingCounter : public osmium::handler::Handler {
 public:
     explicit BuildingCounter(ParseReport& report) : report_(report) {}
     void way(const osmium::Way& way) {
-        if (is_building_tags(way.tags()) && way.is_closed()) report_.read("building ways");
-        else if (is_building_tags(way.tags())) report_.dropped("building ways", "not closed or clipped");
+        if (!is_building_tags(way.tags())) return;
+        report_.read("building ways");
+        if (!way.is_closed()) {
+            report_.dropped("building ways", "not closed");
+            return;
+        }
+        for (const osmium::NodeRef& ref : way.nodes())
+            if (!ref.location().valid()) {
+                report_.dropped("building ways", "nodes missing from extract");
+                return;
+            }
     }
     void relation(const osmium::Relation& rel) {
         if (is_building_tags(rel.tags()) && rel.tags().has_tag("type", "multipolygon"))
@@ -159,35 +194,56 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
         osmium::area::Assembler::config_type assembler_config;
         osmium::area::MultipolygonManager<osmium::area::Assembler> multipolygons{assembler_config,
                                                                                 building_filter};
-        // Pass 1: which relations are building multipolygons, and which ways they need.
-        osmium::relations::read_relations(file, multipolygons);
+        // Multipolygon assembly must know the relations (at the end of the file) before it
+        // sees their member ways, so the input is walked twice. XML is parsed once and
+        // kept in memory: parsing is the slow part. PBF decodes fast enough to be read
+        // twice, which keeps memory low on big cities.
+        const bool keep_in_memory = file.format() != osmium::io::file_format::pbf;
+        std::vector<osmium::memory::Buffer> buffers;
+        auto read_all = [&](osmium::osm_entity_bits::type entities, auto&& use_buffer) {
+            osmium::io::Reader reader{file, entities};
+            Progress progress("reading", reader.file_size(), quiet);
+            uint64_t last_offset = 0;
+            while (osmium::memory::Buffer buffer = reader.read()) {
+                use_buffer(buffer);
+                const uint64_t offset = reader.offset();
+                progress.advance(offset - last_offset);
+                last_offset = offset;
+            }
+            reader.close();
+        };
 
-        // Pass 2: everything else, with node locations filled into ways.
+        // Walk 1: which relations are building multipolygons, and which ways they need.
+        if (keep_in_memory) {
+            read_all(osmium::osm_entity_bits::object, [&](osmium::memory::Buffer& buffer) {
+                osmium::apply(buffer, multipolygons);
+                buffers.push_back(std::move(buffer));
+            });
+        } else {
+            read_all(osmium::osm_entity_bits::relation,
+                     [&](osmium::memory::Buffer& buffer) { osmium::apply(buffer, multipolygons); });
+        }
+        multipolygons.prepare_for_lookup();
+
+        // Walk 2: everything else, with node locations filled into ways.
         LocationIndex positive, negative;
         LocationHandler locations{positive, negative};
         locations.ignore_errors();  // clipped extracts: missing nodes are normal, counted later
         Collector collector{data, report};
         BuildingCounter building_counter{report};
-
-        osmium::io::Reader reader{file, osmium::osm_entity_bits::object};
-        Progress progress("reading", reader.file_size(), quiet);
-        uint64_t last_offset = 0;
-        while (osmium::memory::Buffer buffer = reader.read()) {
+        auto collect = [&](osmium::memory::Buffer& buffer) {
             osmium::apply(buffer, locations, building_counter, collector,
                           multipolygons.handler([&collector](osmium::memory::Buffer&& areas) {
                               osmium::apply(areas, collector);
                           }));
-            const uint64_t offset = reader.offset();
-            progress.advance(offset - last_offset);
-            last_offset = offset;
+        };
+        if (keep_in_memory) {
+            for (osmium::memory::Buffer& buffer : buffers) collect(buffer);
+            buffers.clear();
+        } else {
+            read_all(osmium::osm_entity_bits::object, collect);
         }
-        reader.close();
-        progress.finish();
 
-        const osmium::area::area_stats& stats = multipolygons.stats();
-        const auto broken = static_cast<int64_t>(stats.area_really_complex_case +
-                                                 stats.no_way_in_mp_relation + stats.open_rings);
-        if (broken) report.dropped("building areas", "broken polygon (could not assemble)", broken);
         int64_t incomplete = 0;
         multipolygons.for_each_incomplete_relation([&](const osmium::relations::RelationHandle&) { ++incomplete; });
         if (incomplete) report.dropped("building relations", "members missing from extract", incomplete);

@@ -40,24 +40,26 @@ int64_t ParseReport::note_count(const std::string& kind, const std::string& what
 }
 
 void ParseReport::print(std::FILE* out) const {
-    std::fprintf(out, "%-22s %10s %10s  %s\n", "object", "read", "kept", "dropped / notes");
+    std::fprintf(out, "%-24s %10s %10s %10s\n", "object", "read", "kept", "dropped");
     for (const auto& [kind, r] : rows_) {
-        std::fprintf(out, "%-22s %10lld %10lld\n", kind.c_str(), static_cast<long long>(r.read),
-                     static_cast<long long>(r.kept));
+        int64_t dropped = 0;
+        for (const auto& entry : r.dropped) dropped += entry.second;
+        char kept[32] = "-";
+        if (r.has_kept) std::snprintf(kept, sizeof kept, "%lld", static_cast<long long>(r.kept));
+        std::fprintf(out, "%-24s %10lld %10s %10lld\n", kind.c_str(), static_cast<long long>(r.read), kept,
+                     static_cast<long long>(dropped));
         for (const auto& [reason, n] : r.dropped)
-            std::fprintf(out, "%-22s %10s %10s  dropped %lld: %s\n", "", "", "",
-                         static_cast<long long>(n), reason.c_str());
+            std::fprintf(out, "    dropped %8lld  %s\n", static_cast<long long>(n), reason.c_str());
         for (const auto& [what, n] : r.notes)
-            std::fprintf(out, "%-22s %10s %10s  %lld %s\n", "", "", "", static_cast<long long>(n),
-                         what.c_str());
+            std::fprintf(out, "    note    %8lld  %s\n", static_cast<long long>(n), what.c_str());
     }
     double total = 0;
-    std::fprintf(out, "%-22s %10s\n", "stage", "seconds");
+    std::fprintf(out, "%-24s %10s\n", "stage", "seconds");
     for (const auto& [stage, s] : times_) {
-        std::fprintf(out, "%-22s %10.3f\n", stage.c_str(), s);
+        std::fprintf(out, "%-24s %10.3f\n", stage.c_str(), s);
         total += s;
     }
-    std::fprintf(out, "%-22s %10.3f\n", "total", total);
+    std::fprintf(out, "%-24s %10.3f\n", "total", total);
 }
 
 }  // namespace citygen

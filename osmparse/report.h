@@ -14,7 +14,11 @@ namespace citygen {
 class ParseReport {
 public:
     void read(const std::string& kind, int64_t n = 1) { row(kind).read += n; }
-    void kept(const std::string& kind, int64_t n = 1) { row(kind).kept += n; }
+    void kept(const std::string& kind, int64_t n = 1) {
+        Row& r = row(kind);
+        r.kept += n;
+        r.has_kept = true;
+    }
     void dropped(const std::string& kind, const std::string& reason, int64_t n = 1) {
         row(kind).dropped[reason] += n;
     }
@@ -34,6 +38,7 @@ public:
 private:
     struct Row {
         int64_t read = 0, kept = 0;
+        bool has_kept = false;  // rows of the read stage only count what they pass on
         std::map<std::string, int64_t> dropped, notes;
     };
     Row& row(const std::string& kind);

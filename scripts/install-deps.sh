@@ -12,6 +12,8 @@ PACKAGES=(
   libembree-dev libopenimageio-dev
   # OpenImageIO's CMake config refers to its command-line tools; without them find_package fails.
   openimageio-tools
+  # tests/bench/parse_bench.sh compares with `osmium fileinfo -e` and reads peak memory with GNU time.
+  osmium-tool time
 )
 
 missing=()

@@ -1,0 +1,236 @@
+#include "build_road_graph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include "osm_units.h"
+
+namespace citygen {
+
+namespace {
+
+constexpr double kMinEdgeLength = 0.01;   // metres: shorter pieces are degenerate
+constexpr double kMergeDeviation = 0.25;  // metres a skipped node may lie off the merged piece
+constexpr double kMinTaggedWidth = 1.0;
+constexpr double kMaxLanes = 12;
+
+bool is_yes(const char* v) { return v && (!std::strcmp(v, "yes") || !std::strcmp(v, "true") || !std::strcmp(v, "1")); }
+
+struct Piece {
+    int64_t a, b;
+    Vec2 pa, pb;
+};
+
+}  // namespace
+
+RoadClass road_class_of(const std::string& highway) {
+    static const std::map<std::string, RoadClass> table{
+        {"motorway", RoadClass::Motorway},         {"motorway_link", RoadClass::Motorway},
+        {"trunk", RoadClass::Trunk},               {"trunk_link", RoadClass::Trunk},
+        {"primary", RoadClass::Primary},           {"primary_link", RoadClass::Primary},
+        {"secondary", RoadClass::Secondary},       {"secondary_link", RoadClass::Secondary},
+        {"tertiary", RoadClass::Tertiary},         {"tertiary_link", RoadClass::Tertiary},
+        {"unclassified", RoadClass::Unclassified}, {"residential", RoadClass::Residential},
+        {"living_street", RoadClass::LivingStreet}, {"service", RoadClass::Service},
+    };
+    auto it = table.find(highway);
+    return it == table.end() ? RoadClass::Other : it->second;
+}
+
+double default_road_width(const std::string& highway, bool oneway) {
+    // Whole carriageway, kerb to kerb, in metres: typical European urban values. One-way
+    // roads (and roundabouts) carry fewer lanes; links and motorway carriageways are
+    // one-way anyway. Keep README's table in sync.
+    struct Widths {
+        double two_way, one_way;
+    };
+    static const std::map<std::string, Widths> table{
+        {"motorway", {11.0, 11.0}},     {"motorway_link", {5.0, 5.0}}, {"trunk", {10.0, 7.0}},
+        {"trunk_link", {5.0, 5.0}},     {"primary", {9.0, 6.5}},       {"primary_link", {5.0, 5.0}},
+        {"secondary", {8.0, 6.0}},      {"secondary_link", {5.0, 5.0}}, {"tertiary", {7.0, 5.0}},
+        {"tertiary_link", {5.0, 5.0}},  {"unclassified", {5.5, 4.0}},  {"residential", {6.0, 4.0}},
+        {"living_street", {5.0, 3.5}},  {"service", {3.5, 3.0}},
+    };
+    auto it = table.find(highway);
+    if (it == table.end()) return oneway ? 3.5 : 5.0;
+    return oneway ? it->second.one_way : it->second.two_way;
+}
+
+bool is_oneway(const OsmTags& tags) {
+    const char* v = tags.get("oneway");
+    if (v) return is_yes(v) || !std::strcmp(v, "-1");
+    return tags.has("highway", "motorway") || tags.has("junction", "roundabout") || tags.has("junction", "circular");
+}
+
+std::optional<std::string> carriageway_exclusion(const OsmTags& tags, const RoadParams& params) {
+    const char* highway = tags.get("highway");
+    if (!highway) return std::string("not a highway");
+    if (std::find(params.classes.begin(), params.classes.end(), highway) == params.classes.end())
+        return std::string("not a carriageway class");
+    if (tags.has("area", "yes")) return std::string("area=yes");
+    const char* tunnel = tags.get("tunnel");
+    if (tunnel && std::strcmp(tunnel, "no") != 0) return std::string("tunnel");
+    return std::nullopt;
+}
+
+double road_width(const OsmTags& tags, const RoadParams& params, ParseReport* report) {
+    if (const char* w = tags.get("width")) {
+        std::optional<double> width = parse_osm_length(w);
+        if (width && *width >= kMinTaggedWidth && *width <= params.max_width) return *width;
+        if (report) report->note("road edges", "width tag unusable, fell back");
+    }
+    if (const char* l = tags.get("lanes")) {
+        std::optional<double> lanes = parse_osm_count(l);
+        if (lanes && *lanes >= 1 && *lanes <= kMaxLanes) return std::floor(*lanes) * params.lane_width;
+        if (report) report->note("road edges", "lanes tag unusable, fell back");
+    }
+    const char* highway = tags.get("highway");
+    return default_road_width(highway ? highway : "", is_oneway(tags));
+}
+
+SidewalkSides sidewalk_sides(const OsmTags& tags) {
+    SidewalkSides sides;
+    bool tagged = false;
+    if (const char* s = tags.get("sidewalk")) {
+        tagged = true;
+        const std::string v = s;
+        sides.left = v == "both" || v == "left" || v == "yes";
+        sides.right = v == "both" || v == "right" || v == "yes";
+    }
+    // sidewalk:both / :left / :right refine or replace the plain tag.
+    auto side_tag = [&](const char* key, bool& side) {
+        if (const char* s = tags.get(key)) {
+            tagged = true;
+            side = std::strcmp(s, "yes") == 0;
+        }
+    };
+    bool both = false;
+    if (tags.get("sidewalk:both")) {
+        side_tag("sidewalk:both", both);
+        sides.left = sides.right = both;
+    }
+    side_tag("sidewalk:left", sides.left);
+    side_tag("sidewalk:right", sides.right);
+    if (tagged) return sides;
+    static const std::set<std::string> with_sidewalks{"trunk",    "primary",      "secondary",
+                                                      "tertiary", "unclassified", "residential"};
+    const char* highway = tags.get("highway");
+    const bool yes = highway && with_sidewalks.count(highway);
+    return {yes, yes};
+}
+
+RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
+                           const RoadParams& params, ParseReport& report) {
+    // 1. Included ways, as node-to-node pieces; duplicate pieces (overlapping ways) dropped.
+    struct WayPieces {
+        const OsmWay* way;
+        std::vector<Piece> pieces;
+    };
+    std::vector<WayPieces> ways;
+    std::set<std::pair<int64_t, int64_t>> seen_pairs;
+    for (const OsmWay& way : osm.highways) {
+        if (std::optional<std::string> why = carriageway_exclusion(way.tags, params)) {
+            if (*why != "not a carriageway class") report.dropped("road ways", *why);
+            continue;
+        }
+        report.read("road ways");
+        WayPieces wp{&way, {}};
+        for (size_t i = 0; i + 1 < way.nodes.size(); ++i) {
+            const int64_t a = way.nodes[i], b = way.nodes[i + 1];
+            if (a == b) continue;  // repeated node: not a piece at all
+            const Vec2 pa = projection.to_local(way.locations[i].lat, way.locations[i].lon);
+            const Vec2 pb = projection.to_local(way.locations[i + 1].lat, way.locations[i + 1].lon);
+            if (length(pb - pa) < kMinEdgeLength) {
+                report.dropped("road edges", "zero length");
+                continue;
+            }
+            if (!seen_pairs.insert({std::min(a, b), std::max(a, b)}).second) {
+                report.dropped("road edges", "duplicate of another way's piece");
+                continue;
+            }
+            wp.pieces.push_back({a, b, pa, pb});
+        }
+        if (wp.pieces.empty()) {
+            report.dropped("road ways", "no piece left");
+            continue;
+        }
+        ways.push_back(std::move(wp));
+    }
+
+    // 2. Degree of every node: how many piece ends meet there.
+    std::unordered_map<int64_t, int> degree;
+    for (const WayPieces& wp : ways)
+        for (const Piece& p : wp.pieces) {
+            ++degree[p.a];
+            ++degree[p.b];
+        }
+
+    // 3. Merge runs of nearly collinear pieces of the same way through degree-2 nodes.
+    const double max_turn = params.merge_angle_deg * M_PI / 180;
+    auto within_merge = [&](const std::vector<Piece>& run, const Piece& next) {
+        const Vec2 start = run.front().pa, end = next.pb;
+        if (run.front().a == next.b) return false;  // would close a loop
+        const Vec2 chord = end - start;
+        const double chord_len = length(chord);
+        if (chord_len < kMinEdgeLength) return false;
+        const Vec2 dir = chord * (1.0 / chord_len);
+        auto check = [&](const Piece& p) {
+            const Vec2 d = normalize(p.pb - p.pa);
+            if (std::acos(std::clamp(dot(d, dir), -1.0, 1.0)) >= max_turn) return false;
+            return std::fabs(cross(dir, p.pb - start)) <= kMergeDeviation;
+        };
+        const Vec2 last = normalize(run.back().pb - run.back().pa), nd = normalize(next.pb - next.pa);
+        if (std::acos(std::clamp(dot(last, nd), -1.0, 1.0)) >= max_turn) return false;
+        for (const Piece& p : run)
+            if (!check(p)) return false;
+        return check(next);
+    };
+
+    RoadGraph graph;
+    for (const WayPieces& wp : ways) {
+        const OsmTags& tags = wp.way->tags;
+        const std::string highway = tags.get("highway");
+        RoadGraphEdge proto;
+        proto.way_id = wp.way->id;
+        proto.road_class = road_class_of(highway);
+        proto.width = road_width(tags, params, &report);
+        if (std::optional<double> lanes = parse_osm_count(tags.get("lanes")); lanes && *lanes <= kMaxLanes)
+            proto.lanes = static_cast<int>(*lanes);
+        proto.oneway = is_oneway(tags);
+        proto.bridge = tags.get("bridge") && !tags.has("bridge", "no");
+        const SidewalkSides sides = sidewalk_sides(tags);
+        proto.sidewalk_left = sides.left;
+        proto.sidewalk_right = sides.right;
+
+        std::vector<Piece> run;
+        auto flush = [&] {
+            if (run.empty()) return;
+            RoadGraphEdge e = proto;
+            e.from_node = run.front().a;
+            e.to_node = run.back().b;
+            e.from = run.front().pa;
+            e.to = run.back().pb;
+            graph.edges.push_back(e);
+            if (run.size() > 1) report.note("road edges", "merged collinear pieces", run.size() - 1);
+            run.clear();
+        };
+        for (const Piece& p : wp.pieces) {
+            const bool continues = !run.empty() && run.back().b == p.a && degree[p.a] == 2;
+            if (continues && within_merge(run, p)) {
+                run.push_back(p);
+                continue;
+            }
+            flush();
+            run.push_back(p);
+        }
+        flush();
+    }
+    report.read("road edges", static_cast<int64_t>(graph.edges.size()));
+    return graph;
+}
+
+}  // namespace citygen

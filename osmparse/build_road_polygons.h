@@ -1,0 +1,29 @@
+// Stage 5: road polygons. Road graph -> one quadrangle per edge and one joint polygon per
+// junction (thesis ch. 3.2.3; the geometry itself is in road_layout.h).
+#pragma once
+
+#include <vector>
+
+#include "build_road_graph.h"
+#include "params.h"
+#include "report.h"
+#include "road_layout.h"
+#include "scene.h"
+
+namespace citygen {
+
+struct RoadSurface {
+    std::vector<RoadEdge> roads;
+    std::vector<Joint> joints;
+    RoadLayout layout;              // per graph edge and node; sidewalks follow its joins
+    std::vector<int> road_of_edge;  // index into `roads` per graph edge, -1 when dropped
+};
+
+// Half widths of every edge's carriageway.
+std::vector<SideWidths> carriageway_widths(const RoadGraph& graph);
+
+// Quads CCW and convex, joints CCW and simple, each quad's end lying on its joint's
+// boundary. Edges whose quad would fold are dropped and counted.
+RoadSurface build_road_polygons(const RoadGraph& graph, const RoadParams& params, ParseReport& report);
+
+}  // namespace citygen

@@ -1,0 +1,234 @@
+#include "build_sidewalks.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "narrow_roads.h"
+#include "polygon_overlap.h"
+#include "road_layout.h"
+
+namespace citygen {
+
+namespace {
+
+constexpr double kSidewalkStep = 0.25;      // metres of width given up per step
+constexpr double kMinSidewalkWidth = 0.75;  // narrower is no sidewalk
+constexpr double kMaxRoadOverlap = 0.5;     // square metres of another road a piece may cover
+constexpr double kMinPieceArea = 0.01;
+
+void push_distinct(Ring& ring, Vec2 p) {
+    if (ring.empty() || length(ring.back() - p) > 1e-4) ring.push_back(p);
+}
+
+// A strip [a, b, c, d] has its end cuts a-d and b-c. On the inside of a tight curve (a
+// small roundabout's island) the outline's cuts cross before the strip ends: the strip
+// is then the triangle from its carriageway side (a-b, or c-d) up to the crossing.
+Ring untwist_strip(const Ring& q, bool carriageway_first) {
+    const Vec2 a = q[0], b = q[1], c = q[2], d = q[3];
+    if (!segments_intersect(a, d, b, c)) return q;
+    const Vec2 ad = d - a, bc = c - b;
+    const double den = cross(ad, bc);
+    if (std::fabs(den) < 1e-12) return q;
+    const Vec2 x = a + ad * (cross(b - a, bc) / den);
+    return carriageway_first ? Ring{a, b, x} : Ring{x, c, d};
+}
+
+// A clipped ring without repeated points or spikes (where clipping ran along an edge).
+Ring clean_piece(Ring ring) {
+    Ring out;
+    for (Vec2 p : ring) push_distinct(out, p);
+    while (out.size() > 1 && length(out.front() - out.back()) <= 1e-4) out.pop_back();
+    for (bool removed = true; removed && out.size() > 3;) {
+        removed = false;
+        for (size_t i = 0, m = out.size(); i < m; ++i) {
+            const Vec2 a = out[(i + m - 1) % m], b = out[i], c = out[(i + 1) % m];
+            if (std::fabs(cross(b - a, c - b)) <= 1e-9 * (1 + length(b - a) * length(c - b))) {
+                out.erase(out.begin() + static_cast<long>(i));  // collinear or a spike
+                removed = true;
+                break;
+            }
+        }
+    }
+    return out;
+}
+
+struct Frame {
+    Vec2 from, to, d, n;
+};
+Frame frame_of(const RoadGraphEdge& e) {
+    const Vec2 d = normalize(e.to - e.from);
+    return {e.from, e.to, d, perp_left(d)};
+}
+
+}  // namespace
+
+std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface& surface,
+                                      const std::vector<Building>& buildings,
+                                      const SidewalkParams& params, double miter_limit,
+                                      ParseReport& report) {
+    const BuildingIndex building_index(buildings);
+    const std::vector<SideWidths> inner = carriageway_widths(graph);
+    const size_t n = graph.edges.size();
+
+    // 1. Sidewalk width per side, narrowed where the band would reach into a building.
+    std::vector<SideWidths> walk(n);
+    for (size_t e = 0; e < n; ++e) {
+        const RoadGraphEdge& edge = graph.edges[e];
+        for (int side = 0; side < 2; ++side) {
+            if (!(side == 0 ? edge.sidewalk_left : edge.sidewalk_right)) continue;
+            double w = params.width;
+            for (; w >= kMinSidewalkWidth; w -= kSidewalkStep) {
+                const Frame f = frame_of(edge);
+                const double h = 0.5 * edge.width;
+                const Vec2 off = side == 0 ? f.n : f.n * -1.0;
+                Ring band{f.from + off * h, f.to + off * h, f.to + off * (h + w), f.from + off * (h + w)};
+                if (signed_area(band) < 0) band = {band[3], band[2], band[1], band[0]};
+                double largest = 0;
+                building_index.overlap(band, &largest);
+                if (largest <= kRoadBuildingOverlapTolerance) break;
+            }
+            if (w < kMinSidewalkWidth) {
+                report.dropped("sidewalk sides", "no room beside a building");
+                continue;
+            }
+            if (w < params.width) report.note("sidewalk sides", "narrowed beside a building");
+            report.kept("sidewalk sides");
+            (side == 0 ? walk[e].left : walk[e].right) = w;
+        }
+    }
+    std::vector<SideWidths> outer(n);
+    for (size_t e = 0; e < n; ++e) outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
+    const RoadLayout& in = surface.layout;
+    const RoadLayout out = layout_road_polygons(graph, outer, miter_limit, &in);
+
+    // Other roads, to keep sidewalks off them (a polygon index reuses the footprint grid).
+    std::vector<Building> road_pieces;
+    for (const RoadEdge& r : surface.roads) road_pieces.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
+    for (const Joint& j : surface.joints) road_pieces.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
+    const BuildingIndex road_index(road_pieces);
+    std::map<int64_t, int> joint_of_node;
+    for (size_t j = 0; j < surface.joints.size(); ++j) joint_of_node[surface.joints[j].osm.id] = static_cast<int>(j);
+
+    std::vector<Sidewalk> result;
+    // `in_cleared_band`: a strip within the side's band, already cleared of buildings.
+    auto emit = [&](SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band) {
+        const char* what = kind == SidewalkKind::Strip ? "sidewalk strips" : "sidewalk corners";
+        // Nothing between carriageway and outline (e.g. where a road without sidewalks
+        // cuts through): not a piece at all.
+        if (polygon.size() < 3 || std::fabs(signed_area(polygon)) < kMinPieceArea) return;
+        report.read(what);
+        if (signed_area(polygon) < 0 || !ring_is_simple(polygon)) {
+            report.dropped(what, "degenerate (tangled junction)");
+            return;
+        }
+        double largest = 0;
+        if (!in_cleared_band) building_index.overlap(polygon, &largest);
+        if (largest > kRoadBuildingOverlapTolerance) {
+            report.dropped(what, "overlaps a building");
+            return;
+        }
+        road_index.overlap(polygon, &largest);
+        if (largest > kMaxRoadOverlap) {
+            report.dropped(what, "lies on another road");
+            return;
+        }
+        report.kept(what);
+        result.push_back({kind, std::move(polygon), road, joint, params.curb_height});
+    };
+
+    // Where a strip ends: at a joint both its lines stop at the outline's square cut.
+    std::vector<const NodeLayout*> node_of_from(n, nullptr), node_of_to(n, nullptr);
+    for (const NodeLayout& node : in.nodes)
+        for (const NodeLayout::End& end : node.ends) (end.at_from ? node_of_from : node_of_to)[end.edge] = &node;
+    auto strip_cut = [&](size_t e, bool at_from, bool left_of_leaving, double& t_in, double& t_out) {
+        const EdgeEndCut& ci = at_from ? in.from_cut[e] : in.to_cut[e];
+        const EdgeEndCut& co = at_from ? out.from_cut[e] : out.to_cut[e];
+        t_in = left_of_leaving ? ci.t_left : ci.t_right;
+        t_out = left_of_leaving ? co.t_left : co.t_right;
+        const NodeLayout* node = at_from ? node_of_from[e] : node_of_to[e];
+        // At a joint the strip starts where the outline's joint ends; beside the
+        // carriageway's joint arm it lies outside the carriageway, so this is safe even
+        // where the carriageway's cut reaches further.
+        if (node && node->kind == JoinKind::Joint) t_in = t_out;
+    };
+
+    // 2. Strips along every edge side with a sidewalk.
+    for (size_t e = 0; e < n; ++e) {
+        const int road = surface.road_of_edge[e];
+        if (road < 0) continue;
+        const Frame f = frame_of(graph.edges[e]);
+        if (walk[e].left > 0) {
+            double s_in, s_out, e_in, e_out;
+            strip_cut(e, true, true, s_in, s_out);
+            strip_cut(e, false, false, e_in, e_out);
+            const bool in_band = std::min({s_in, s_out, e_in, e_out}) >= 0;
+            emit(SidewalkKind::Strip,
+                 untwist_strip({f.from + f.n * inner[e].left + f.d * s_in, f.to + f.n * inner[e].left - f.d * e_in,
+                                f.to + f.n * outer[e].left - f.d * e_out, f.from + f.n * outer[e].left + f.d * s_out},
+                               true),
+                 road, -1, in_band);
+        }
+        if (walk[e].right > 0) {
+            double s_in, s_out, e_in, e_out;
+            strip_cut(e, true, false, s_in, s_out);
+            strip_cut(e, false, true, e_in, e_out);
+            const bool in_band = std::min({s_in, s_out, e_in, e_out}) >= 0;
+            emit(SidewalkKind::Strip,
+                 untwist_strip({f.from - f.n * outer[e].right + f.d * s_out, f.to - f.n * outer[e].right - f.d * e_out,
+                                f.to - f.n * inner[e].right - f.d * e_in, f.from - f.n * inner[e].right + f.d * s_in},
+                               false),
+                 road, -1, in_band);
+        }
+    }
+
+    // 3. Corner pieces: in each gap of a joint, the part of the outline's joint polygon
+    // outside both carriageways, i.e. beyond the left line of one road and the right
+    // line of the next. Where the gap is wider than a half turn that region is not
+    // convex, so it is cut in two along the gap's bisector.
+    for (size_t k = 0; k < in.nodes.size(); ++k) {
+        const NodeLayout& ni = in.nodes[k];
+        const NodeLayout& no = out.nodes[k];
+        if (ni.kind != JoinKind::Joint || no.joint.empty()) continue;
+        auto it = joint_of_node.find(ni.node);
+        const int joint = it == joint_of_node.end() ? -1 : it->second;
+        const size_t m = ni.ends.size();
+        for (size_t i = 0; i < m; ++i) {
+            const size_t j = (i + 1) % m;
+            const NodeLayout::End &ei = ni.ends[i], &ej = ni.ends[j];
+            // The gap lies on i's left and j's right (relative to leaving the node).
+            const double walk_i = ei.at_from ? walk[ei.edge].left : walk[ei.edge].right;
+            const double walk_j = ej.at_from ? walk[ej.edge].right : walk[ej.edge].left;
+            if (walk_i <= 0 && walk_j <= 0) continue;
+            auto dir_of = [&](const NodeLayout::End& end) {
+                const RoadGraphEdge& g = graph.edges[end.edge];
+                return normalize(end.at_from ? g.to - g.from : g.from - g.to);
+            };
+            auto half_of = [&](const NodeLayout::End& end, bool left) {
+                const SideWidths& w = inner[end.edge];
+                return end.at_from == left ? w.left : w.right;
+            };
+            const Vec2 di = dir_of(ei), dj = dir_of(ej);
+            const Vec2 pi = ei.origin + perp_left(di) * half_of(ei, true);
+            const Vec2 pj = ej.origin - perp_left(dj) * half_of(ej, false);
+            const std::pair<Vec2, Vec2> beyond_i{pi, pi + di}, beyond_j{pj, pj - dj};
+            double gap = std::atan2(cross(di, dj), dot(di, dj));
+            if (gap <= 0) gap += 2 * M_PI;
+            if (gap < M_PI - 1e-3) {
+                emit(SidewalkKind::Corner, clean_piece(clip_to_half_planes(no.joint, {beyond_i, beyond_j})), -1, joint,
+                     false);
+            } else {
+                const double half = 0.5 * gap;
+                const Vec2 bisector{di.x * std::cos(half) - di.y * std::sin(half), di.x * std::sin(half) + di.y * std::cos(half)};
+                const Vec2 centre = ni.position;
+                emit(SidewalkKind::Corner,
+                     clean_piece(clip_to_half_planes(no.joint, {beyond_i, {centre + bisector, centre}})), -1, joint, false);
+                emit(SidewalkKind::Corner,
+                     clean_piece(clip_to_half_planes(no.joint, {beyond_j, {centre, centre + bisector}})), -1, joint, false);
+            }
+        }
+    }
+    return result;
+}
+
+}  // namespace citygen

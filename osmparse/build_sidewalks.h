@@ -1,0 +1,25 @@
+// Stage 7: sidewalks. An outer outline around every carriageway, laid out with the same
+// joins (road_layout.h); the band between outline and carriageway is the sidewalk, in
+// strips along edges and corner pieces around joints, raised by a curb.
+#pragma once
+
+#include <vector>
+
+#include "build_road_graph.h"
+#include "build_road_polygons.h"
+#include "params.h"
+#include "report.h"
+#include "scene.h"
+
+namespace citygen {
+
+// Sides follow RoadGraphEdge::sidewalk_left/right (sidewalk=* tags or the class). A side
+// whose sidewalk would reach into a building is narrowed in 25 cm steps and left out
+// below 75 cm; pieces that still overlap a building, or overlap another road by more
+// than half a square metre (the median of a dual carriageway), are dropped and counted.
+std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface& surface,
+                                      const std::vector<Building>& buildings,
+                                      const SidewalkParams& params, double miter_limit,
+                                      ParseReport& report);
+
+}  // namespace citygen

@@ -1,0 +1,147 @@
+#include "place_lamps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "osm_units.h"
+#include "polygon_overlap.h"
+#include "rng.h"
+
+namespace citygen {
+
+namespace {
+
+constexpr double kKerbOffset = 0.5;  // metres beyond the carriageway edge
+constexpr double kMinTaggedHeight = 2, kMaxTaggedHeight = 30;
+
+// Lamps already placed, bucketed for "is one within r metres" queries.
+class LampGrid {
+public:
+    explicit LampGrid(double cell) : cell_(std::max(cell, 1.0)) {}
+    void add(Vec2 p) { cells_[key(cell_of(p.x), cell_of(p.y))].push_back(p); }
+    bool any_within(Vec2 p, double r) const {
+        const int64_t cx = cell_of(p.x), cy = cell_of(p.y), reach = static_cast<int64_t>(std::ceil(r / cell_));
+        for (int64_t x = cx - reach; x <= cx + reach; ++x)
+            for (int64_t y = cy - reach; y <= cy + reach; ++y) {
+                auto it = cells_.find(key(x, y));
+                if (it == cells_.end()) continue;
+                for (Vec2 q : it->second)
+                    if (length(q - p) < r) return true;
+            }
+        return false;
+    }
+
+private:
+    int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
+    static int64_t key(int64_t x, int64_t y) { return x * 73856093 ^ y * 19349663; }
+    double cell_;
+    std::unordered_map<int64_t, std::vector<Vec2>> cells_;
+};
+
+// Nearest point on a ring's boundary and the outward direction there.
+Vec2 push_out_of(const Ring& ring, Vec2 p, double margin) {
+    double best = 1e300;
+    Vec2 out = p;
+    for (size_t i = 0, n = ring.size(); i < n; ++i) {
+        const Vec2 a = ring[i], b = ring[(i + 1) % n], ab = b - a;
+        const double t = std::clamp(dot(p - a, ab) / std::max(dot(ab, ab), 1e-12), 0.0, 1.0);
+        const Vec2 c = a + ab * t;
+        if (length(p - c) < best) {
+            best = length(p - c);
+            // CCW ring: the outside is on the right of each edge.
+            out = c + normalize(Vec2(ab.y, -ab.x)) * margin;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, const Scene& scene,
+                              const LampParams& params, uint64_t seed, ParseReport& report) {
+    const BuildingIndex buildings(scene.buildings);
+    std::vector<Building> surface_pieces;  // road quads and joints, indexed like footprints
+    for (const RoadEdge& r : scene.roads) surface_pieces.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
+    for (const Joint& j : scene.joints) surface_pieces.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
+    const BuildingIndex surface(surface_pieces);
+    std::vector<Building> walk_pieces;
+    for (const Sidewalk& s : scene.sidewalks) walk_pieces.push_back({{}, s.polygon, {}, 0, 0, 0, {}, {}, false});
+    const BuildingIndex sidewalks(walk_pieces);
+
+    auto surface_containing = [&](Vec2 p) -> const Ring* {
+        Box2 box;
+        box.extend(p);
+        for (uint32_t i : surface.near(box))
+            if (point_in_ring(p, surface_pieces[i].outer)) return &surface_pieces[i].outer;
+        return nullptr;
+    };
+    auto ground_z = [&](Vec2 p) { return sidewalks.contains(p) ? scene.sidewalks.front().curb_height : 0.0; };
+
+    std::vector<Lamp> lamps;
+    LampGrid tagged(params.min_distance_to_tagged);
+    for (const OsmNode& node : osm.street_lamps) {
+        Vec2 p = projection.to_local(node.location.lat, node.location.lon);
+        if (const Ring* ring = surface_containing(p)) {
+            p = push_out_of(*ring, p, kKerbOffset);
+            report.note("tagged street lamps", "moved off the road surface");
+        }
+        if (surface_containing(p) || buildings.contains(p)) {
+            report.dropped("tagged street lamps", "inside a road or building");
+            continue;
+        }
+        Lamp lamp;
+        lamp.osm = {OsmType::Node, node.id};
+        lamp.height = params.height;
+        if (std::optional<double> h = parse_osm_length(node.tags.get("height"));
+            h && *h >= kMinTaggedHeight && *h <= kMaxTaggedHeight)
+            lamp.height = *h;
+        lamp.position = {p.x, p.y, ground_z(p)};
+        lamp.source = LampSource::Tagged;
+        lamps.push_back(lamp);
+        tagged.add(p);
+    }
+    report.kept("tagged street lamps", static_cast<int64_t>(lamps.size()));
+
+    LampGrid generated(0.5 * params.spacing);
+    int64_t placed = 0;
+    for (const RoadEdge& road : scene.roads) {
+        const Vec2 from = road.centreline.front(), to = road.centreline.back();
+        const Vec2 d = normalize(to - from), n = perp_left(d);
+        // Usable stretch: the quad's extent along the centreline.
+        const double t0 = std::max(dot(road.quad[0] - from, d), dot(road.quad[3] - from, d));
+        const double t1 = std::min(dot(road.quad[1] - from, d), dot(road.quad[2] - from, d));
+        if (t1 <= t0) continue;
+        // A random phase per edge keeps the average at one lamp per `spacing` even on
+        // edges shorter than it.
+        const uint64_t h = hash_keys(seed, static_cast<uint64_t>(road.osm.id), static_cast<uint64_t>(road.from_node),
+                                     static_cast<uint64_t>(road.to_node));
+        const double phase = hash_to_unit(h);
+        const int count = static_cast<int>(std::floor((t1 - t0) / params.spacing + phase));
+        for (int k = 0; k < count; ++k) {
+            const double t = t0 + (k + 1 - phase) * params.spacing;
+            const bool left_first = ((k + (h >> 60)) & 1) == 0;
+            for (int attempt = 0; attempt < 2; ++attempt) {
+                const bool left = left_first != (attempt == 1);
+                const double offset = 0.5 * road.width + kKerbOffset;
+                const Vec2 p = from + d * t + n * (left ? offset : -offset);
+                if (surface_containing(p) || buildings.contains(p) ||
+                    tagged.any_within(p, params.min_distance_to_tagged) || generated.any_within(p, 0.5 * params.spacing))
+                    continue;
+                Lamp lamp;
+                lamp.osm = road.osm;
+                lamp.position = {p.x, p.y, ground_z(p)};
+                lamp.height = params.height;
+                lamp.source = LampSource::Generated;
+                lamps.push_back(lamp);
+                generated.add(p);
+                ++placed;
+                break;
+            }
+        }
+    }
+    report.kept("generated street lamps", placed);
+    return lamps;
+}
+
+}  // namespace citygen

@@ -1,0 +1,162 @@
+#include "polygon_overlap.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace citygen {
+
+double clipped_area(const Ring& subject, const Ring& clip) {
+    const size_t n = clip.size();
+    if (n < 3 || subject.size() < 3) return 0;
+    const bool ccw = signed_area(clip) > 0;
+    auto edge = [&](size_t i, Vec2& a, Vec2& b) {  // clip edges with the inside on the left
+        a = clip[ccw ? i : (n - i) % n];
+        b = clip[ccw ? (i + 1) % n : (2 * n - i - 1) % n];
+    };
+    // Most candidate pairs only touch: one clip edge with the whole subject outside it.
+    for (size_t i = 0; i < n; ++i) {
+        Vec2 a, b;
+        edge(i, a, b);
+        bool all_outside = true;
+        for (Vec2 p : subject)
+            if (cross(b - a, p - a) > 0) {
+                all_outside = false;
+                break;
+            }
+        if (all_outside) return 0;
+    }
+    // Sutherland-Hodgman, ping-ponging between two buffers.
+    thread_local Ring poly, out;
+    poly.assign(subject.begin(), subject.end());
+    for (size_t i = 0; i < n && !poly.empty(); ++i) {
+        Vec2 a, b;
+        edge(i, a, b);
+        out.clear();
+        for (size_t j = 0, m = poly.size(); j < m; ++j) {
+            const Vec2 p = poly[j], q = poly[(j + 1) % m];
+            const double dp = cross(b - a, p - a), dq = cross(b - a, q - a);
+            if (dp >= 0) out.push_back(p);
+            if ((dp >= 0) != (dq >= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
+        }
+        poly.swap(out);
+    }
+    return poly.size() < 3 ? 0.0 : std::fabs(signed_area(poly));
+}
+
+Ring clip_to_half_planes(const Ring& subject, const std::vector<std::pair<Vec2, Vec2>>& lines) {
+    Ring poly = subject, out;
+    for (const auto& [a, b] : lines) {
+        out.clear();
+        for (size_t j = 0, m = poly.size(); j < m; ++j) {
+            const Vec2 p = poly[j], q = poly[(j + 1) % m];
+            const double dp = cross(b - a, p - a), dq = cross(b - a, q - a);
+            if (dp >= 0) out.push_back(p);
+            if ((dp >= 0) != (dq >= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
+        }
+        poly.swap(out);
+        if (poly.size() < 3) return {};
+    }
+    return poly;
+}
+
+std::vector<Ring> triangulate(const Ring& polygon) {
+    std::vector<Vec2> p = polygon;
+    if (signed_area(p) < 0) std::reverse(p.begin(), p.end());
+    std::vector<Ring> out;
+    size_t guard = 0;
+    while (p.size() > 3 && guard++ < 10000) {
+        const size_t n = p.size();
+        bool clipped = false;
+        for (size_t i = 0; i < n; ++i) {
+            const Vec2 a = p[(i + n - 1) % n], b = p[i], c = p[(i + 1) % n];
+            if (cross(b - a, c - b) <= 0) continue;  // reflex or flat: not an ear
+            bool empty = true;
+            for (size_t j = 0; j < n && empty; ++j) {
+                if (j == i || j == (i + 1) % n || j == (i + n - 1) % n) continue;
+                const Vec2 q = p[j];
+                if (cross(b - a, q - a) >= 0 && cross(c - b, q - b) >= 0 && cross(a - c, q - c) >= 0) empty = false;
+            }
+            if (!empty) continue;
+            out.push_back({a, b, c});
+            p.erase(p.begin() + static_cast<long>(i));
+            clipped = true;
+            break;
+        }
+        if (!clipped) {  // only flat or numerically tricky corners left: drop one
+            size_t flat = 0;
+            double best = 1e300;
+            for (size_t i = 0; i < n; ++i) {
+                const double c = std::fabs(cross(p[i] - p[(i + n - 1) % n], p[(i + 1) % n] - p[i]));
+                if (c < best) best = c, flat = i;
+            }
+            p.erase(p.begin() + static_cast<long>(flat));
+        }
+    }
+    if (p.size() == 3 && signed_area(p) > 0) out.push_back(p);
+    return out;
+}
+
+double overlap_area(const Ring& piece, const Building& b) {
+    auto inside_footprint = [&](const Ring& convex) {
+        double a = clipped_area(b.outer, convex);
+        for (const Ring& hole : b.holes) a -= clipped_area(hole, convex);
+        return std::max(0.0, a);
+    };
+    if (ring_is_convex(piece)) return inside_footprint(piece);
+    double total = 0;
+    for (const Ring& t : triangulate(piece)) total += inside_footprint(t);
+    return total;
+}
+
+BuildingIndex::BuildingIndex(const std::vector<Building>& buildings, double cell)
+    : buildings_(buildings), cell_(cell) {
+    boxes_.reserve(buildings.size());
+    for (uint32_t i = 0; i < buildings.size(); ++i) {
+        const Box2 box = bounds_of(buildings[i].outer);
+        boxes_.push_back(box);
+        for (int64_t cx = std::floor(box.min.x / cell_); cx <= std::floor(box.max.x / cell_); ++cx)
+            for (int64_t cy = std::floor(box.min.y / cell_); cy <= std::floor(box.max.y / cell_); ++cy)
+                grid_[key(cx, cy)].push_back(i);
+    }
+}
+
+std::vector<uint32_t> BuildingIndex::near(const Box2& box) const {
+    std::vector<uint32_t> out;
+    if (box.empty()) return out;
+    for (int64_t cx = std::floor(box.min.x / cell_); cx <= std::floor(box.max.x / cell_); ++cx)
+        for (int64_t cy = std::floor(box.min.y / cell_); cy <= std::floor(box.max.y / cell_); ++cy) {
+            auto it = grid_.find(key(cx, cy));
+            if (it == grid_.end()) continue;
+            for (uint32_t i : it->second)
+                if (boxes_[i].overlaps(box)) out.push_back(i);
+        }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+double BuildingIndex::overlap(const Ring& piece, double* max_one) const {
+    double total = 0, largest = 0;
+    for (uint32_t i : near(bounds_of(piece))) {
+        const double a = overlap_area(piece, buildings_[i]);
+        total += a;
+        largest = std::max(largest, a);
+    }
+    if (max_one) *max_one = largest;
+    return total;
+}
+
+bool BuildingIndex::contains(Vec2 p) const {
+    Box2 box;
+    box.extend(p);
+    for (uint32_t i : near(box)) {
+        const Building& b = buildings_[i];
+        if (!point_in_ring(p, b.outer)) continue;
+        bool in_hole = false;
+        for (const Ring& h : b.holes) in_hole = in_hole || point_in_ring(p, h);
+        if (!in_hole) return true;
+    }
+    return false;
+}
+
+}  // namespace citygen

@@ -1,0 +1,50 @@
+// Overlap areas between road pieces and building footprints, and a grid to find the
+// buildings near a polygon fast. Exact up to floating point: convex pieces clip the
+// footprint directly (Sutherland-Hodgman gives the right area even for a non-convex
+// footprint); other simple polygons are ear-clipped into triangles first.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+#include "geometry.h"
+#include "scene.h"
+
+namespace citygen {
+
+// Area of the part of `subject` (any simple polygon, either orientation) inside the
+// convex polygon `clip`.
+double clipped_area(const Ring& subject, const Ring& clip);
+
+// The part of `subject` on the left of every directed line (a, b) (Sutherland-Hodgman).
+// Exact for a result in one piece; callers check the ring is simple.
+Ring clip_to_half_planes(const Ring& subject, const std::vector<std::pair<Vec2, Vec2>>& lines);
+
+// Triangles (CCW) covering a simple polygon.
+std::vector<Ring> triangulate(const Ring& polygon);
+
+// Area of a simple polygon `piece` that lies inside building `b` (outer minus holes).
+double overlap_area(const Ring& piece, const Building& b);
+
+// Buildings bucketed on a uniform grid by bounding box.
+class BuildingIndex {
+public:
+    explicit BuildingIndex(const std::vector<Building>& buildings, double cell = 50);
+    // Indices of buildings whose bounding box overlaps `box`, ascending, no repeats.
+    std::vector<uint32_t> near(const Box2& box) const;
+    // Sum over nearby buildings of overlap_area; the largest single overlap in `max_one`.
+    double overlap(const Ring& piece, double* max_one = nullptr) const;
+    bool contains(Vec2 p) const;  // inside some building's footprint (not in a hole)
+    const std::vector<Building>& buildings() const { return buildings_; }
+
+private:
+    int64_t key(int64_t cx, int64_t cy) const { return cx * 73856093 ^ cy * 19349663; }
+    const std::vector<Building>& buildings_;
+    std::vector<Box2> boxes_;
+    double cell_;
+    std::unordered_map<int64_t, std::vector<uint32_t>> grid_;
+};
+
+}  // namespace citygen

@@ -1,0 +1,420 @@
+#include "road_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+
+namespace citygen {
+
+namespace {
+
+constexpr double kMaxCutFraction = 0.45;  // no cut reaches past this share of an edge
+constexpr double kStraightCos = 0.99996;  // cos(0.5 deg): closer to straight needs no miter
+constexpr double kDedupe = 1e-4;          // metres: closer points are one point
+constexpr double kMinJointArea = 1e-3;    // square metres
+constexpr double kMaxJunctionSpan = 25;   // metres: junctions merged into one joint stay this small
+
+// Intersection of p1 + s*d1 and p2 + u*d2; false when (nearly) parallel.
+bool intersect_lines(Vec2 p1, Vec2 d1, Vec2 p2, Vec2 d2, double& s, double& u) {
+    const double den = cross(d1, d2);
+    if (std::fabs(den) < 1e-9) return false;
+    const Vec2 w = p2 - p1;
+    s = cross(w, d2) / den;
+    u = cross(w, d1) / den;
+    return true;
+}
+
+// One edge as seen from the node it leaves (its origin).
+struct EndGeometry {
+    Vec2 origin, dir, normal;  // leaving the node; normal points left
+    double half_left, half_right;
+    double max_cut;
+    Vec2 left_at(double t) const { return origin + normal * half_left + dir * t; }
+    Vec2 right_at(double t) const { return origin - normal * half_right + dir * t; }
+};
+
+EndGeometry end_geometry(const RoadGraphEdge& e, SideWidths w, bool at_from) {
+    EndGeometry g;
+    const Vec2 along = at_from ? e.to - e.from : e.from - e.to;
+    g.origin = at_from ? e.from : e.to;
+    g.dir = normalize(along);
+    g.normal = perp_left(g.dir);
+    g.half_left = at_from ? w.left : w.right;
+    g.half_right = at_from ? w.right : w.left;
+    g.max_cut = kMaxCutFraction * length(along);
+    return g;
+}
+
+void push_distinct(Ring& ring, Vec2 p) {
+    if (ring.empty() || length(ring.back() - p) > kDedupe) ring.push_back(p);
+}
+
+// Cuts on the miter of a degree-2 node; false when the miter is not acceptable.
+bool miter_cuts(Vec2 p, const EndGeometry& a, const EndGeometry& b, double miter_limit, bool forced,
+                EdgeEndCut& cut_a, EdgeEndCut& cut_b) {
+    if (dot(a.dir, b.dir) < -kStraightCos) {  // straight on: square cuts through the node
+        cut_a = cut_b = {0, 0};
+        return true;
+    }
+    double s_ab, u_ab, s_ba, u_ba;
+    if (!intersect_lines(a.left_at(0), a.dir, b.right_at(0), b.dir, s_ab, u_ab) ||
+        !intersect_lines(b.left_at(0), b.dir, a.right_at(0), a.dir, s_ba, u_ba))
+        return false;
+    cut_a = {s_ab, u_ba};
+    cut_b = {s_ba, u_ab};
+    const double reach = miter_limit * std::max({a.half_left, a.half_right, b.half_left, b.half_right});
+    const bool within_limit = length(a.left_at(s_ab) - p) <= reach && length(b.left_at(s_ba) - p) <= reach;
+    auto fits = [](double t, const EndGeometry& g) { return std::fabs(t) <= g.max_cut; };
+    const bool fits_edges = fits(s_ab, a) && fits(u_ba, a) && fits(s_ba, b) && fits(u_ab, b);
+    if (forced) {
+        auto clamp = [](double& t, const EndGeometry& g) { t = std::clamp(t, -g.max_cut, g.max_cut); };
+        clamp(cut_a.t_left, a); clamp(cut_a.t_right, a); clamp(cut_b.t_left, b); clamp(cut_b.t_right, b);
+        return true;
+    }
+    return within_limit && fits_edges;
+}
+
+// Near-parallel neighbours meet far out (half width / tan(half the angle)); a joint
+// reaching that far would swallow the roads, so corners are cut at this distance and
+// the two quads overlap beyond it, as the roads themselves do.
+constexpr double kCornerReachInHalfWidths = 3;
+double corner_reach(const EndGeometry& i, const EndGeometry& j) {
+    return kCornerReachInHalfWidths * std::max({i.half_left, i.half_right, j.half_left, j.half_right});
+}
+
+// How far each end of a junction would have to be cut back for the offset lines of
+// neighbouring edges to meet (unlimited by the edge's length).
+double joint_demand(const std::vector<EndGeometry>& geo, size_t end) {
+    const size_t k = geo.size();
+    double demand = 0;
+    for (size_t side = 0; side < 2; ++side) {
+        const size_t i = side == 0 ? end : (end + k - 1) % k;  // gap on the left, then on the right
+        const size_t j = (i + 1) % k;
+        const EndGeometry &gi = geo[i], &gj = geo[j];
+        double gap = std::atan2(cross(gi.dir, gj.dir), dot(gi.dir, gj.dir));
+        if (gap <= 0) gap += 2 * M_PI;
+        if (gap >= M_PI - 1e-3) continue;
+        double s, u;
+        if (!intersect_lines(gi.left_at(0), gi.dir, gj.right_at(0), gj.dir, s, u))
+            continue;
+        demand = std::max(demand, std::min(side == 0 ? s : u, corner_reach(gi, gj)));
+    }
+    return demand;
+}
+
+// The joint polygon of a node and each edge's square cut (thesis: sort by angle,
+// intersect neighbouring offset lines).
+void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
+    const size_t k = node.ends.size();
+    std::vector<double> demand_left(k, 0), demand_right(k, 0);
+    for (size_t i = 0; i < k; ++i) {
+        const size_t j = (i + 1) % k;
+        const EndGeometry &gi = geo[i], &gj = geo[j];
+        node.ends[i].gap_points.clear();
+        double gap = std::atan2(cross(gi.dir, gj.dir), dot(gi.dir, gj.dir));
+        if (gap <= 0) gap += 2 * M_PI;
+        if (k == 1 || gap >= M_PI - 1e-3) continue;  // open or straight side: a plain bevel
+        double s, u;
+        if (!intersect_lines(gi.left_at(0), gi.dir, gj.right_at(0), gj.dir, s, u))
+            continue;
+        // Near-parallel neighbours and short edges: the true corner lies too far out,
+        // so the corner is cut short on both edges.
+        s = std::clamp(s, 0.0, std::min(gi.max_cut, corner_reach(gi, gj)));
+        u = std::clamp(u, 0.0, std::min(gj.max_cut, corner_reach(gi, gj)));
+        demand_left[i] = s;
+        demand_right[j] = u;
+        node.ends[i].gap_points.push_back(gi.left_at(s));
+        node.ends[i].gap_points.push_back(gj.right_at(u));
+    }
+    for (size_t i = 0; i < k; ++i) node.ends[i].trim = std::max(demand_left[i], demand_right[i]);
+    // Where neighbours were cut short their quads still overlap, and their square cuts
+    // may cross: the crossing point then stands for both cut ends and the corner.
+    std::vector<bool> cuts_cross(k, false);
+    std::vector<Vec2> crossing(k);
+    for (size_t i = 0; i < k && k > 1; ++i) {
+        const size_t j = (i + 1) % k;
+        const Vec2 ri = geo[i].right_at(node.ends[i].trim), li = geo[i].left_at(node.ends[i].trim);
+        const Vec2 rj = geo[j].right_at(node.ends[j].trim), lj = geo[j].left_at(node.ends[j].trim);
+        double s, u;
+        if (intersect_lines(ri, li - ri, rj, lj - rj, s, u) && s > 0 && s < 1 && u > 0 && u < 1) {
+            cuts_cross[i] = true;
+            crossing[i] = ri + (li - ri) * s;
+        }
+    }
+    Ring ring;
+    for (size_t i = 0; i < k; ++i) {
+        NodeLayout::End& end = node.ends[i];
+        const size_t prev = (i + k - 1) % k;
+        push_distinct(ring, cuts_cross[prev] ? crossing[prev] : geo[i].right_at(end.trim));
+        if (cuts_cross[i]) {
+            end.gap_points = {crossing[i]};
+            push_distinct(ring, crossing[i]);
+            continue;
+        }
+        push_distinct(ring, geo[i].left_at(end.trim));
+        for (Vec2 q : end.gap_points) push_distinct(ring, q);
+    }
+    while (ring.size() > 1 && length(ring.front() - ring.back()) <= kDedupe) ring.pop_back();
+    // Drop spikes: a vertex where the boundary runs out and straight back along itself.
+    for (bool removed = true; removed && ring.size() > 3;) {
+        removed = false;
+        for (size_t i = 0, m = ring.size(); i < m; ++i) {
+            const Vec2 a = ring[(i + m - 1) % m], b = ring[i], c = ring[(i + 1) % m];
+            if (std::fabs(cross(b - a, c - b)) < 1e-9 * (1 + length(b - a) * length(c - b)) && dot(b - a, c - b) < 0) {
+                ring.erase(ring.begin() + static_cast<long>(i));
+                removed = true;
+                break;
+            }
+        }
+    }
+    node.joint.clear();
+    node.joint_is_hull = false;
+    if (ring.size() >= 3 && signed_area(ring) > kMinJointArea && ring_is_simple(ring)) {
+        node.joint = ring;
+        return;
+    }
+    // Rare tangles of short edges: the points sorted by angle around the node form a
+    // star-shaped polygon, simple by construction; failing that, their convex hull.
+    Ring star = ring;
+    std::sort(star.begin(), star.end(), [&](Vec2 a, Vec2 b) {
+        return std::atan2(a.y - node.position.y, a.x - node.position.x) <
+               std::atan2(b.y - node.position.y, b.x - node.position.x);
+    });
+    if (star.size() >= 3 && signed_area(star) > kMinJointArea && ring_is_simple(star)) {
+        node.joint = star;
+        node.joint_is_hull = true;
+        return;
+    }
+    Ring hull = convex_hull(ring);
+    if (hull.size() >= 3 && signed_area(hull) > kMinJointArea) {
+        node.joint = hull;
+        node.joint_is_hull = true;
+    }
+}
+
+bool quad_is_valid(const Ring& q) {
+    return q.size() == 4 && ring_is_convex(q) && signed_area(q) > 1e-3;
+}
+
+}  // namespace
+
+Ring quad_for_cuts(const RoadGraphEdge& e, SideWidths w, EdgeEndCut from, EdgeEndCut to) {
+    const Vec2 d = normalize(e.to - e.from), n = perp_left(d);
+    return {e.from - n * w.right + d * from.t_right, e.to - n * w.right - d * to.t_left,
+            e.to + n * w.left - d * to.t_right, e.from + n * w.left + d * from.t_left};
+}
+
+Ring convex_hull(std::vector<Vec2> p) {
+    std::sort(p.begin(), p.end(), [](Vec2 a, Vec2 b) { return a.x != b.x ? a.x < b.x : a.y < b.y; });
+    p.erase(std::unique(p.begin(), p.end()), p.end());
+    if (p.size() < 3) return p;
+    Ring h(2 * p.size());
+    size_t k = 0;
+    for (size_t i = 0; i < p.size(); ++i) {
+        while (k >= 2 && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    for (size_t i = p.size() - 1, t = k + 1; i-- > 0;) {
+        while (k >= t && cross(h[k - 1] - h[k - 2], p[i] - h[k - 2]) <= 0) --k;
+        h[k++] = p[i];
+    }
+    h.resize(k - 1);
+    return h;
+}
+
+RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWidths>& widths,
+                                double miter_limit, const RoadLayout* follow) {
+    const size_t n = graph.edges.size();
+    RoadLayout out;
+    out.from_cut.assign(n, {});
+    out.to_cut.assign(n, {});
+    out.quads.assign(n, {});
+    out.absorbed.assign(n, false);
+
+    std::map<int64_t, NodeLayout> nodes;
+    for (uint32_t e = 0; e < n; ++e) {
+        const RoadGraphEdge& edge = graph.edges[e];
+        NodeLayout& a = nodes[edge.from_node];
+        a.node = edge.from_node;
+        a.position = edge.from;
+        a.ends.push_back({e, true, edge.from, 0, {}});
+        NodeLayout& b = nodes[edge.to_node];
+        b.node = edge.to_node;
+        b.position = edge.to;
+        b.ends.push_back({e, false, edge.to, 0, {}});
+    }
+    auto geometry_of = [&](const NodeLayout::End& end) {
+        return end_geometry(graph.edges[end.edge], widths[end.edge], end.at_from);
+    };
+    auto geometry_at = [&](const NodeLayout& node) {
+        std::vector<EndGeometry> geo;
+        for (const NodeLayout::End& end : node.ends) geo.push_back(geometry_of(end));
+        return geo;
+    };
+    // Counter-clockwise around the node; in a merged junction the ends leave from
+    // different nodes, so the angle is taken around the centre to a point well out.
+    auto sort_ends = [&](NodeLayout& node) {
+        std::vector<std::pair<double, NodeLayout::End>> keyed;
+        keyed.reserve(node.ends.size());
+        for (const NodeLayout::End& end : node.ends) {
+            const EndGeometry g = geometry_of(end);
+            const Vec2 far = g.origin - node.position + g.dir * 50.0;
+            keyed.emplace_back(std::atan2(far.y, far.x), end);
+        }
+        std::sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) {
+            if (a.first != b.first) return a.first < b.first;
+            return a.second.edge != b.second.edge ? a.second.edge < b.second.edge : a.second.at_from < b.second.at_from;
+        });
+        for (size_t i = 0; i < keyed.size(); ++i) node.ends[i] = std::move(keyed[i].second);
+    };
+    std::vector<double> from_demand(n, 0), to_demand(n, 0), from_fixed(n, 0), to_fixed(n, 0);
+    auto demand_of = [&](const NodeLayout::End& end) -> double& {
+        return end.at_from ? from_demand[end.edge] : to_demand[end.edge];
+    };
+    auto cut_of = [&](const NodeLayout::End& end) -> EdgeEndCut& {
+        return end.at_from ? out.from_cut[end.edge] : out.to_cut[end.edge];
+    };
+    std::map<int64_t, const NodeLayout*> followed_nodes;
+    if (follow)
+        for (const NodeLayout& f : follow->nodes) followed_nodes[f.node] = &f;
+
+    // Pass 1: order the ends at every node, choose miters, and note how far every joint
+    // would like to cut each edge back.
+    for (auto& [id, node] : nodes) {
+        sort_ends(node);
+        const std::vector<EndGeometry> geo = geometry_at(node);
+        auto it = followed_nodes.find(id);
+        const NodeLayout* followed = it == followed_nodes.end() ? nullptr : it->second;
+        const size_t k = node.ends.size();
+        if (k == 1) {
+            node.kind = JoinKind::End;
+            continue;
+        }
+        if (k == 2 && (!followed || followed->kind == JoinKind::Miter)) {
+            EdgeEndCut ca, cb;
+            if (miter_cuts(node.position, geo[0], geo[1], miter_limit, followed != nullptr, ca, cb)) {
+                node.kind = JoinKind::Miter;
+                cut_of(node.ends[0]) = ca;
+                cut_of(node.ends[1]) = cb;
+                for (int i = 0; i < 2; ++i) {
+                    const EdgeEndCut& c = i == 0 ? ca : cb;
+                    const NodeLayout::End& end = node.ends[i];
+                    (end.at_from ? from_fixed : to_fixed)[end.edge] = std::max({0.0, c.t_left, c.t_right});
+                }
+                continue;
+            }
+        }
+        node.kind = JoinKind::Joint;
+        for (size_t i = 0; i < k; ++i) demand_of(node.ends[i]) = joint_demand(geo, i);
+    }
+
+    // Pass 2: junctions closer together than their roads are wide become one joint
+    // (osm2streets does the same): the short edges between them are absorbed.
+    if (follow) {
+        out.absorbed = follow->absorbed;
+    } else {
+        std::map<int64_t, int64_t> parent;
+        std::map<int64_t, std::vector<Vec2>> members;
+        std::function<int64_t(int64_t)> root = [&](int64_t v) {
+            auto it = parent.find(v);
+            if (it == parent.end() || it->second == v) return v;
+            return it->second = root(it->second);
+        };
+        for (uint32_t e = 0; e < n; ++e) {
+            const RoadGraphEdge& edge = graph.edges[e];
+            if (nodes[edge.from_node].kind != JoinKind::Joint || nodes[edge.to_node].kind != JoinKind::Joint) continue;
+            if (from_demand[e] + to_demand[e] <= 0.9 * length(edge.to - edge.from)) continue;
+            const int64_t a = root(edge.from_node), b = root(edge.to_node);
+            if (a == b) continue;
+            std::vector<Vec2> pa = members.count(a) ? members[a] : std::vector<Vec2>{edge.from};
+            std::vector<Vec2> pb = members.count(b) ? members[b] : std::vector<Vec2>{edge.to};
+            double span = 0;
+            for (Vec2 p : pa)
+                for (Vec2 q : pb) span = std::max(span, length(p - q));
+            if (span > kMaxJunctionSpan) continue;
+            parent[a] = parent[b] = std::min(a, b);
+            parent[std::max(a, b)] = std::min(a, b);
+            pa.insert(pa.end(), pb.begin(), pb.end());
+            members[std::min(a, b)] = pa;
+        }
+        for (uint32_t e = 0; e < n; ++e)
+            out.absorbed[e] = root(graph.edges[e].from_node) == root(graph.edges[e].to_node) &&
+                              parent.count(graph.edges[e].from_node);
+    }
+    {
+        // Merge the nodes joined by absorbed edges into one node keyed by the smallest id.
+        std::map<int64_t, int64_t> parent;
+        std::function<int64_t(int64_t)> root = [&](int64_t v) {
+            auto it = parent.find(v);
+            if (it == parent.end() || it->second == v) return v;
+            return it->second = root(it->second);
+        };
+        for (uint32_t e = 0; e < n; ++e) {
+            if (!out.absorbed[e]) continue;
+            const int64_t a = root(graph.edges[e].from_node), b = root(graph.edges[e].to_node);
+            if (a != b) parent[std::max(a, b)] = std::min(a, b);
+        }
+        std::map<int64_t, std::vector<int64_t>> clusters;
+        for (const auto& [v, p] : parent) clusters[root(v)].push_back(v);
+        for (auto& [r, rest] : clusters) {
+            NodeLayout merged;
+            merged.node = r;
+            merged.kind = JoinKind::Joint;
+            merged.members = {r};
+            merged.members.insert(merged.members.end(), rest.begin(), rest.end());
+            std::sort(merged.members.begin(), merged.members.end());
+            Vec2 sum;
+            for (int64_t m : merged.members) {
+                const NodeLayout& node = nodes[m];
+                sum = sum + node.position;
+                for (const NodeLayout::End& end : node.ends) {
+                    if (out.absorbed[end.edge]) continue;
+                    merged.ends.push_back(end);
+                    (end.at_from ? from_fixed : to_fixed)[end.edge] = 0;
+                }
+            }
+            merged.position = sum * (1.0 / merged.members.size());
+            for (int64_t m : merged.members) nodes.erase(m);
+            sort_ends(merged);
+            const std::vector<EndGeometry> geo = geometry_at(merged);
+            for (size_t i = 0; i < merged.ends.size(); ++i) demand_of(merged.ends[i]) = joint_demand(geo, i);
+            nodes[r] = std::move(merged);
+        }
+    }
+
+    // Pass 3: share each edge's length between the joints at its two ends, keeping 10%
+    // of it (and whatever a miter at either end needs) for the quad.
+    std::vector<double> from_allowed(n), to_allowed(n);
+    for (uint32_t e = 0; e < n; ++e) {
+        const double len = length(graph.edges[e].to - graph.edges[e].from);
+        const double room = std::max(0.0, 0.9 * len - from_fixed[e] - to_fixed[e]);
+        const double wanted = from_demand[e] + to_demand[e];
+        const double scale = wanted > room ? room / wanted : 1.0;
+        from_allowed[e] = from_demand[e] * scale;
+        to_allowed[e] = to_demand[e] * scale;
+    }
+
+    // Pass 4: joint polygons with the shared-out cuts.
+    for (auto& [id, node] : nodes) {
+        if (node.kind != JoinKind::Joint || node.ends.empty()) continue;
+        std::vector<EndGeometry> geo = geometry_at(node);
+        for (size_t i = 0; i < geo.size(); ++i) {
+            const NodeLayout::End& end = node.ends[i];
+            geo[i].max_cut = end.at_from ? from_allowed[end.edge] : to_allowed[end.edge];
+        }
+        layout_joint(node, geo);
+        for (const NodeLayout::End& end : node.ends) cut_of(end) = {end.trim, end.trim};
+    }
+
+    for (uint32_t e = 0; e < n; ++e) {
+        if (out.absorbed[e]) continue;
+        Ring q = quad_for_cuts(graph.edges[e], widths[e], out.from_cut[e], out.to_cut[e]);
+        if (quad_is_valid(q)) out.quads[e] = std::move(q);
+    }
+    out.nodes.reserve(nodes.size());
+    for (auto& [id, node] : nodes) out.nodes.push_back(std::move(node));
+    return out;
+}
+
+}  // namespace citygen

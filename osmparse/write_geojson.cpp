@@ -1,0 +1,118 @@
+#include "write_geojson.h"
+
+#include <cstdio>
+
+#include "projection.h"
+#include "scene_io.h"
+
+namespace citygen {
+
+namespace {
+
+const char* class_name(RoadClass c) {
+    static const char* names[] = {"motorway", "trunk",       "primary",       "secondary", "tertiary",
+                                  "unclassified", "residential", "living_street", "service",   "other"};
+    return names[static_cast<int>(c)];
+}
+
+class GeoJsonWriter {
+public:
+    explicit GeoJsonWriter(const Projection& p) : projection_(p) { text_ = "{\"type\":\"FeatureCollection\",\"features\":[\n"; }
+
+    void polygon(const std::vector<const Ring*>& rings, const std::string& properties) {
+        begin("Polygon");
+        for (size_t r = 0; r < rings.size(); ++r) {
+            text_ += r ? ",[" : "[";
+            const Ring& ring = *rings[r];
+            for (size_t i = 0; i <= ring.size(); ++i) {  // GeoJSON rings repeat the first point
+                if (i) text_ += ",";
+                point(ring[i % ring.size()]);
+            }
+            text_ += "]";
+        }
+        end(properties);
+    }
+    void point_feature(Vec2 p, const std::string& properties) {
+        begin("Point");
+        text_ += lon_lat(p);
+        end(properties);
+    }
+    std::string finish() { return text_ + "\n]}\n"; }
+
+private:
+    void begin(const char* type) {
+        if (count_++) text_ += ",\n";
+        text_ += "{\"type\":\"Feature\",\"geometry\":{\"type\":\"";
+        text_ += type;
+        text_ += "\",\"coordinates\":[";
+    }
+    void end(const std::string& properties) { text_ += "]},\"properties\":{" + properties + "}}"; }
+    std::string lon_lat(Vec2 p) const {
+        double lat, lon;
+        projection_.to_wgs84(p, lat, lon);
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.8f,%.8f", lon, lat);
+        return buf;
+    }
+    void point(Vec2 p) { text_ += "[" + lon_lat(p) + "]"; }
+    const Projection& projection_;
+    std::string text_;
+    size_t count_ = 0;
+};
+
+std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3f", v);
+    return buf;
+}
+std::string str(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\') out += '\\';
+        if (static_cast<unsigned char>(c) >= 0x20) out += c;
+    }
+    return out + "\"";
+}
+
+}  // namespace
+
+std::string scene_to_geojson(const Scene& scene) {
+    const Projection projection(scene.header.origin_lat, scene.header.origin_lon);
+    GeoJsonWriter w(projection);
+    static const char* height_sources[] = {"tagged", "levels", "random"};
+    for (const Building& b : scene.buildings) {
+        std::vector<const Ring*> rings{&b.outer};
+        for (const Ring& h : b.holes) rings.push_back(&h);
+        w.polygon(rings, "\"kind\":\"building\",\"osm\":" + str(to_string(b.osm)) + ",\"height\":" + num(b.height) +
+                             ",\"min_height\":" + num(b.min_height) + ",\"levels\":" + std::to_string(b.levels) +
+                             ",\"height_source\":\"" + height_sources[static_cast<int>(b.height_source)] +
+                             "\",\"part\":" + (b.is_part ? "true" : "false"));
+    }
+    for (const RoadEdge& r : scene.roads)
+        w.polygon({&r.quad}, "\"kind\":\"road\",\"osm\":" + str(to_string(r.osm)) + ",\"from_node\":" +
+                                 std::to_string(r.from_node) + ",\"to_node\":" + std::to_string(r.to_node) +
+                                 ",\"width\":" + num(r.width) + ",\"class\":\"" + class_name(r.road_class) +
+                                 "\",\"lanes\":" + std::to_string(r.lanes) + ",\"oneway\":" + (r.oneway ? "true" : "false") +
+                                 ",\"bridge\":" + (r.bridge ? "true" : "false"));
+    for (const Joint& j : scene.joints)
+        w.polygon({&j.polygon}, "\"kind\":\"joint\",\"osm\":" + str(to_string(j.osm)) + ",\"edges\":" +
+                                    std::to_string(j.edges.size()));
+    for (const Sidewalk& s : scene.sidewalks)
+        w.polygon({&s.polygon}, std::string("\"kind\":\"sidewalk\",\"piece\":\"") +
+                                    (s.kind == SidewalkKind::Strip ? "strip" : "corner") +
+                                    "\",\"height\":" + num(s.curb_height) +
+                                    (s.road >= 0 ? ",\"osm\":" + str(to_string(scene.roads[s.road].osm)) : "") +
+                                    (s.joint >= 0 ? ",\"joint\":" + str(to_string(scene.joints[s.joint].osm)) : ""));
+    for (const Lamp& l : scene.lamps)
+        w.point_feature({l.position.x, l.position.y},
+                        "\"kind\":\"lamp\",\"osm\":" + str(to_string(l.osm)) + ",\"height\":" + num(l.height) +
+                            ",\"source\":\"" + (l.source == LampSource::Tagged ? "tagged" : "generated") + "\"");
+    return w.finish();
+}
+
+void write_geojson(const Scene& scene, const std::string& path) {
+    const std::string text = scene_to_geojson(scene);
+    write_file_atomically(path, text.data(), text.size());
+}
+
+}  // namespace citygen

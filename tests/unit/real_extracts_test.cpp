@@ -1,0 +1,110 @@
+// Invariants on every real extract in the shared data folder (skipped when it is absent):
+// the parse succeeds, counts are reported, and every stored ring is simple, correctly
+// oriented and of positive area. Also: parsing is deterministic to the byte.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "pipeline.h"
+#include "scene_io.h"
+
+using namespace citygen;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kShared = CITYGEN_SHARED_DATA_DIR;
+
+std::vector<std::string> real_extracts() {
+    std::vector<std::string> files;
+    if (fs::is_directory(kShared)) {
+        for (const char* name : {"monaco.osm.bz2", "monaco.osm.pbf"})
+            if (fs::exists(kShared + "/" + name)) files.push_back(name);
+        if (fs::is_directory(kShared + "/osm2streets"))
+            for (const auto& entry : fs::directory_iterator(kShared + "/osm2streets"))
+                if (fs::exists(entry.path() / "input.osm"))
+                    files.push_back("osm2streets/" + entry.path().filename().string() + "/input.osm");
+    }
+    std::sort(files.begin(), files.end());
+    if (files.empty()) files.push_back("none");  // one test that reports the skip
+    return files;
+}
+
+std::string test_name(const testing::TestParamInfo<std::string>& info) {
+    std::string name = info.param;
+    for (char& c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    return name;
+}
+
+Scene parse(const std::string& path, ParseReport& report) {
+    ParseJob job;
+    job.input = path;
+    job.quiet = true;
+    return parse_osm_to_scene(job, report);
+}
+
+class RealExtract : public testing::TestWithParam<std::string> {
+protected:
+    std::string path() const { return kShared + "/" + GetParam(); }
+    void SetUp() override {
+        if (GetParam() == "none") GTEST_SKIP() << "no shared OSM data at " << kShared;
+    }
+};
+
+}  // namespace
+
+TEST_P(RealExtract, EveryStoredRingIsSimpleOrientedAndPositive) {
+    ParseReport report;
+    const Scene parsed = parse(path(), report);
+    // Check what is stored (float32 coordinates), not only what was computed.
+    const std::vector<uint8_t> bytes = encode_scene(parsed);
+    const Scene scene = decode_scene(bytes.data(), bytes.size(), GetParam());
+
+    ASSERT_GT(report.read_count("building areas"), 0);
+    ASSERT_FALSE(scene.buildings.empty());
+    EXPECT_EQ(report.kept_count("buildings") + report.kept_count("building parts"),
+              static_cast<int64_t>(scene.buildings.size()));
+    const double min_area = ParseParams{}.buildings.min_area;
+    for (const Building& b : scene.buildings) {
+        const std::string who = to_string(b.osm);
+        ASSERT_TRUE(ring_is_simple(b.outer)) << who;
+        EXPECT_GT(signed_area(b.outer), 0) << who << " outer must be counter-clockwise";
+        double area = signed_area(b.outer);
+        for (const Ring& hole : b.holes) {
+            ASSERT_TRUE(ring_is_simple(hole)) << who;
+            EXPECT_LT(signed_area(hole), 0) << who << " holes must be clockwise";
+            for (Vec2 p : hole) EXPECT_TRUE(point_in_ring(p, b.outer)) << who << " hole outside";
+            area += signed_area(hole);
+        }
+        EXPECT_GE(area, min_area * 0.999) << who;
+        EXPECT_GT(b.height, b.min_height) << who;
+        EXPECT_GE(b.min_height, 0) << who;
+        EXPECT_LE(b.height, 1000) << who;
+        EXPECT_GE(b.levels, 1) << who;
+    }
+}
+
+TEST_P(RealExtract, ParsingTwiceGivesTheSameBytes) {
+    if (GetParam() == "monaco.osm.bz2") GTEST_SKIP() << "same data as monaco.osm.pbf, slower to read";
+    ParseReport first_report, second_report;
+    const std::vector<uint8_t> first = encode_scene(parse(path(), first_report));
+    const std::vector<uint8_t> second = encode_scene(parse(path(), second_report));
+    EXPECT_TRUE(first == second);
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedData, RealExtract, testing::ValuesIn(real_extracts()), test_name);
+
+TEST(RealExtracts, XmlAndPbfOfMonacoGiveTheSameBuildings) {
+    if (!fs::exists(kShared + "/monaco.osm.bz2") || !fs::exists(kShared + "/monaco.osm.pbf"))
+        GTEST_SKIP() << "no Monaco extract at " << kShared;
+    ParseReport xml_report, pbf_report;
+    const Scene xml = parse(kShared + "/monaco.osm.bz2", xml_report);
+    const Scene pbf = parse(kShared + "/monaco.osm.pbf", pbf_report);
+    ASSERT_EQ(xml.buildings.size(), pbf.buildings.size());
+    for (size_t i = 0; i < xml.buildings.size(); ++i) {
+        EXPECT_EQ(xml.buildings[i].osm, pbf.buildings[i].osm);
+        EXPECT_EQ(xml.buildings[i].height, pbf.buildings[i].height);
+    }
+}

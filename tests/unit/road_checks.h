@@ -1,0 +1,99 @@
+// Invariants every road network must satisfy, shared by the fixture and real-data tests.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "narrow_roads.h"
+#include "polygon_overlap.h"
+#include "scene.h"
+
+namespace citygen {
+
+struct RoadCheckCounts {
+    int quads = 0, joints = 0, bad_quads = 0, bad_joints = 0, building_overlaps = 0;
+    int quad_joint_overlaps = 0, quad_joint_gaps = 0, lamps_inside = 0, sidewalks_bad = 0;
+};
+
+// Distance from p to the nearest point on the ring's boundary.
+inline double distance_to_boundary(Vec2 p, const Ring& ring) {
+    double best = 1e300;
+    for (size_t i = 0, n = ring.size(); i < n; ++i) {
+        const Vec2 a = ring[i], b = ring[(i + 1) % n], ab = b - a;
+        const double t = std::clamp(dot(p - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
+        best = std::min(best, length(p - (a + ab * t)));
+    }
+    return best;
+}
+
+// Checks quads, joints, sidewalks and lamps; adds a failure per violation when `strict`
+// (fixtures), and always returns the counts (real data reports them).
+inline RoadCheckCounts check_road_network(const Scene& scene, bool strict_joins) {
+    RoadCheckCounts c;
+    const BuildingIndex buildings(scene.buildings);
+    for (size_t r = 0; r < scene.roads.size(); ++r) {
+        const Ring& q = scene.roads[r].quad;
+        ++c.quads;
+        const bool ok = q.size() == 4 && ring_is_convex(q) && signed_area(q) > 1e-3;
+        if (!ok) ++c.bad_quads;
+        EXPECT_TRUE(ok) << "road " << r << " (w" << scene.roads[r].osm.id << ") quad not convex/positive";
+        double largest = 0;
+        buildings.overlap(q, &largest);
+        if (largest > kRoadBuildingOverlapTolerance) ++c.building_overlaps;
+        EXPECT_LE(largest, kRoadBuildingOverlapTolerance) << "road " << r << " inside a building";
+    }
+    for (size_t j = 0; j < scene.joints.size(); ++j) {
+        const Joint& joint = scene.joints[j];
+        ++c.joints;
+        const bool ok = ring_is_simple(joint.polygon) && signed_area(joint.polygon) > 0;
+        if (!ok) ++c.bad_joints;
+        EXPECT_TRUE(ok) << "joint n" << joint.osm.id << " not simple/CCW";
+        double largest = 0;
+        buildings.overlap(joint.polygon, &largest);
+        if (largest > kRoadBuildingOverlapTolerance) ++c.building_overlaps;
+        EXPECT_LE(largest, kRoadBuildingOverlapTolerance) << "joint n" << joint.osm.id << " inside a building";
+        for (uint32_t r : joint.edges) {
+            const RoadEdge& road = scene.roads.at(r);
+            // No hole: just beyond the quad's end at this joint, the ground must be the
+            // joint's (or another road's where near-parallel roads overlap).
+            const bool at_from = road.from_joint == static_cast<int>(j);
+            const Vec2 c1 = at_from ? road.quad[0] : road.quad[1];
+            const Vec2 c2 = at_from ? road.quad[3] : road.quad[2];
+            const Vec2 inward = (road.quad[0] + road.quad[1] + road.quad[2] + road.quad[3]) * 0.25 - (c1 + c2) * 0.5;
+            const Vec2 beyond = normalize(inward) * -0.01;
+            double gap = 0;
+            for (int k = 1; k < 10; ++k) {
+                const Vec2 p = c1 + (c2 - c1) * (k / 10.0) + beyond;
+                bool covered = point_in_ring(p, joint.polygon);
+                for (uint32_t other : joint.edges)
+                    covered = covered || (other != r && point_in_ring(p, scene.roads[other].quad));
+                if (!covered) gap = std::max(gap, distance_to_boundary(p, joint.polygon));
+            }
+            const double overlap = clipped_area(joint.polygon, road.quad);
+            if (gap > 0.01) ++c.quad_joint_gaps;
+            if (overlap > 0.01) ++c.quad_joint_overlaps;
+            if (strict_joins) {
+                EXPECT_LE(gap, 0.01) << "hole beyond road " << r << " at joint n" << joint.osm.id;
+                EXPECT_LE(overlap, 0.01) << "road " << r << " overlaps joint n" << joint.osm.id;
+            }
+        }
+    }
+    for (const Sidewalk& s : scene.sidewalks) {
+        const bool ok = ring_is_simple(s.polygon) && signed_area(s.polygon) > 0;
+        if (!ok) ++c.sidewalks_bad;
+        EXPECT_TRUE(ok) << "sidewalk of road " << s.road << " / joint " << s.joint << " not simple";
+    }
+    for (const Lamp& l : scene.lamps) {
+        const Vec2 p{l.position.x, l.position.y};
+        bool inside = buildings.contains(p);
+        for (const RoadEdge& r : scene.roads) inside = inside || point_in_ring(p, r.quad);
+        for (const Joint& j : scene.joints) inside = inside || point_in_ring(p, j.polygon);
+        if (inside) ++c.lamps_inside;
+        EXPECT_FALSE(inside) << "lamp " << to_string(l.osm) << " at " << p.x << "," << p.y << " inside road/joint/building";
+    }
+    return c;
+}
+
+}  // namespace citygen
