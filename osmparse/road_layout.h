@@ -38,7 +38,9 @@ struct NodeLayout {
         uint32_t edge = 0;
         bool at_from = true;          // the edge leaves this node at its `from` end
         Vec2 origin;                  // the node it leaves (differs from `position` in merged junctions)
-        double trim = 0;              // a joint's square cut across the edge
+        double trim = 0;              // how far the joint reaches along the edge
+        double cut_left = 0, cut_right = 0;  // where the quad starts on each side (equal but
+                                             // for a common cut shared with a near-parallel neighbour)
         std::vector<Vec2> gap_points; // boundary between this end's left side and the next end's right side
     };
     std::vector<End> ends;  // counter-clockwise by direction leaving the node
