@@ -1,0 +1,255 @@
+#include "facade.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rng.h"
+
+namespace citygen {
+
+const char* to_string(FacadeSurface surface) {
+    switch (surface) {
+        case FacadeSurface::Wall: return "wall";
+        case FacadeSurface::Reveal: return "reveal";
+        case FacadeSurface::Glass: return "glass";
+        case FacadeSurface::Room: return "room";
+        case FacadeSurface::BalconySlab: return "balcony_slab";
+        case FacadeSurface::Fence: return "fence";
+        case FacadeSurface::BalconyDoor: return "balcony_door";
+        case FacadeSurface::ShopWindow: return "shop_window";
+    }
+    return "unknown";
+}
+
+uint64_t facade_building_key(const Building& building) {
+    return hash_keys(static_cast<uint64_t>(building.osm.type), static_cast<uint64_t>(building.osm.id));
+}
+
+namespace {
+
+// Salts that keep the independent random choices apart.
+enum Salt : uint64_t {
+    kFloorHeight = 1, kBottomMargin, kTopMargin, kEdgeMargin, kSlotWidth, kWindowWidth,
+    kWindowHeight, kSill, kRecess, kRoomDepth, kHasBalconies, kBalconyDepth, kBalconyEvery,
+    kDoorWidth, kShop, kWallBalconies
+};
+
+// Sizes (metres) that make a facade look like one.
+constexpr double kMinFloorHeight = 2.4;
+constexpr double kMinSlotWidth = 1.6;
+constexpr double kRoomInset = 0.08;
+
+}  // namespace
+
+WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall) {
+    // Per building: every wall of a building shares its style, so floors line up at corners.
+    auto building_unit = [&](Salt salt) { return hash_to_unit(hash_keys(options.seed, wall.building_key, salt)); };
+    // Per wall: choices that may differ between the sides of one building.
+    auto wall_unit = [&](Salt salt) {
+        return hash_to_unit(hash_keys(options.seed, wall.building_key, wall.wall_index, salt));
+    };
+
+    WallLayout layout;
+    layout.length = wall.length;
+    layout.height = wall.height;
+    if (!(wall.length > 0) || !(wall.height > 0)) return layout;
+
+    const double bottom_margin = 0.3 + 0.3 * building_unit(kBottomMargin);
+    const double top_margin = 0.4 + 0.6 * building_unit(kTopMargin);
+    const double edge_margin = 0.4 + 0.6 * building_unit(kEdgeMargin);
+
+    double floor_target = 2.9 + 0.5 * building_unit(kFloorHeight);
+    if (wall.levels > 0) {
+        double tagged = wall.height / wall.levels;
+        if (tagged >= kMinFloorHeight && tagged <= 5.0) floor_target = tagged;
+    }
+    const double usable_height = wall.height - bottom_margin - top_margin;
+    const double usable_length = wall.length - 2 * edge_margin;
+    const int floors = static_cast<int>(std::floor(usable_height / floor_target));
+    const double slot_target = 2.4 + 1.4 * building_unit(kSlotWidth);
+    const int slots = static_cast<int>(std::floor(usable_length / slot_target));
+    if (floors < 1 || slots < 1) return layout;  // too short or too narrow: plain wall
+    const double floor_height = usable_height / floors;
+    const double slot_width = usable_length / slots;
+    if (floor_height < kMinFloorHeight || slot_width < kMinSlotWidth) return layout;
+
+    layout.floors = floors;
+    layout.slots = slots;
+    layout.grid_u0 = edge_margin;
+    layout.grid_v0 = bottom_margin;
+    layout.slot_width = slot_width;
+    layout.floor_height = floor_height;
+    layout.recess = 0.12 + 0.13 * building_unit(kRecess);
+    layout.room_depth = 1.8 + 0.8 * building_unit(kRoomDepth);
+    layout.room_inset = kRoomInset;
+
+    // Window: centred in its slot, at least 0.25 m of wall either side and 0.35 m above.
+    const double window_width = std::min(1.0 + 0.6 * building_unit(kWindowWidth), slot_width - 0.5);
+    const double sill = std::min(0.8 + 0.2 * building_unit(kSill), floor_height - 1.2);
+    const double window_height = std::min(1.3 + 0.4 * building_unit(kWindowHeight), floor_height - 0.35 - sill);
+    layout.window = {0.5 * (slot_width - window_width), 0.5 * (slot_width + window_width), sill, sill + window_height};
+
+    // Balconies: per building, and then only on some of its walls, never on one-floor walls.
+    if (floors >= 2 && building_unit(kHasBalconies) < 0.4 && wall_unit(kWallBalconies) < 0.7) {
+        layout.balconies = true;
+        layout.balcony_every = building_unit(kBalconyEvery) < 0.5 ? 1 : 2;
+        layout.balcony_depth = 1.0 + 0.4 * building_unit(kBalconyDepth);
+        layout.slab_thickness = 0.18;
+        layout.fence_height = std::min(1.0, floor_height - 1.0);
+        layout.balcony_margin = 0.1;
+        const double door_width = std::min(0.9 + 0.3 * building_unit(kDoorWidth), slot_width - 0.5);
+        const double door_top = std::min(layout.slab_thickness + 2.1, floor_height - 0.3);
+        layout.door = {0.5 * (slot_width - door_width), 0.5 * (slot_width + door_width), layout.slab_thickness,
+                       door_top};
+    }
+
+    // Shop front: a row of large panes on the ground floor of buildings that stand on the ground.
+    if (wall.bottom_z < 0.5 && floor_height >= 2.8 && building_unit(kShop) < options.shop_probability) {
+        layout.shop = true;
+        layout.shop_window = {0.25, slot_width - 0.25, 0.4, floor_height - 0.5};
+    }
+    return layout;
+}
+
+CellKind cell_kind(const WallLayout& layout, int floor, int slot) {
+    if (floor == 0 && layout.shop) return CellKind::Shop;
+    if (floor >= 1 && layout.balconies && slot % layout.balcony_every == 0) return CellKind::Balcony;
+    return CellKind::Window;
+}
+
+namespace {
+
+// Rectangle builders in wall-local (u, v, w). The two free axes are in increasing order:
+// u-plane: (v, w); v-plane: (u, w); w-plane: (u, v).
+FacadeRect u_plane(double u, double v0, double v1, double w0, double w1, int sign, FacadeSurface s) {
+    return {u, v0, v1, w0, w1, 0, static_cast<int8_t>(sign), s};
+}
+FacadeRect v_plane(double v, double u0, double u1, double w0, double w1, int sign, FacadeSurface s) {
+    return {v, u0, u1, w0, w1, 1, static_cast<int8_t>(sign), s};
+}
+FacadeRect w_plane(double w, double u0, double u1, double v0, double v1, int sign, FacadeSurface s) {
+    return {w, u0, u1, v0, v1, 2, static_cast<int8_t>(sign), s};
+}
+
+// `outer` minus `hole` (hole strictly inside) as four w-plane rectangles: below, above, left, right.
+int frame_around(double w, CellRect outer, CellRect hole, int sign, FacadeSurface s, FacadeRect* out) {
+    out[0] = w_plane(w, outer.u0, outer.u1, outer.v0, hole.v0, sign, s);
+    out[1] = w_plane(w, outer.u0, outer.u1, hole.v1, outer.v1, sign, s);
+    out[2] = w_plane(w, outer.u0, hole.u0, hole.v0, hole.v1, sign, s);
+    out[3] = w_plane(w, hole.u1, outer.u1, hole.v0, hole.v1, sign, s);
+    return 4;
+}
+
+CellRect offset(CellRect r, double du, double dv) { return {r.u0 + du, r.u1 + du, r.v0 + dv, r.v1 + dv}; }
+
+}  // namespace
+
+int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out) {
+    const double cu = layout.grid_u0 + slot * layout.slot_width;
+    const double cv = layout.grid_v0 + floor * layout.floor_height;
+    const CellRect cell{cu, cu + layout.slot_width, cv, cv + layout.floor_height};
+    const CellKind kind = cell_kind(layout, floor, slot);
+    const CellRect opening = offset(kind == CellKind::Shop      ? layout.shop_window
+                                    : kind == CellKind::Balcony ? layout.door
+                                                                : layout.window,
+                                    cu, cv);
+    const FacadeSurface pane = kind == CellKind::Shop      ? FacadeSurface::ShopWindow
+                               : kind == CellKind::Balcony ? FacadeSurface::BalconyDoor
+                                                           : FacadeSurface::Glass;
+    const double d = layout.recess;
+    const double back = d + layout.room_depth;
+    const double inset = layout.room_inset;
+    const CellRect room{cell.u0 + inset, cell.u1 - inset, cell.v0 + inset, cell.v1 - inset};
+
+    int n = 0;
+    // Facade plane around the opening, seen from outside.
+    n += frame_around(0.0, cell, opening, -1, FacadeSurface::Wall, out + n);
+    // Reveals: the four sides of the recess, facing into the opening.
+    out[n++] = u_plane(opening.u0, opening.v0, opening.v1, 0.0, d, +1, FacadeSurface::Reveal);
+    out[n++] = u_plane(opening.u1, opening.v0, opening.v1, 0.0, d, -1, FacadeSurface::Reveal);
+    out[n++] = v_plane(opening.v0, opening.u0, opening.u1, 0.0, d, +1, FacadeSurface::Reveal);
+    out[n++] = v_plane(opening.v1, opening.u0, opening.u1, 0.0, d, -1, FacadeSurface::Reveal);
+    // The pane at the bottom of the recess.
+    out[n++] = w_plane(d, opening.u0, opening.u1, opening.v0, opening.v1, -1, pane);
+    // Room box behind the pane, every face seen from inside the room.
+    n += frame_around(d, room, opening, +1, FacadeSurface::Room, out + n);
+    out[n++] = w_plane(back, room.u0, room.u1, room.v0, room.v1, -1, FacadeSurface::Room);
+    out[n++] = u_plane(room.u0, room.v0, room.v1, d, back, +1, FacadeSurface::Room);
+    out[n++] = u_plane(room.u1, room.v0, room.v1, d, back, -1, FacadeSurface::Room);
+    out[n++] = v_plane(room.v0, room.u0, room.u1, d, back, +1, FacadeSurface::Room);
+    out[n++] = v_plane(room.v1, room.u0, room.u1, d, back, -1, FacadeSurface::Room);
+
+    if (kind == CellKind::Balcony) {
+        // Slab at the bottom of the cell sticking out of the wall, a railing around its edge.
+        const double bu0 = cell.u0 + layout.balcony_margin, bu1 = cell.u1 - layout.balcony_margin;
+        const double front = -layout.balcony_depth;
+        const double top = cv + layout.slab_thickness;
+        const double rail = top + layout.fence_height;
+        out[n++] = v_plane(top, bu0, bu1, front, 0.0, +1, FacadeSurface::BalconySlab);
+        out[n++] = v_plane(cv, bu0, bu1, front, 0.0, -1, FacadeSurface::BalconySlab);
+        out[n++] = w_plane(front, bu0, bu1, cv, top, -1, FacadeSurface::BalconySlab);
+        out[n++] = u_plane(bu0, cv, top, front, 0.0, -1, FacadeSurface::BalconySlab);
+        out[n++] = u_plane(bu1, cv, top, front, 0.0, +1, FacadeSurface::BalconySlab);
+        out[n++] = w_plane(front, bu0, bu1, top, rail, -1, FacadeSurface::Fence);
+        out[n++] = u_plane(bu0, top, rail, front, 0.0, -1, FacadeSurface::Fence);
+        out[n++] = u_plane(bu1, top, rail, front, 0.0, +1, FacadeSurface::Fence);
+    }
+    return n;
+}
+
+int margin_rects(const WallLayout& layout, FacadeRect* out) {
+    const double L = layout.length, H = layout.height;
+    if (layout.plain()) {
+        out[0] = w_plane(0.0, 0.0, L, 0.0, H, -1, FacadeSurface::Wall);
+        return 1;
+    }
+    const double u0 = layout.grid_u0, u1 = layout.grid_u1(), v0 = layout.grid_v0, v1 = layout.grid_v1();
+    out[0] = w_plane(0.0, 0.0, u0, 0.0, H, -1, FacadeSurface::Wall);   // left edge strip
+    out[1] = w_plane(0.0, u1, L, 0.0, H, -1, FacadeSurface::Wall);     // right edge strip
+    out[2] = w_plane(0.0, u0, u1, 0.0, v0, -1, FacadeSurface::Wall);   // plinth
+    out[3] = w_plane(0.0, u0, u1, v1, H, -1, FacadeSurface::Wall);     // parapet
+    return 4;
+}
+
+WallFrame wall_frame(Vec2 a, Vec2 b, double bottom_z) {
+    Vec2 along = normalize(b - a);
+    Vec2 inward = perp_left(along);
+    WallFrame frame;
+    frame.origin = {a.x, a.y, bottom_z};
+    frame.u_axis = {along.x, along.y, 0};
+    frame.v_axis = {0, 0, 1};
+    frame.w_axis = {inward.x, inward.y, 0};
+    return frame;
+}
+
+size_t building_wall_count(const Building& building) {
+    size_t n = building.outer.size();
+    for (const Ring& hole : building.holes) n += hole.size();
+    return n;
+}
+
+void building_wall(const Building& building, size_t index, Vec2* a, Vec2* b) {
+    const Ring* ring = &building.outer;
+    size_t hole = 0;
+    while (index >= ring->size() && hole < building.holes.size()) {
+        index -= ring->size();
+        ring = &building.holes[hole++];
+    }
+    *a = (*ring)[index];
+    *b = (*ring)[(index + 1) % ring->size()];
+}
+
+WallInput building_wall_input(const Building& building, size_t index) {
+    Vec2 a, b;
+    building_wall(building, index, &a, &b);
+    WallInput wall;
+    wall.building_key = facade_building_key(building);
+    wall.wall_index = static_cast<uint32_t>(index);
+    wall.length = length(b - a);
+    wall.bottom_z = building.min_height;
+    wall.height = building.height - building.min_height;
+    wall.levels = building.levels;
+    return wall;
+}
+
+}  // namespace citygen

@@ -1,0 +1,139 @@
+// The facade rules: the one definition of windows, balconies and shop fronts on a wall.
+//
+// Both geometry modes use them: the stored mode triangulates them (facade_mesh.h), the
+// procedural mode intersects them analytically (wall_intersect.h). Every surface of a wall is
+// an axis-aligned rectangle in wall-local coordinates (u along the wall, v up, w into the
+// building), produced by cell_rects() and margin_rects() below; both modes consume exactly
+// these rectangles, so they agree by construction.
+//
+// A facade is a regular grid of cells (floors x slots) inside margins at the wall edges, the
+// bottom (plinth) and the top (parapet). Every cell holds one opening recessed into the wall
+// with a room box behind it; all geometry of a cell stays inside the cell's (u, v) rectangle,
+// which is what lets the intersector walk only the cells a ray crosses.
+#pragma once
+
+#include <cstdint>
+
+#include "geometry.h"
+#include "scene.h"
+
+namespace citygen {
+
+// What a facade surface is; the renderer maps each kind to a material.
+enum class FacadeSurface : uint8_t {
+    Wall = 0,     // the facade plane around the openings
+    Reveal,       // the sides of a recessed opening (wall material)
+    Glass,        // window pane
+    Room,         // inside of the room box behind an opening (glows at night)
+    BalconySlab,  // balcony floor slab
+    Fence,        // balcony railing (a thin panel)
+    BalconyDoor,  // glass door onto a balcony
+    ShopWindow,   // large ground-floor shop pane
+};
+constexpr int kFacadeSurfaceCount = 8;
+const char* to_string(FacadeSurface surface);
+
+struct FacadeOptions {
+    uint64_t seed = 0;
+    double shop_probability = 0.3;  // chance that a building has a ground floor of shop windows
+};
+
+// What a wall is, as far as the rules care. Walls are numbered over the outer ring's edges
+// first, then each hole's edges in order (see building_wall_count / building_wall).
+struct WallInput {
+    uint64_t building_key = 0;  // facade_building_key(building)
+    uint32_t wall_index = 0;
+    double length = 0;          // metres along the wall
+    double bottom_z = 0;        // building min_height
+    double height = 0;          // top minus bottom
+    int levels = 0;             // tagged building:levels, 0 when unknown
+};
+
+// An opening (or any rectangle) in cell-relative (u, v): [u0, u1] x [v0, v1].
+struct CellRect {
+    double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+};
+
+enum class CellKind : uint8_t { Window = 0, Balcony = 1, Shop = 2 };
+
+// Everything needed to build or intersect one wall: a few numbers, no per-window storage.
+struct WallLayout {
+    double length = 0, height = 0;
+    int floors = 0, slots = 0;            // 0 when the wall is plain
+    double grid_u0 = 0, grid_v0 = 0;      // lower-left corner of the cell grid (the margins)
+    double slot_width = 0, floor_height = 0;
+    double recess = 0;                    // depth of the pane behind the facade plane
+    double room_depth = 0;                // depth of the room box behind the pane
+    double room_inset = 0;                // room box = cell shrunk by this on every side
+    CellRect window;                      // cell-relative opening of a window
+    bool balconies = false;
+    int balcony_every = 1;                // balcony in slots where slot % every == 0 (floors >= 1)
+    double balcony_depth = 0;             // how far the slab sticks out (towards -w)
+    double slab_thickness = 0, fence_height = 0;
+    double balcony_margin = 0;            // slab is the cell width minus this on each side
+    CellRect door;                        // cell-relative balcony door opening
+    bool shop = false;                    // floor 0 is a row of shop windows
+    CellRect shop_window;                 // cell-relative shop opening
+
+    bool plain() const { return floors <= 0 || slots <= 0; }
+    double grid_u1() const { return grid_u0 + slots * slot_width; }
+    double grid_v1() const { return grid_v0 + floors * floor_height; }
+    // The slab of w that holds every surface: balconies stick out, rooms go in.
+    double w_min() const { return balconies ? -balcony_depth : 0.0; }
+    double w_max() const { return plain() ? 0.0 : recess + room_depth; }
+};
+
+// A key for a building's facade randomness that does not depend on its index in the file.
+uint64_t facade_building_key(const Building& building);
+
+// THE rules: derive a wall's layout from (seed, building key, wall index) and its size.
+WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall);
+
+CellKind cell_kind(const WallLayout& layout, int floor, int slot);
+
+// An axis-aligned rectangle in wall-local space: coordinate `axis` (0 u, 1 v, 2 w) equals `at`,
+// the other two coordinates (in increasing axis order) lie in [a0, a1] x [b0, b1]. The surface
+// normal is +/- the axis direction (normal_sign); it faces the side the surface is seen from.
+struct FacadeRect {
+    double at = 0, a0 = 0, a1 = 0, b0 = 0, b1 = 0;
+    uint8_t axis = 2;
+    int8_t normal_sign = -1;
+    FacadeSurface surface = FacadeSurface::Wall;
+};
+
+constexpr int kMaxCellRects = 32;
+constexpr int kMaxMarginRects = 4;
+
+// The rectangles of one cell (all inside the cell's u, v rectangle). Returns the count.
+int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out);
+// The plain facade outside the cell grid (or the whole wall when plain). Returns the count.
+int margin_rects(const WallLayout& layout, FacadeRect* out);
+
+// Wall-local frame in world space: world = origin + u * u_axis + v * v_axis + w * w_axis.
+struct WallFrame {
+    Vec3 origin;
+    Vec3 u_axis{1, 0, 0}, v_axis{0, 1, 0}, w_axis{0, 0, 1};
+
+    Vec3 to_world(double u, double v, double w) const {
+        return origin + u_axis * u + v_axis * v + w_axis * w;
+    }
+    Vec3 point_to_local(Vec3 p) const {
+        Vec3 d = p - origin;
+        return {dot(d, u_axis), dot(d, v_axis), dot(d, w_axis)};
+    }
+    Vec3 direction_to_local(Vec3 d) const { return {dot(d, u_axis), dot(d, v_axis), dot(d, w_axis)}; }
+    Vec3 direction_to_world(Vec3 d) const { return u_axis * d.x + v_axis * d.y + w_axis * d.z; }
+};
+
+// The frame of the wall from a to b (a footprint edge) standing on z = bottom_z: u along a->b,
+// v up, w to the left of a->b, i.e. into the building for CCW outer rings and CW holes.
+WallFrame wall_frame(Vec2 a, Vec2 b, double bottom_z);
+
+// Walls of a building: outer ring edges, then every hole's edges.
+size_t building_wall_count(const Building& building);
+// Endpoints of wall `index` (edge from a to b).
+void building_wall(const Building& building, size_t index, Vec2* a, Vec2* b);
+// The rules' input for wall `index` of a building.
+WallInput building_wall_input(const Building& building, size_t index);
+
+}  // namespace citygen
