@@ -133,11 +133,13 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
     std::vector<WayPieces> ways;
     std::set<std::pair<int64_t, int64_t>> seen_pairs;
     for (const OsmWay& way : osm.highways) {
-        if (std::optional<std::string> why = carriageway_exclusion(way.tags, params)) {
-            if (*why != "not a carriageway class") report.dropped("road ways", *why);
+        const std::optional<std::string> why = carriageway_exclusion(way.tags, params);
+        if (why && (*why == "not a carriageway class" || *why == "not a highway")) continue;
+        report.read("road ways");
+        if (why) {
+            report.dropped("road ways", *why);
             continue;
         }
-        report.read("road ways");
         WayPieces wp{&way, {}};
         for (size_t i = 0; i + 1 < way.nodes.size(); ++i) {
             const int64_t a = way.nodes[i], b = way.nodes[i + 1];
@@ -160,6 +162,7 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
         }
         ways.push_back(std::move(wp));
     }
+    report.kept("road ways", static_cast<int64_t>(ways.size()));
 
     // 2. Degree of every node: how many piece ends meet there.
     std::unordered_map<int64_t, int> degree;

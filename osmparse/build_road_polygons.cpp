@@ -16,7 +16,7 @@ RoadSurface build_road_polygons(const RoadGraph& graph, const RoadParams& params
     for (size_t e = 0; e < graph.edges.size(); ++e) {
         const RoadGraphEdge& g = graph.edges[e];
         if (out.layout.absorbed[e]) {
-            report.note("road edges", "absorbed into a merged junction");
+            report.dropped("road edges", "absorbed into a merged junction");
             continue;
         }
         if (out.layout.quads[e].empty()) {
@@ -43,8 +43,9 @@ RoadSurface build_road_polygons(const RoadGraph& graph, const RoadParams& params
 
     for (const NodeLayout& node : out.layout.nodes) {
         if (node.kind != JoinKind::Joint) continue;
+        report.read("road joints");
         if (node.joint.empty()) {
-            report.note("road joints", "nothing left of the polygon");
+            report.dropped("road joints", "nothing left of the polygon");
             continue;
         }
         if (!node.members.empty()) report.note("road joints", "merged from nearby junctions");

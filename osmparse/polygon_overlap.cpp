@@ -111,6 +111,7 @@ double overlap_area(const Ring& piece, const Building& b) {
 BuildingIndex::BuildingIndex(const std::vector<Building>& buildings, double cell)
     : buildings_(buildings), cell_(cell) {
     boxes_.reserve(buildings.size());
+    seen_.assign(buildings.size(), 0);
     for (uint32_t i = 0; i < buildings.size(); ++i) {
         const Box2 box = bounds_of(buildings[i].outer);
         boxes_.push_back(box);
@@ -137,11 +138,11 @@ std::vector<uint32_t> BuildingIndex::near(const Box2& box) const {
 
 double BuildingIndex::overlap(const Ring& piece, double* max_one) const {
     double total = 0, largest = 0;
-    for (uint32_t i : near(bounds_of(piece))) {
+    for_each_near(bounds_of(piece), [&](uint32_t i) {
         const double a = overlap_area(piece, buildings_[i]);
         total += a;
         largest = std::max(largest, a);
-    }
+    });
     if (max_one) *max_one = largest;
     return total;
 }
@@ -149,14 +150,15 @@ double BuildingIndex::overlap(const Ring& piece, double* max_one) const {
 bool BuildingIndex::contains(Vec2 p) const {
     Box2 box;
     box.extend(p);
-    for (uint32_t i : near(box)) {
+    bool inside = false;
+    for_each_near(box, [&](uint32_t i) {
         const Building& b = buildings_[i];
-        if (!point_in_ring(p, b.outer)) continue;
+        if (inside || !point_in_ring(p, b.outer)) return;
         bool in_hole = false;
         for (const Ring& h : b.holes) in_hole = in_hole || point_in_ring(p, h);
-        if (!in_hole) return true;
-    }
-    return false;
+        inside = !in_hole;
+    });
+    return inside;
 }
 
 }  // namespace citygen

@@ -4,6 +4,8 @@
 // footprint); other simple polygons are ear-clipped into triangles first.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 #include <utility>
@@ -34,6 +36,22 @@ public:
     explicit BuildingIndex(const std::vector<Building>& buildings, double cell = 50);
     // Indices of buildings whose bounding box overlaps `box`, ascending, no repeats.
     std::vector<uint32_t> near(const Box2& box) const;
+    // Calls f(index) once for each of them, in grid order (no sorting, no allocation).
+    template <typename F>
+    void for_each_near(const Box2& box, F&& f) const {
+        if (box.empty()) return;
+        if (++epoch_ == 0) std::fill(seen_.begin(), seen_.end(), 0), epoch_ = 1;
+        for (int64_t cx = cell_of(box.min.x); cx <= cell_of(box.max.x); ++cx)
+            for (int64_t cy = cell_of(box.min.y); cy <= cell_of(box.max.y); ++cy) {
+                auto it = grid_.find(key(cx, cy));
+                if (it == grid_.end()) continue;
+                for (uint32_t i : it->second) {
+                    if (seen_[i] == epoch_ || !boxes_[i].overlaps(box)) continue;
+                    seen_[i] = epoch_;
+                    f(i);
+                }
+            }
+    }
     // Sum over nearby buildings of overlap_area; the largest single overlap in `max_one`.
     double overlap(const Ring& piece, double* max_one = nullptr) const;
     bool contains(Vec2 p) const;  // inside some building's footprint (not in a hole)
@@ -41,10 +59,13 @@ public:
 
 private:
     int64_t key(int64_t cx, int64_t cy) const { return cx * 73856093 ^ cy * 19349663; }
+    int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
     const std::vector<Building>& buildings_;
     std::vector<Box2> boxes_;
     double cell_;
     std::unordered_map<int64_t, std::vector<uint32_t>> grid_;
+    mutable std::vector<uint32_t> seen_;  // for_each_near's "already visited" marks
+    mutable uint32_t epoch_ = 0;
 };
 
 }  // namespace citygen

@@ -13,6 +13,7 @@ constexpr double kMaxCutFraction = 0.45;  // no cut reaches past this share of a
 constexpr double kStraightCos = 0.99996;  // cos(0.5 deg): closer to straight needs no miter
 constexpr double kDedupe = 1e-4;          // metres: closer points are one point
 constexpr double kMinJointArea = 1e-3;    // square metres
+constexpr double kCrossEps = 1e-4;        // cut segments touching at their ends do not cross
 constexpr double kMaxJunctionSpan = 25;   // metres: junctions merged into one joint stay this small
 
 // Intersection of p1 + s*d1 and p2 + u*d2; false when (nearly) parallel.
@@ -30,6 +31,7 @@ struct EndGeometry {
     Vec2 origin, dir, normal;  // leaving the node; normal points left
     double half_left, half_right;
     double max_cut;
+    double limit = 0;          // the furthest any cut may go before the quad would fold
     Vec2 left_at(double t) const { return origin + normal * half_left + dir * t; }
     Vec2 right_at(double t) const { return origin - normal * half_right + dir * t; }
 };
@@ -108,6 +110,7 @@ double joint_demand(const std::vector<EndGeometry>& geo, size_t end) {
 void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
     const size_t k = node.ends.size();
     std::vector<double> demand_left(k, 0), demand_right(k, 0);
+    std::vector<bool> cut_short(k, false);  // the corner of gap (i, i+1) was not reached
     for (size_t i = 0; i < k; ++i) {
         const size_t j = (i + 1) % k;
         const EndGeometry &gi = geo[i], &gj = geo[j];
@@ -120,25 +123,74 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
             continue;
         // Near-parallel neighbours and short edges: the true corner lies too far out,
         // so the corner is cut short on both edges.
+        const double s_full = s, u_full = u;
         s = std::clamp(s, 0.0, std::min(gi.max_cut, corner_reach(gi, gj)));
         u = std::clamp(u, 0.0, std::min(gj.max_cut, corner_reach(gi, gj)));
+        cut_short[i] = s < s_full - kDedupe || u < u_full - kDedupe;
         demand_left[i] = s;
         demand_right[j] = u;
         node.ends[i].gap_points.push_back(gi.left_at(s));
         node.ends[i].gap_points.push_back(gj.right_at(u));
     }
-    for (size_t i = 0; i < k; ++i) node.ends[i].trim = std::max(demand_left[i], demand_right[i]);
-    // Where neighbours were cut short their quads still overlap, and their square cuts
-    // may cross: the crossing point then stands for both cut ends and the corner.
-    std::vector<bool> cuts_cross(k, false);
-    std::vector<Vec2> crossing(k);
-    for (size_t i = 0; i < k && k > 1; ++i) {
+    for (size_t i = 0; i < k; ++i) {
+        NodeLayout::End& end = node.ends[i];
+        end.trim = end.cut_left = end.cut_right = std::max(demand_left[i], demand_right[i]);
+    }
+    // Where a corner was cut short the two quads still overlap there, and between
+    // their square cuts and the joint's chord a sliver would be left uncovered (or the
+    // cuts even cross). Both are then cut on one common line across the pair,
+    // perpendicular to the gap's bisector and beyond both square cuts: the joint ends
+    // on that line, the two quads start on it (and overlap beyond, as the roads do).
+    auto cuts_cross = [&](size_t i) {
         const size_t j = (i + 1) % k;
         const Vec2 ri = geo[i].right_at(node.ends[i].trim), li = geo[i].left_at(node.ends[i].trim);
         const Vec2 rj = geo[j].right_at(node.ends[j].trim), lj = geo[j].left_at(node.ends[j].trim);
         double s, u;
-        if (intersect_lines(ri, li - ri, rj, lj - rj, s, u) && s > 0 && s < 1 && u > 0 && u < 1) {
-            cuts_cross[i] = true;
+        return intersect_lines(ri, li - ri, rj, lj - rj, s, u) && s > kCrossEps && s < 1 - kCrossEps && u > kCrossEps && u < 1 - kCrossEps;
+    };
+    std::vector<bool> common_cut(k, false);
+    for (size_t i = 0; i < k && k > 1; ++i) {
+        const size_t j = (i + 1) % k;
+        if (!(cut_short[i] || cuts_cross(i)) || common_cut[i] || common_cut[j] || (k > 2 && cuts_cross(j))) continue;
+        const Vec2 b = normalize(geo[i].dir + geo[j].dir);
+        if (dot(geo[i].dir, b) <= 0.1 || dot(geo[j].dir, b) <= 0.1) continue;
+        double reach = -1e300;
+        for (size_t e : {i, j})
+            for (Vec2 p : {geo[e].right_at(node.ends[e].trim), geo[e].left_at(node.ends[e].trim)})
+                reach = std::max(reach, dot(p - node.position, b));
+        // Distance along an end's side line to the common line.
+        auto to_line = [&](const EndGeometry& g, Vec2 side_origin) {
+            return (reach - dot(side_origin - node.position, b)) / dot(g.dir, b);
+        };
+        bool fits = true;
+        double cuts[2][2];
+        for (int e = 0; e < 2; ++e) {
+            const EndGeometry& g = geo[e == 0 ? i : j];
+            cuts[e][0] = to_line(g, g.left_at(0));
+            cuts[e][1] = to_line(g, g.right_at(0));
+            fits = fits && std::min(cuts[e][0], cuts[e][1]) >= 0 && std::max(cuts[e][0], cuts[e][1]) <= g.limit;
+        }
+        if (!fits) continue;
+        for (int e = 0; e < 2; ++e) {
+            NodeLayout::End& end = node.ends[e == 0 ? i : j];
+            end.cut_left = cuts[e][0];
+            end.cut_right = cuts[e][1];
+            end.trim = std::max(end.cut_left, end.cut_right);
+        }
+        common_cut[i] = true;
+    }
+    // Any crossing left (a chain of near-parallel roads): the crossing point stands for
+    // both cut ends and the corner.
+    std::vector<bool> crosses(k, false);
+    std::vector<Vec2> crossing(k);
+    for (size_t i = 0; i < k && k > 1; ++i) {
+        if (common_cut[i]) continue;
+        const size_t j = (i + 1) % k;
+        const Vec2 ri = geo[i].right_at(node.ends[i].cut_right), li = geo[i].left_at(node.ends[i].cut_left);
+        const Vec2 rj = geo[j].right_at(node.ends[j].cut_right), lj = geo[j].left_at(node.ends[j].cut_left);
+        double s, u;
+        if (intersect_lines(ri, li - ri, rj, lj - rj, s, u) && s > kCrossEps && s < 1 - kCrossEps && u > kCrossEps && u < 1 - kCrossEps) {
+            crosses[i] = true;
             crossing[i] = ri + (li - ri) * s;
         }
     }
@@ -146,13 +198,17 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
     for (size_t i = 0; i < k; ++i) {
         NodeLayout::End& end = node.ends[i];
         const size_t prev = (i + k - 1) % k;
-        push_distinct(ring, cuts_cross[prev] ? crossing[prev] : geo[i].right_at(end.trim));
-        if (cuts_cross[i]) {
+        push_distinct(ring, crosses[prev] ? crossing[prev] : geo[i].right_at(end.cut_right));
+        if (crosses[i]) {
             end.gap_points = {crossing[i]};
             push_distinct(ring, crossing[i]);
             continue;
         }
-        push_distinct(ring, geo[i].left_at(end.trim));
+        push_distinct(ring, geo[i].left_at(end.cut_left));
+        if (common_cut[i]) {
+            end.gap_points.clear();  // the next end starts on the same line
+            continue;
+        }
         for (Vec2 q : end.gap_points) push_distinct(ring, q);
     }
     while (ring.size() > 1 && length(ring.front() - ring.back()) <= kDedupe) ring.pop_back();
@@ -402,9 +458,13 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
         for (size_t i = 0; i < geo.size(); ++i) {
             const NodeLayout::End& end = node.ends[i];
             geo[i].max_cut = end.at_from ? from_allowed[end.edge] : to_allowed[end.edge];
+            const double len = length(graph.edges[end.edge].to - graph.edges[end.edge].from);
+            const double other = end.at_from ? to_allowed[end.edge] + to_fixed[end.edge]
+                                             : from_allowed[end.edge] + from_fixed[end.edge];
+            geo[i].limit = std::max(geo[i].max_cut, 0.9 * len - other);
         }
         layout_joint(node, geo);
-        for (const NodeLayout::End& end : node.ends) cut_of(end) = {end.trim, end.trim};
+        for (const NodeLayout::End& end : node.ends) cut_of(end) = {end.cut_left, end.cut_right};
     }
 
     for (uint32_t e = 0; e < n; ++e) {

@@ -38,12 +38,15 @@ struct NodeLayout {
         uint32_t edge = 0;
         bool at_from = true;          // the edge leaves this node at its `from` end
         Vec2 origin;                  // the node it leaves (differs from `position` in merged junctions)
-        double trim = 0;              // a joint's square cut across the edge
+        double trim = 0;              // how far the joint reaches along the edge
+        double cut_left = 0, cut_right = 0;  // where the quad starts on each side (equal but
+                                             // for a common cut shared with a near-parallel neighbour)
         std::vector<Vec2> gap_points; // boundary between this end's left side and the next end's right side
     };
     std::vector<End> ends;  // counter-clockwise by direction leaving the node
     Ring joint;             // CCW; empty when kind != Joint or nothing was left of it
-    bool joint_is_hull = false;  // the exact polygon was not simple; its convex hull stands in
+    bool joint_is_hull = false;  // the exact polygon was not simple; a star-shaped ordering
+                                 // of its points (or their convex hull) stands in
 };
 
 struct RoadLayout {
@@ -57,9 +60,10 @@ struct RoadLayout {
 // keeps the join kind `follow` chose (sidewalk outlines follow their carriageway).
 // A degree-2 node gets a miter when both offset-line intersections lie within
 // miter_limit half widths of the node and cut neither edge beyond 45% of its length;
-// otherwise it is treated like a junction. No cut goes beyond 45% of an edge's length,
-// so quads never fold. Junctions joined by an edge shorter than their joints need
-// (within 25 m) are merged into one joint polygon and the edge is absorbed.
+// otherwise it is treated like a junction. Each edge's length is shared between the cuts
+// at its two ends, keeping 10% for the quad, so quads never fold. Junctions joined by an
+// edge shorter than their joints need (within 25 m) are merged into one joint polygon and
+// the edge is absorbed; near-parallel neighbours share one cut line.
 RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWidths>& widths,
                                 double miter_limit, const RoadLayout* follow = nullptr);
 

@@ -14,7 +14,7 @@ namespace citygen {
 
 struct RoadCheckCounts {
     int quads = 0, joints = 0, bad_quads = 0, bad_joints = 0, building_overlaps = 0;
-    int quad_joint_overlaps = 0, quad_joint_gaps = 0, lamps_inside = 0, sidewalks_bad = 0;
+    int quad_joint_overlaps = 0, quad_joint_gaps = 0, lamps_inside = 0, sidewalks_bad = 0, sidewalks_on_road = 0;
 };
 
 // Distance from p to the nearest point on the ring's boundary.
@@ -80,10 +80,21 @@ inline RoadCheckCounts check_road_network(const Scene& scene, bool strict_joins)
             }
         }
     }
+    std::vector<Building> surface;  // road quads and joints, indexed like footprints
+    for (const RoadEdge& r : scene.roads) surface.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
+    for (const Joint& j : scene.joints) surface.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
+    const BuildingIndex surface_index(surface);
     for (const Sidewalk& s : scene.sidewalks) {
         const bool ok = ring_is_simple(s.polygon) && signed_area(s.polygon) > 0;
         if (!ok) ++c.sidewalks_bad;
         EXPECT_TRUE(ok) << "sidewalk of road " << s.road << " / joint " << s.joint << " not simple";
+        double on_road = 0;
+        surface_index.overlap(s.polygon, &on_road);
+        // Fixtures: sidewalks exactly beside the road; real data: at most the half square
+        // metre build_sidewalks allows where roads overlap each other.
+        EXPECT_LE(on_road, strict_joins ? 0.01 : 0.5) << "sidewalk of road " << s.road << " / joint " << s.joint
+                                                      << " on the road surface";
+        if (on_road > 0.01) ++c.sidewalks_on_road;
     }
     for (const Lamp& l : scene.lamps) {
         const Vec2 p{l.position.x, l.position.y};

@@ -73,6 +73,15 @@ TEST(RoadFixtures, CrossJointIsTheSquareBetweenTheRoads) {
     EXPECT_NEAR(total_area(s), 1164.0, 4.0);
     EXPECT_EQ(count_kind(s, SidewalkKind::Strip), 8u);
     EXPECT_EQ(count_kind(s, SidewalkKind::Corner), 4u);
+    // 2 m sidewalks: the outline is two 10 m wide roads crossing (2 * 1000 - 100 m^2),
+    // the band is the outline minus the carriageways, corners 2 m x 2 m.
+    double walk = 0;
+    for (const Sidewalk& w : s.sidewalks) {
+        walk += signed_area(w.polygon);
+        if (w.kind == SidewalkKind::Corner) EXPECT_NEAR(signed_area(w.polygon), 4.0, 0.05);
+        EXPECT_DOUBLE_EQ(w.curb_height, 0.15);
+    }
+    EXPECT_NEAR(walk, 1900.0 - 1164.0, 4.0);
 }
 
 TEST(RoadFixtures, FiveWayStar) {

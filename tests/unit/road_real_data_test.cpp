@@ -27,10 +27,10 @@ void check_extract(const std::string& relative) {
     const Scene scene = parse_osm_to_scene(job, report);
     EXPECT_GT(scene.roads.size(), 0u);
     const RoadCheckCounts c = check_road_network(scene, false);
-    std::printf("%s: %d quads (%d bad), %d joints (%d bad), %zu sidewalks (%d bad), %zu lamps (%d inside), "
+    std::printf("%s: %d quads (%d bad), %d joints (%d bad), %zu sidewalks (%d bad, %d touching a road), %zu lamps (%d inside), "
                 "%d building overlaps, quad/joint: %d gaps > 1 cm, %d overlaps > 0.01 m2\n",
                 relative.c_str(), c.quads, c.bad_quads, c.joints, c.bad_joints, scene.sidewalks.size(),
-                c.sidewalks_bad, scene.lamps.size(), c.lamps_inside, c.building_overlaps, c.quad_joint_gaps,
+                c.sidewalks_bad, c.sidewalks_on_road, scene.lamps.size(), c.lamps_inside, c.building_overlaps, c.quad_joint_gaps,
                 c.quad_joint_overlaps);
 }
 

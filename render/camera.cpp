@@ -1,0 +1,64 @@
+#include "camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace citygen {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+Camera Camera::look_at(Vec3 position, Vec3 target, double vertical_fov_deg, int width, int height) {
+    Camera c;
+    c.position_ = position;
+    c.forward_ = normalize(target - position);
+    Vec3 world_up{0, 0, 1};
+    if (std::fabs(dot(c.forward_, world_up)) > 0.999) world_up = {0, 1, 0};  // looking straight down
+    c.right_ = normalize(cross(c.forward_, world_up));
+    c.up_ = cross(c.right_, c.forward_);
+    c.tan_half_fov_ = std::tan(0.5 * vertical_fov_deg * kPi / 180);
+    c.width_ = width;
+    c.height_ = height;
+    c.aspect_ = static_cast<double>(width) / height;
+    return c;
+}
+
+Ray Camera::generate_ray(double px, double py) const {
+    const double sx = (2 * px / width_ - 1) * tan_half_fov_ * aspect_;
+    const double sy = (1 - 2 * py / height_) * tan_half_fov_;
+    Ray ray;
+    ray.origin = position_;
+    ray.direction = normalize(forward_ + right_ * sx + up_ * sy);
+    return ray;
+}
+
+Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, int height) {
+    // Frame what is drawn (buildings and roads); the header bounds are the fallback.
+    Box2 box;
+    double top = 0;
+    for (const Building& b : scene.buildings) {
+        for (Vec2 p : b.outer) box.extend(p);
+        top = std::max(top, b.height);
+    }
+    for (const RoadEdge& r : scene.roads)
+        for (Vec2 p : r.quad) box.extend(p);
+    if (box.empty()) {
+        box.extend(scene.header.bounds_min);
+        box.extend(scene.header.bounds_max);
+    }
+    const Vec2 centre = (box.min + box.max) * 0.5;
+    const double radius =
+        std::max(20.0, 0.5 * std::hypot(box.max.x - box.min.x, box.max.y - box.min.y));
+    // Looking 20 degrees down with a field of view up to 50 degrees keeps the horizon in view.
+    const double pitch = 20 * kPi / 180;
+    const double half_fov = 0.5 * vertical_fov_deg * kPi / 180;
+    const double distance = 0.95 * radius / std::sin(std::clamp(half_fov, 0.05, 0.25 * kPi));
+    const Vec3 target{centre.x, centre.y, scene.ground.z + 0.15 * std::min(top, radius)};
+    const Vec2 from_south_west = normalize(Vec2{-1, -1.6});
+    const Vec3 position = target + Vec3{from_south_west.x * std::cos(pitch), from_south_west.y * std::cos(pitch),
+                                        std::sin(pitch)} * distance;
+    return Camera::look_at(position, target, vertical_fov_deg, width, height);
+}
+
+}  // namespace citygen
