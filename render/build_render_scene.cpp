@@ -21,13 +21,13 @@ std::unique_ptr<RenderGeometry> build_class(const Scene& scene, GeometryClass c,
 
 std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes) {
     auto render_scene = std::make_unique<RenderScene>();
+    render_scene->add(
+        build_class(scene, GeometryClass::Buildings, modes[GeometryClass::Buildings], build_stored_buildings));
     render_scene->add(build_class(scene, GeometryClass::Terrain, modes[GeometryClass::Terrain], build_stored_terrain));
     render_scene->add(build_class(scene, GeometryClass::Roads, modes[GeometryClass::Roads], build_stored_roads));
     render_scene->add(build_class(scene, GeometryClass::Joints, modes[GeometryClass::Joints], build_stored_joints));
     render_scene->add(
         build_class(scene, GeometryClass::Sidewalks, modes[GeometryClass::Sidewalks], build_stored_sidewalks));
-    render_scene->add(
-        build_class(scene, GeometryClass::Buildings, modes[GeometryClass::Buildings], build_stored_buildings));
     render_scene->commit();
     return render_scene;
 }
