@@ -13,6 +13,6 @@ namespace citygen {
 
 // `facades` sets the facade rules' seed and shop probability; both modes build the same facades.
 std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes,
-                                                const FacadeOptions& facades);
+                                                const FacadeOptions& facades = FacadeOptions{});
 
 }  // namespace citygen

@@ -34,15 +34,17 @@ Ray Camera::generate_ray(double px, double py) const {
 }
 
 Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, int height) {
-    // Frame what is drawn (buildings and roads); the header bounds are the fallback.
+    // Frame the buildings (roads may run far out of town); failing that the roads, then the
+    // header bounds.
     Box2 box;
     double top = 0;
     for (const Building& b : scene.buildings) {
         for (Vec2 p : b.outer) box.extend(p);
         top = std::max(top, b.height);
     }
-    for (const RoadEdge& r : scene.roads)
-        for (Vec2 p : r.quad) box.extend(p);
+    if (box.empty())
+        for (const RoadEdge& r : scene.roads)
+            for (Vec2 p : r.quad) box.extend(p);
     if (box.empty()) {
         box.extend(scene.header.bounds_min);
         box.extend(scene.header.bounds_max);
@@ -50,9 +52,10 @@ Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, in
     const Vec2 centre = (box.min + box.max) * 0.5;
     const double radius =
         std::max(20.0, 0.5 * std::hypot(box.max.x - box.min.x, box.max.y - box.min.y));
-    // Looking 20 degrees down with a field of view up to 50 degrees keeps the horizon in view.
-    const double pitch = 20 * kPi / 180;
+    // Look down 20 degrees, less when the field of view is narrow, so the top of the image
+    // always shows some sky above the horizon.
     const double half_fov = 0.5 * vertical_fov_deg * kPi / 180;
+    const double pitch = std::clamp(half_fov - 5 * kPi / 180, 3 * kPi / 180, 20 * kPi / 180);
     const double distance = 0.95 * radius / std::sin(std::clamp(half_fov, 0.05, 0.25 * kPi));
     const Vec3 target{centre.x, centre.y, scene.ground.z + 0.15 * std::min(top, radius)};
     const Vec2 from_south_west = normalize(Vec2{-1, -1.6});

@@ -35,7 +35,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         Hit hit;
         ++rays;
         if (!context.scene.intersect(ray, hit)) {
-            radiance = radiance + throughput * sky.radiance(ray.direction);
+            radiance = radiance + throughput * sky.radiance(ray.direction, previous_delta);
             if (sky.in_sun_disc(ray.direction)) {
                 const double w = previous_delta ? 1 : power_heuristic(previous_pdf, sun_pdf);
                 radiance = radiance + throughput * sky.sun_radiance() * w;

@@ -102,11 +102,11 @@ Sky Sky::daylight(TimeOfDay time) {
 
 double Sky::sun_solid_angle() const { return 2 * kPi * (1 - std::cos(kSunAngularRadius)); }
 
-Color Sky::radiance(Vec3 dir) const {
+Color Sky::radiance(Vec3 dir, bool seen_directly) const {
     switch (model_) {
         case Model::Uniform: return uniform_;
         case Model::Preetham: return preetham(dir);
-        case Model::Night: return night(dir);
+        case Model::Night: return night(dir, seen_directly);
     }
     return uniform_;
 }
@@ -125,11 +125,12 @@ Color Sky::preetham(Vec3 dir) const {
     return below ? c * 0.3 : c;
 }
 
-Color Sky::night(Vec3 dir) const {
+Color Sky::night(Vec3 dir, bool stars) const {
     const double up = std::max(0.0, dir.z);
     // Faint glow near the horizon (city light, airglow) fading to a dark blue zenith.
     Color c = Color{0.0012, 0.0016, 0.003} + Color{0.004, 0.0035, 0.003} * std::pow(1 - up, 6);
     if (dir.z <= 0) return c * 0.3;
+    if (!stars) return c;
     // Stars: the sphere is cut into cells of about 0.25 degrees in azimuth x sin(elevation); a
     // hashed few hold a star whose small disc sits at a hashed spot in the cell.
     constexpr double kCellsAround = 1440, kCellsUp = 460;

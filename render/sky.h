@@ -18,8 +18,10 @@ public:
     static Sky uniform(Color radiance);  // no sun
 
     // Radiance arriving from direction `dir` (unit, pointing away from the scene), without the
-    // sun (or moon) disc, which is a separate light for next-event estimation.
-    Color radiance(Vec3 dir) const;
+    // sun (or moon) disc, which is a separate light for next-event estimation. Stars (tiny and
+    // bright) only show when `seen_directly` (camera or mirror paths): lit surfaces would only
+    // turn them into fireflies for no visible light.
+    Color radiance(Vec3 dir, bool seen_directly = true) const;
 
     bool has_sun() const { return has_sun_; }
     Vec3 sun_direction() const { return sun_direction_; }  // unit, towards the sun
@@ -45,7 +47,7 @@ private:
     double sun_theta_ = 0;
 
     Color preetham(Vec3 dir) const;
-    Color night(Vec3 dir) const;
+    Color night(Vec3 dir, bool stars) const;
 };
 
 }  // namespace citygen
