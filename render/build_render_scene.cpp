@@ -2,32 +2,26 @@
 
 #include <string>
 
-#include "error.h"
+#include "procedural_geometry.h"
 #include "stored_geometry.h"
 
 namespace citygen {
 
-namespace {
-
-using StoredBuilder = TriangleMesh (*)(const Scene&);
-
-std::unique_ptr<RenderGeometry> build_class(const Scene& scene, GeometryClass c, GeometryMode mode,
-                                            StoredBuilder stored) {
-    if (mode == GeometryMode::Stored) return std::make_unique<StoredMeshGeometry>(stored(scene));
-    throw Error(std::string("--geometry-") + to_string(c) + "=procedural: the procedural mode is not built yet");
-}
-
-}  // namespace
-
-std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes) {
+std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes,
+                                                const FacadeOptions& facades) {
     auto render_scene = std::make_unique<RenderScene>();
-    render_scene->add(
-        build_class(scene, GeometryClass::Buildings, modes[GeometryClass::Buildings], build_stored_buildings));
-    render_scene->add(build_class(scene, GeometryClass::Terrain, modes[GeometryClass::Terrain], build_stored_terrain));
-    render_scene->add(build_class(scene, GeometryClass::Roads, modes[GeometryClass::Roads], build_stored_roads));
-    render_scene->add(build_class(scene, GeometryClass::Joints, modes[GeometryClass::Joints], build_stored_joints));
-    render_scene->add(
-        build_class(scene, GeometryClass::Sidewalks, modes[GeometryClass::Sidewalks], build_stored_sidewalks));
+    auto stored = [](TriangleMesh mesh) { return std::make_unique<StoredMeshGeometry>(std::move(mesh)); };
+    auto procedural = [&](GeometryClass c) { return modes[c] == GeometryMode::Procedural; };
+    if (procedural(GeometryClass::Buildings)) render_scene->add(build_procedural_buildings(scene, facades));
+    else render_scene->add(stored(build_stored_buildings(scene, facades)));
+    if (procedural(GeometryClass::Terrain)) render_scene->add(build_procedural_terrain(scene));
+    else render_scene->add(stored(build_stored_terrain(scene)));
+    if (procedural(GeometryClass::Roads)) render_scene->add(build_procedural_roads(scene));
+    else render_scene->add(stored(build_stored_roads(scene)));
+    if (procedural(GeometryClass::Joints)) render_scene->add(build_procedural_joints(scene));
+    else render_scene->add(stored(build_stored_joints(scene)));
+    if (procedural(GeometryClass::Sidewalks)) render_scene->add(build_procedural_sidewalks(scene));
+    else render_scene->add(stored(build_stored_sidewalks(scene)));
     render_scene->commit();
     return render_scene;
 }

@@ -4,13 +4,15 @@
 
 #include <memory>
 
+#include "facade.h"
 #include "geometry_mode.h"
 #include "render_scene.h"
 #include "scene.h"
 
 namespace citygen {
 
-// Throws citygen::Error when a requested mode is not available.
-std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes);
+// `facades` sets the facade rules' seed and shop probability; both modes build the same facades.
+std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes,
+                                                const FacadeOptions& facades = FacadeOptions{});
 
 }  // namespace citygen

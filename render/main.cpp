@@ -33,6 +33,7 @@ struct Options {
     std::string time = "day";
     bool procedural = false;
     std::string geometry[kGeometryClassCount];
+    double shop_probability = FacadeOptions{}.shop_probability;
     std::string aovs;
     bool print_scene_info = false, print_memory_info = false, print_geometry_info = false, stats = false;
 };
@@ -87,7 +88,12 @@ int run(const Options& o) {
     const Scene scene = load_scene(o.scene_path);
     if (o.print_scene_info) print_scene_info(scene, stdout);
 
-    const std::unique_ptr<RenderScene> render_scene = build_render_scene(scene, modes);
+    // Facades follow the scene's seed (not --seed, which drives the pixel streams), so every
+    // render of a scene shows the same buildings.
+    FacadeOptions facades;
+    facades.seed = scene.header.seed;
+    facades.shop_probability = o.shop_probability;
+    const std::unique_ptr<RenderScene> render_scene = build_render_scene(scene, modes, facades);
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
     const MaterialTable materials = default_materials();
     if (!o.export_ply_path.empty()) export_ply(*render_scene, materials, o.export_ply_path);
@@ -151,6 +157,10 @@ int main(int argc, char** argv) {
         const std::string name = to_string(static_cast<GeometryClass>(c));
         app.add_option("--geometry-" + name, o.geometry[c], "stored or procedural geometry for " + name);
     }
+    app.add_option("--shop-probability", o.shop_probability,
+                   "chance that a building has a ground floor of shop windows")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
     app.add_option("--aovs", o.aovs, "extra EXR channels: any of depth,normal,albedo,id");
     app.add_option("--export-ply", o.export_ply_path, "write the stored triangles as binary PLY (material per face)");
     app.add_flag("--print-scene-info", o.print_scene_info, "object counts and bounds");

@@ -13,6 +13,10 @@ MaterialTable default_materials() {
     t[kGround] = {"ground", MaterialType::Diffuse, {0.2, 0.24, 0.15}, {}, 1, 1.5, {}};
     t[kGlass] = {"glass", MaterialType::Glass, {0, 0, 0}, {1, 1, 1}, 1, 1.5, {}};
     t[kMirror] = {"mirror", MaterialType::Mirror, {0, 0, 0}, {1, 1, 1}, 1, 1.5, {}};
+    t[kRoomInterior] = {"room_interior", MaterialType::Diffuse, {0.55, 0.45, 0.35}, {}, 1, 1.5, {}};
+    t[kBalcony] = {"balcony", MaterialType::Diffuse, {0.5, 0.5, 0.48}, {}, 1, 1.5, {}};
+    t[kFence] = {"fence", MaterialType::Glossy, {0.05, 0.05, 0.06}, {0.2, 0.2, 0.2}, 60, 1.5, {}};
+    t[kShopWindow] = {"shop_window", MaterialType::Glass, {0, 0, 0}, {0.95, 0.97, 1.0}, 1, 1.5, {}};
     return t;
 }
 

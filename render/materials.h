@@ -40,6 +40,11 @@ enum MaterialId : uint16_t {
     kGround,
     kGlass,
     kMirror,
+    // Facade detail (common/facade.h; the mapping is render/facade_materials.cpp).
+    kRoomInterior,
+    kBalcony,
+    kFence,
+    kShopWindow,
     kStockMaterialCount
 };
 

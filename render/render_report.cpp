@@ -3,6 +3,9 @@
 #include <cinttypes>
 #include <fstream>
 #include <string>
+#include <vector>
+
+#include "materials.h"
 
 namespace citygen {
 
@@ -42,6 +45,17 @@ void print_geometry_info(const RenderScene& scene, FILE* out) {
                      g->buffer_bytes() / 1e6);
         std::fprintf(out, "triangles_%s: %" PRIu64 "\nprimitives_%s: %" PRIu64 "\n", to_string(g->kind()),
                      g->triangle_count(), to_string(g->kind()), g->primitive_count());
+        // Stored meshes: triangles per surface material too (e.g. how much of a facade is glass).
+        if (const TriangleMesh* mesh = g->stored_mesh()) {
+            static const MaterialTable materials = default_materials();
+            std::vector<uint64_t> per_material(materials.size(), 0);
+            for (uint16_t m : mesh->face_material)
+                if (m < per_material.size()) ++per_material[m];
+            for (size_t m = 0; m < per_material.size(); ++m)
+                if (per_material[m] > 0)
+                    std::fprintf(out, "triangles_%s_%s: %" PRIu64 "\n", to_string(g->kind()), materials[m].name.c_str(),
+                                 per_material[m]);
+        }
         triangles += g->triangle_count();
         primitives += g->primitive_count();
     }

@@ -2,6 +2,7 @@
 // a triangle mesh whose faces remember (object index, material).
 #pragma once
 
+#include "facade.h"
 #include "scene.h"
 #include "triangle_mesh.h"
 
@@ -10,9 +11,10 @@ namespace citygen {
 // Heights of the flat layers above the ground plane, so coplanar surfaces never fight.
 constexpr double kRoadLift = 0.02;
 
-// Walls from every ring (holes included) from min_height to height, flat roof triangulated with
+// Walls from every ring (holes included) from min_height to height, carrying the facade rules
+// (windows, balconies, shop fronts; common/facade.h) as triangles, flat roof triangulated with
 // holes, and a floor when the building floats (min_height > 0).
-TriangleMesh build_stored_buildings(const Scene& scene);
+TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& facades);
 
 // Road quadrangles and joint polygons, flat just above the ground.
 TriangleMesh build_stored_roads(const Scene& scene);
