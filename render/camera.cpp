@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace citygen {
 
@@ -50,17 +51,46 @@ Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, in
         box.extend(scene.header.bounds_max);
     }
     const Vec2 centre = (box.min + box.max) * 0.5;
-    const double radius =
-        std::max(20.0, 0.5 * std::hypot(box.max.x - box.min.x, box.max.y - box.min.y));
+    const double radius = std::max(20.0, 0.5 * std::hypot(box.max.x - box.min.x, box.max.y - box.min.y));
     // Look down 20 degrees, less when the field of view is narrow, so the top of the image
     // always shows some sky above the horizon.
     const double half_fov = 0.5 * vertical_fov_deg * kPi / 180;
     const double pitch = std::clamp(half_fov - 5 * kPi / 180, 3 * kPi / 180, 20 * kPi / 180);
-    const double distance = 0.95 * radius / std::sin(std::clamp(half_fov, 0.05, 0.25 * kPi));
     const Vec3 target{centre.x, centre.y, scene.ground.z + 0.15 * std::min(top, radius)};
     const Vec2 from_south_west = normalize(Vec2{-1, -1.6});
-    const Vec3 position = target + Vec3{from_south_west.x * std::cos(pitch), from_south_west.y * std::cos(pitch),
-                                        std::sin(pitch)} * distance;
+    const Vec3 back{from_south_west.x * std::cos(pitch), from_south_west.y * std::cos(pitch), std::sin(pitch)};
+    // The nearest distance at which every building corner (foot and top; road corners when
+    // there are no buildings) falls inside 90% of the frame; found by bisection (fitting gets
+    // easier with distance). Corners, not the bounding box: a diagonal town leaves the box's
+    // corners empty.
+    std::vector<Vec3> corners;
+    for (const Building& b : scene.buildings)
+        for (Vec2 p : b.outer) {
+            corners.push_back({p.x, p.y, scene.ground.z});
+            corners.push_back({p.x, p.y, scene.ground.z + std::min(b.height, 2 * radius)});
+        }
+    if (corners.empty())
+        for (double x : {box.min.x, box.max.x})
+            for (double y : {box.min.y, box.max.y}) corners.push_back({x, y, scene.ground.z});
+    const double tan_v = 0.9 * std::tan(half_fov), tan_h = tan_v * width / height;
+    auto fits = [&](double distance) {
+        const Vec3 eye = target + back * distance;
+        const Vec3 forward = -back;
+        const Vec3 right = normalize(cross(forward, Vec3{0, 0, 1}));
+        const Vec3 up = cross(right, forward);
+        for (const Vec3& c : corners) {
+            const Vec3 d = c - eye;
+            const double z = dot(d, forward);
+            if (z <= 0 || std::fabs(dot(d, right)) > tan_h * z || std::fabs(dot(d, up)) > tan_v * z) return false;
+        }
+        return true;
+    };
+    double near = 0.01 * radius, far = 100 * radius;
+    for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (near + far);
+        (fits(mid) ? far : near) = mid;
+    }
+    const Vec3 position = target + back * far;
     return Camera::look_at(position, target, vertical_fov_deg, width, height);
 }
 

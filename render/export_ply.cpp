@@ -1,5 +1,6 @@
 #include "export_ply.h"
 
+#include <cstdio>
 #include <cstring>
 
 #include "error.h"
@@ -18,7 +19,7 @@ void append(std::vector<uint8_t>& out, T value) {
 
 }  // namespace
 
-void export_ply(const RenderScene& scene, const std::string& path) {
+void export_ply(const RenderScene& scene, const MaterialTable& materials, const std::string& path) {
     size_t vertices = 0, faces = 0;
     for (const auto& g : scene.geometries()) {
         const TriangleMesh* mesh = g->stored_mesh();
@@ -27,8 +28,18 @@ void export_ply(const RenderScene& scene, const std::string& path) {
         vertices += mesh->vertex_count();
         faces += mesh->triangle_count();
     }
-    const std::string header = "ply\nformat binary_little_endian 1.0\ncomment citygen render --export-ply\n"
-                               "element vertex " + std::to_string(vertices) +
+    static const char* const kTypeNames[] = {"diffuse", "glossy", "mirror", "glass"};
+    std::string material_comments;
+    for (size_t id = 0; id < materials.size(); ++id) {
+        const Material& m = materials[id];
+        char line[256];
+        std::snprintf(line, sizeof line, "comment material %zu %s %s %g %g %g %g %g %g %g %g\n", id, m.name.c_str(),
+                      kTypeNames[static_cast<int>(m.type)], m.albedo.x, m.albedo.y, m.albedo.z, m.specular.x,
+                      m.specular.y, m.specular.z, m.exponent, m.ior);
+        material_comments += line;
+    }
+    const std::string header = "ply\nformat binary_little_endian 1.0\ncomment citygen render --export-ply\n" +
+                               material_comments + "element vertex " + std::to_string(vertices) +
                                "\nproperty float x\nproperty float y\nproperty float z\n"
                                "element face " + std::to_string(faces) +
                                "\nproperty list uchar int vertex_indices\nproperty ushort material_index\n"

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <tbb/global_control.h>
 
+#include "bsdf.h"
 #include "build_render_scene.h"
 #include "camera.h"
 #include "error.h"
@@ -94,7 +95,8 @@ int run(const Options& o) {
     facades.shop_probability = o.shop_probability;
     const std::unique_ptr<RenderScene> render_scene = build_render_scene(scene, modes, facades);
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
-    if (!o.export_ply_path.empty()) export_ply(*render_scene, o.export_ply_path);
+    const MaterialTable materials = default_materials();
+    if (!o.export_ply_path.empty()) export_ply(*render_scene, materials, o.export_ply_path);
     if (o.output.empty()) {
         if (o.print_memory_info) print_memory_info(*render_scene, stdout);
         return 0;
@@ -105,7 +107,6 @@ int run(const Options& o) {
                                       settings.width, settings.height)
                     : framing_camera(scene, o.fov, settings.width, settings.height);
     const Sky sky = Sky::daylight(time);
-    const MaterialTable materials = default_materials();
     const PathContext context{*render_scene, materials, sky, settings.integrator};
     RenderStats stats;
     const Film film = render_image(context, camera, settings, &stats);
@@ -115,6 +116,12 @@ int run(const Options& o) {
     if (o.stats) {
         std::printf("render_seconds: %.3f\nrays: %llu\nrays_per_second: %.0f\n", stats.seconds,
                     static_cast<unsigned long long>(stats.rays), stats.rays / std::max(stats.seconds, 1e-9));
+        // The view actually used (also the automatic one), so another renderer can match it.
+        const Vec3 p = camera.position(), t = camera.position() + camera.forward() * 100;
+        std::printf("camera: %.3f,%.3f,%.3f\nlook_at: %.3f,%.3f,%.3f\nfov: %.3f\n", p.x, p.y, p.z, t.x, t.y, t.z, o.fov);
+        const Vec3 sun = sky.sun_direction();
+        std::printf("sun_direction: %.5f,%.5f,%.5f\nsun_irradiance: %.4f\n", sun.x, sun.y, sun.z,
+                    sky.has_sun() ? luminance(sky.sun_radiance()) * sky.sun_solid_angle() : 0.0);
     }
     return 0;
 }
@@ -159,7 +166,7 @@ int main(int argc, char** argv) {
     app.add_flag("--print-scene-info", o.print_scene_info, "object counts and bounds");
     app.add_flag("--print-memory-info", o.print_memory_info, "Embree and buffer bytes, peak RSS");
     app.add_flag("--print-scene-geometry-info", o.print_geometry_info, "triangles or primitives per class");
-    app.add_flag("--stats", o.stats, "print render_seconds: and rays_per_second:");
+    app.add_flag("--stats", o.stats, "print render_seconds:, rays_per_second: and the camera used");
     app.add_flag("-q,--quiet", r.quiet, "no progress bar");
 
     try {

@@ -68,9 +68,9 @@ Box2 terrain_extent(const Scene& scene) {
     }
     for (const Building& b : scene.buildings)
         for (Vec2 p : b.outer) box.extend(p);
-    // Far enough that from any sensible camera the plane's edge sits on the horizon.
-    const double extent = std::max(box.max.x - box.min.x, box.max.y - box.min.y);
-    const double margin = std::max(20000.0, 20 * extent);
+    // Far enough that the plane's edge sits on the horizon from any sensible camera (a plane at
+    // z = const stays exact in float even this large).
+    const double margin = 1e6;
     box.extend(box.min - Vec2{margin, margin});
     box.extend(box.max + Vec2{margin, margin});
     return box;

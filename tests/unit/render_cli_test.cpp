@@ -112,6 +112,8 @@ TEST_F(RenderCli, ExportPlyHasOneFacePerTriangleWithMaterials) {
     ASSERT_EQ(ply.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
     EXPECT_NE(ply.find("element face " + std::to_string(triangles) + "\n"), std::string::npos);
     EXPECT_NE(ply.find("property ushort material_index\n"), std::string::npos);
+    EXPECT_NE(ply.find("comment material 0 asphalt glossy "), std::string::npos);
+    EXPECT_NE(ply.find("comment material 3 facade diffuse "), std::string::npos);
     const size_t header_end = ply.find("end_header\n") + 11;
     const size_t vertices_at = ply.find("element vertex ") + 15;
     const long vertices = std::stol(ply.substr(vertices_at));
