@@ -11,14 +11,6 @@ namespace citygen {
 
 namespace {
 
-// A plain vertical rectangle over the edge a->b (seen from its right), e.g. a curb face.
-WallLayout plain_wall(Vec2 a, Vec2 b, double height) {
-    WallLayout layout;
-    layout.length = length(b - a);
-    layout.height = height;
-    return layout;
-}
-
 ProceduralGeometry::SurfaceMaterials all_surfaces(uint16_t material) {
     ProceduralGeometry::SurfaceMaterials m;
     m.fill(material);
@@ -75,7 +67,7 @@ std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scen
         for (size_t k = 0, n = ring.size(); k < n; ++k) {
             const Vec2 a = ring[k], b = ring[(k + 1) % n];
             if (a == b) continue;
-            geometry->add_wall(i, plain_wall(a, b, top - road), wall_frame(a, b, road));
+            geometry->add_plain_wall(i, a, b, road, top - road);
         }
     }
     return geometry;

@@ -12,6 +12,10 @@ void ProceduralGeometry::add_wall(uint32_t object, const WallLayout& layout, con
     walls_.push_back({layout, frame, object});
 }
 
+void ProceduralGeometry::add_plain_wall(uint32_t object, Vec2 a, Vec2 b, double bottom, double height) {
+    plain_walls_.push_back({{a.x, a.y, bottom}, normalize(b - a), length(b - a), height, object});
+}
+
 void ProceduralGeometry::add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z,
                                      uint16_t material, int normal_z) {
     Polygon polygon;
@@ -32,7 +36,8 @@ void ProceduralGeometry::add_polygon(uint32_t object, const Ring& outer, const s
 }
 
 size_t ProceduralGeometry::buffer_bytes() const {
-    return walls_.capacity() * sizeof(Wall) + polygons_.capacity() * sizeof(Polygon) +
+    return walls_.capacity() * sizeof(Wall) + plain_walls_.capacity() * sizeof(PlainWall) +
+           polygons_.capacity() * sizeof(Polygon) +
            points_.capacity() * sizeof(Vec2) + ring_ends_.capacity() * sizeof(uint32_t);
 }
 
@@ -66,9 +71,27 @@ bool ProceduralGeometry::inside_polygon(const Polygon& polygon, Vec2 p) const {
     return true;
 }
 
+bool ProceduralGeometry::wall_of(unsigned prim_id, WallLayout* layout, WallFrame* frame) const {
+    if (prim_id < walls_.size()) {
+        *layout = walls_[prim_id].layout;
+        *frame = walls_[prim_id].frame;
+        return true;
+    }
+    prim_id -= static_cast<unsigned>(walls_.size());
+    if (prim_id >= plain_walls_.size()) return false;
+    const PlainWall& plain = plain_walls_[prim_id];
+    layout->length = plain.length;
+    layout->height = plain.height;
+    frame->origin = plain.origin;
+    frame->u_axis = {plain.along.x, plain.along.y, 0};
+    frame->v_axis = {0, 0, 1};
+    frame->w_axis = {-plain.along.y, plain.along.x, 0};
+    return true;
+}
+
 bool ProceduralGeometry::intersect(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax,
                                    PrimitiveHit* hit) const {
-    if (prim_id < walls_.size()) {
+    if (prim_id < walls_.size()) {  // the common case: no copy of the layout
         const Wall& wall = walls_[prim_id];
         WallHit wall_hit;
         if (!intersect_wall(wall.layout, wall.frame, origin, direction, tmin, tmax, &wall_hit)) return false;
@@ -78,7 +101,18 @@ bool ProceduralGeometry::intersect(unsigned prim_id, Vec3 origin, Vec3 direction
         hit->cell = wall_hit.floor < 0 ? 0 : static_cast<uint32_t>(wall_hit.floor) * 65536u + wall_hit.slot + 1;
         return true;
     }
-    const Polygon& polygon = polygons_[prim_id - walls_.size()];
+    WallLayout layout;
+    WallFrame frame;
+    if (wall_of(prim_id, &layout, &frame)) {
+        WallHit wall_hit;
+        if (!intersect_wall(layout, frame, origin, direction, tmin, tmax, &wall_hit)) return false;
+        hit->t = wall_hit.t;
+        hit->normal = wall_hit.normal;
+        hit->material = wall_materials_[static_cast<int>(wall_hit.surface)];
+        hit->cell = 0;
+        return true;
+    }
+    const Polygon& polygon = polygons_[prim_id - walls_.size() - plain_walls_.size()];
     if (direction.z == 0) return false;
     const double t = (polygon.z - origin.z) / direction.z;
     if (!(t >= tmin && t <= tmax)) return false;
@@ -95,6 +129,9 @@ bool ProceduralGeometry::occluded(unsigned prim_id, Vec3 origin, Vec3 direction,
         const Wall& wall = walls_[prim_id];
         return wall_occluded(wall.layout, wall.frame, origin, direction, tmin, tmax);
     }
+    WallLayout layout;
+    WallFrame frame;
+    if (wall_of(prim_id, &layout, &frame)) return wall_occluded(layout, frame, origin, direction, tmin, tmax);
     PrimitiveHit hit;
     return intersect(prim_id, origin, direction, tmin, tmax, &hit);
 }
@@ -106,13 +143,14 @@ void ProceduralGeometry::bounds_callback(const RTCBoundsFunctionArguments* args)
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     };
-    if (args->primID < self->walls_.size()) {
-        const Wall& wall = self->walls_[args->primID];
-        for (double u : {0.0, wall.layout.length})
-            for (double v : {0.0, wall.layout.height})
-                for (double w : {wall.layout.w_min(), wall.layout.w_max()}) extend(wall.frame.to_world(u, v, w));
+    WallLayout layout;
+    WallFrame frame;
+    if (self->wall_of(args->primID, &layout, &frame)) {
+        for (double u : {0.0, layout.length})
+            for (double v : {0.0, layout.height})
+                for (double w : {layout.w_min(), layout.w_max()}) extend(frame.to_world(u, v, w));
     } else {
-        const Polygon& polygon = self->polygons_[args->primID - self->walls_.size()];
+        const Polygon& polygon = self->polygons_[args->primID - self->walls_.size() - self->plain_walls_.size()];
         extend({polygon.bounds.min.x, polygon.bounds.min.y, polygon.z});
         extend({polygon.bounds.max.x, polygon.bounds.max.y, polygon.z});
     }
@@ -168,6 +206,12 @@ void ProceduralGeometry::occluded_callback(const RTCOccludedFunctionNArguments* 
 }
 
 RTCGeometry ProceduralGeometry::create_embree_geometry(RTCDevice device) {
+    // Building is over: give back what the vectors grew into (up to half their bytes).
+    walls_.shrink_to_fit();
+    plain_walls_.shrink_to_fit();
+    polygons_.shrink_to_fit();
+    points_.shrink_to_fit();
+    ring_ends_.shrink_to_fit();
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
     rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(primitive_count()));
     rtcSetGeometryUserData(geometry, this);

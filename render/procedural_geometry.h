@@ -5,7 +5,7 @@
 //   - a wall: a WallLayout + WallFrame (common/facade.h); the callback runs the cell-walking
 //     intersector (common/wall_intersect.h), so windows, balconies and shop fronts exist only
 //     for the rays that reach them. Bounds = the wall's slab including recess and balcony depth.
-//     A plain layout is a plain vertical rectangle (curb faces).
+//   - a plain wall: a bare vertical rectangle over an edge (curb faces), a few numbers.
 //   - a flat polygon (roof, building underside, road, joint, sidewalk, ground): plane hit +
 //     point-in-polygon, holes included.
 // The builders mirror the stored builders (stored_geometry.h) surface for surface, so both
@@ -36,6 +36,9 @@ public:
 
     // `object` is the index of the scene object the primitive belongs to (reported for hits).
     void add_wall(uint32_t object, const WallLayout& layout, const WallFrame& frame);
+    // A bare vertical rectangle over the edge a->b from z = bottom up by `height`, facing right
+    // of a->b; drawn with the Wall surface's material.
+    void add_plain_wall(uint32_t object, Vec2 a, Vec2 b, double bottom, double height);
     // A horizontal polygon at height z facing up (normal_z = +1) or down (-1); any orientation.
     void add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z, uint16_t material,
                      int normal_z = +1);
@@ -44,14 +47,19 @@ public:
     GeometryMode mode() const override { return GeometryMode::Procedural; }
     RTCGeometry create_embree_geometry(RTCDevice device) override;
     void complete_hit(const RTCHit& embree_hit, Hit& hit) const override;
-    uint64_t primitive_count() const override { return walls_.size() + polygons_.size(); }
+    uint64_t primitive_count() const override { return walls_.size() + plain_walls_.size() + polygons_.size(); }
     uint64_t triangle_count() const override { return 0; }
     size_t buffer_bytes() const override;
 
     size_t wall_count() const { return walls_.size(); }
+    size_t plain_wall_count() const { return plain_walls_.size(); }
     size_t polygon_count() const { return polygons_.size(); }
+    // Primitive ids: facade walls, then plain walls, then polygons.
     uint32_t object(unsigned prim_id) const {
-        return prim_id < walls_.size() ? walls_[prim_id].object : polygons_[prim_id - walls_.size()].object;
+        if (prim_id < walls_.size()) return walls_[prim_id].object;
+        prim_id -= static_cast<unsigned>(walls_.size());
+        if (prim_id < plain_walls_.size()) return plain_walls_[prim_id].object;
+        return polygons_[prim_id - plain_walls_.size()].object;
     }
 
     // What the callbacks compute, in double precision (tests, debugging).
@@ -70,6 +78,12 @@ private:
         WallFrame frame;
         uint32_t object;
     };
+    struct PlainWall {
+        Vec3 origin;  // lower end of a
+        Vec2 along;   // unit direction a->b
+        double length, height;
+        uint32_t object;
+    };
     struct Polygon {
         uint32_t first_ring, ring_count;  // into ring_ends_; the first ring is the outer one
         double z;
@@ -79,6 +93,8 @@ private:
         int8_t normal_z;
     };
     bool inside_polygon(const Polygon& polygon, Vec2 p) const;
+    // The wall primitive prim_id as a layout and frame (plain walls are built on the fly).
+    bool wall_of(unsigned prim_id, WallLayout* layout, WallFrame* frame) const;
 
     static void bounds_callback(const RTCBoundsFunctionArguments* args);
     static void intersect_callback(const RTCIntersectFunctionNArguments* args);
@@ -87,6 +103,7 @@ private:
     ObjectKind kind_;
     SurfaceMaterials wall_materials_;
     std::vector<Wall> walls_;
+    std::vector<PlainWall> plain_walls_;
     std::vector<Polygon> polygons_;
     std::vector<Vec2> points_;         // all polygon rings, back to back
     std::vector<uint32_t> ring_ends_;  // end (exclusive) of each ring in points_
