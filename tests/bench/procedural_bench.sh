@@ -80,13 +80,13 @@ set key top left
 set grid
 set logscale y
 set ylabel "geometry memory (MB, log)"
-plot "$data" using 1:(strcol(2) eq "stored" ? \$5 : 1/0) with linespoints lw 2 title "stored", \
-     "$data" using 1:(strcol(2) eq "procedural" ? \$5 : 1/0) with linespoints lw 2 title "procedural"
+plot "< awk '\$2 == \"stored\"' $data" using 1:5 with linespoints lw 2 title "stored", \
+     "< awk '\$2 == \"procedural\"' $data" using 1:5 with linespoints lw 2 title "procedural"
 unset logscale y
 set ylabel "render time (s)"
 set yrange [0:*]
-plot "$data" using 1:(strcol(2) eq "stored" ? \$9 : 1/0) with linespoints lw 2 title "stored", \
-     "$data" using 1:(strcol(2) eq "procedural" ? \$9 : 1/0) with linespoints lw 2 title "procedural"
+plot "< awk '\$2 == \"stored\"' $data" using 1:9 with linespoints lw 2 title "stored", \
+     "< awk '\$2 == \"procedural\"' $data" using 1:9 with linespoints lw 2 title "procedural"
 unset multiplot
 GNUPLOT
 echo "plot: $out/procedural_bench.png"

@@ -2,6 +2,7 @@
 // rules' determinism and plain-wall cases.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -359,4 +360,30 @@ TEST(WallIntersect, CostGrowsWithCellsCrossedNotWallSize) {
     Vec3 o{-1, wall.layout.grid_v0 + wall.layout.floor_height + 0.1, 0.5 * wall.layout.recess};
     EXPECT_FALSE(intersect_wall(wall.layout, wall.frame, o, Vec3{1, 0, 0}, 0, 1e30, &hit));
     EXPECT_EQ(stats.cells, static_cast<uint64_t>(wall.layout.slots));
+}
+
+TEST(FacadeRules, WallsHaveTheBuildingOnTheirLeftWhateverTheRingOrientation) {
+    Building b;
+    b.outer = {{0, 0}, {10, 0}, {10, 8}, {4, 8}, {4, 20}, {0, 20}};  // L shape, CCW
+    b.holes.push_back({{1, 1}, {1, 3}, {3, 3}, {3, 1}});               // CW courtyard
+    b.height = 12;
+    Building reversed = b;
+    std::reverse(reversed.outer.begin(), reversed.outer.end());
+    std::reverse(reversed.holes[0].begin(), reversed.holes[0].end());
+    ASSERT_EQ(building_wall_count(b), 10u);
+    for (const Building* building : {&b, &reversed}) {
+        for (size_t i = 0; i < building_wall_count(*building); ++i) {
+            Vec2 p, q;
+            building_wall(*building, i, &p, &q);
+            WallFrame frame = wall_frame(p, q, 0);
+            Vec3 inside = frame.to_world(0.5 * length(q - p), 1, 0.05);  // just behind the facade
+            Vec3 outside = frame.to_world(0.5 * length(q - p), 1, -0.05);
+            auto in_building = [&](Vec3 x) {
+                Vec2 xy{x.x, x.y};
+                return point_in_ring(xy, building->outer) && !point_in_ring(xy, building->holes[0]);
+            };
+            EXPECT_TRUE(in_building(inside)) << "wall " << i;
+            EXPECT_FALSE(in_building(outside)) << "wall " << i;
+        }
+    }
 }
