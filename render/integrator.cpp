@@ -37,7 +37,8 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         if (!context.scene.intersect(ray, hit)) {
             radiance = radiance + throughput * sky.radiance(ray.direction, previous_delta);
             if (sky.in_sun_disc(ray.direction)) {
-                const double w = previous_delta ? 1 : power_heuristic(previous_pdf, sun_pdf);
+                const double w =
+                    previous_delta || !settings.sample_sun ? 1 : power_heuristic(previous_pdf, sun_pdf);
                 radiance = radiance + throughput * sky.sun_radiance() * w;
             }
             break;
@@ -52,7 +53,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         const Vec3 n = front ? hit.geometric_normal : -hit.geometric_normal;
         const bool delta = is_delta(material);
 
-        if (!delta && sky.has_sun()) {
+        if (!delta && sky.has_sun() && settings.sample_sun) {
             const Vec3 wi = sample_cone(sky.sun_direction(), sky.sun_cos_radius(), rng.next_double(),
                                         rng.next_double());
             const double cos_i = dot(n, wi);

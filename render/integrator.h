@@ -15,6 +15,7 @@ struct IntegratorSettings {
     int max_depth = 8;       // bounces after the first hit (0: direct light only)
     int rr_depth = 3;        // bounces before Russian roulette starts
     double rr_prob = 0.8;    // probability a path continues at each bounce after rr_depth
+    bool sample_sun = true;  // next-event estimation; false leaves the sun to BSDF sampling alone
 };
 
 struct PathContext {

@@ -1,5 +1,6 @@
 // render: a citygen scene in, a path-traced image out. The pipeline, top to bottom:
 // load scene -> build Embree scene (per-class geometry mode) -> camera and sky -> render -> write.
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -23,6 +24,9 @@
 using namespace citygen;
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct Options {
     std::string scene_path, output, export_ply_path;
@@ -85,7 +89,9 @@ int run(const Options& o) {
         !o.print_geometry_info)
         throw Error("need -o OUTPUT.png|jpg|exr (see --help)");
 
+    const Clock::time_point start = Clock::now();
     const Scene scene = load_scene(o.scene_path);
+    const double load_seconds = seconds_since(start);
     if (o.print_scene_info) print_scene_info(scene, stdout);
 
     // Facades follow the scene's seed (not --seed, which drives the pixel streams), so every
@@ -93,7 +99,9 @@ int run(const Options& o) {
     FacadeOptions facades;
     facades.seed = scene.header.seed;
     facades.shop_probability = o.shop_probability;
+    const Clock::time_point build_start = Clock::now();
     const std::unique_ptr<RenderScene> render_scene = build_render_scene(scene, modes, facades);
+    const double build_seconds = seconds_since(build_start);
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
     const MaterialTable materials = default_materials();
     if (!o.export_ply_path.empty()) export_ply(*render_scene, materials, o.export_ply_path);
@@ -110,10 +118,15 @@ int run(const Options& o) {
     const PathContext context{*render_scene, materials, sky, settings.integrator};
     RenderStats stats;
     const Film film = render_image(context, camera, settings, &stats);
+    const Clock::time_point write_start = Clock::now();
     write_image(film, o.output, sky.exposure());
+    const double write_seconds = seconds_since(write_start);
 
     if (o.print_memory_info) print_memory_info(*render_scene, stdout);
     if (o.stats) {
+        // Phases besides the tracing: loading the file, building geometry and BVH, writing.
+        std::printf("load_seconds: %.3f\nbuild_seconds: %.3f\nwrite_seconds: %.3f\n", load_seconds, build_seconds,
+                    write_seconds);
         std::printf("render_seconds: %.3f\nrays: %llu\nrays_per_second: %.0f\n", stats.seconds,
                     static_cast<unsigned long long>(stats.rays), stats.rays / std::max(stats.seconds, 1e-9));
         // The view actually used (also the automatic one), so another renderer can match it.

@@ -27,10 +27,10 @@ Color xyY_to_rgb(double x, double y, double Y) {
             std::max(0.0, 0.0557 * X - 0.2040 * Y + 1.0570 * Z)};
 }
 
-double perez(const double c[5], double theta, double gamma) {
-    const double cos_theta = std::max(std::cos(theta), 0.01);  // the model diverges at the horizon
-    return (1 + c[0] * std::exp(c[1] / cos_theta)) *
-           (1 + c[2] * std::exp(c[3] * gamma) + c[4] * std::cos(gamma) * std::cos(gamma));
+// The Perez sky distribution, from cos(zenith angle), the angle to the sun and its cosine.
+double perez(const double c[5], double cos_theta, double gamma, double cos_gamma) {
+    cos_theta = std::max(cos_theta, 0.01);  // the model diverges at the horizon
+    return (1 + c[0] * std::exp(c[1] / cos_theta)) * (1 + c[2] * std::exp(c[3] * gamma) + c[4] * cos_gamma * cos_gamma);
 }
 
 }  // namespace
@@ -46,6 +46,15 @@ Sky Sky::uniform(Color radiance) {
     Sky sky;
     sky.model_ = Model::Uniform;
     sky.uniform_ = radiance;
+    return sky;
+}
+
+Sky Sky::uniform_with_sun(Color radiance, Vec3 sun_direction, double sun_angular_radius, Color sun_radiance) {
+    Sky sky = uniform(radiance);
+    sky.has_sun_ = true;
+    sky.sun_direction_ = normalize(sun_direction);
+    sky.sun_cos_radius_ = std::cos(sun_angular_radius);
+    sky.sun_radiance_ = sun_radiance;
     return sky;
 }
 
@@ -84,7 +93,7 @@ Sky Sky::daylight(TimeOfDay time) {
         {-0.0167 * T - 0.2608, -0.0950 * T + 0.0092, -0.0079 * T + 0.2102, -0.0441 * T - 1.6537, -0.0109 * T + 0.0529}};
     std::copy(&coefficients[0][0], &coefficients[0][0] + 15, &sky.perez_[0][0]);
     const double ts = std::acos(std::clamp(sky.sun_direction_.z, -1.0, 1.0));
-    sky.sun_theta_ = ts;
+    for (int i = 0; i < 3; ++i) sky.perez_at_zenith_[i] = perez(sky.perez_[i], 1, ts, std::cos(ts));
     const double chi = (4.0 / 9.0 - T / 120.0) * (kPi - 2 * ts);
     sky.zenith_[0] = (4.0453 * T - 4.9710) * std::tan(chi) - 0.2155 * T + 2.4192;  // kcd/m^2
     const double ts2 = ts * ts, ts3 = ts2 * ts, T2 = T * T;
@@ -100,7 +109,7 @@ Sky Sky::daylight(TimeOfDay time) {
     return sky;
 }
 
-double Sky::sun_solid_angle() const { return 2 * kPi * (1 - std::cos(kSunAngularRadius)); }
+double Sky::sun_solid_angle() const { return 2 * kPi * (1 - sun_cos_radius_); }
 
 Color Sky::radiance(Vec3 dir, bool seen_directly) const {
     switch (model_) {
@@ -116,11 +125,10 @@ Color Sky::preetham(Vec3 dir) const {
     const bool below = dir.z < 0;
     Vec3 d = dir;
     if (d.z < 0.001) d = normalize(Vec3{d.x, d.y, 0.001});
-    const double theta = std::acos(std::clamp(d.z, -1.0, 1.0));
-    const double gamma = std::acos(std::clamp(dot(d, sun_direction_), -1.0, 1.0));
+    const double cos_gamma = std::clamp(dot(d, sun_direction_), -1.0, 1.0);
+    const double gamma = std::acos(cos_gamma);
     double value[3];
-    for (int i = 0; i < 3; ++i)
-        value[i] = zenith_[i] * perez(perez_[i], theta, gamma) / perez(perez_[i], 0, sun_theta_);
+    for (int i = 0; i < 3; ++i) value[i] = zenith_[i] * perez(perez_[i], d.z, gamma, cos_gamma) / perez_at_zenith_[i];
     Color c = xyY_to_rgb(value[1], value[2], value[0] * sky_scale_);
     return below ? c * 0.3 : c;
 }

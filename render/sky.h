@@ -16,6 +16,8 @@ class Sky {
 public:
     static Sky daylight(TimeOfDay time);
     static Sky uniform(Color radiance);  // no sun
+    // A uniform sky plus a sun disc of the given angular radius (radians), for tests.
+    static Sky uniform_with_sun(Color radiance, Vec3 sun_direction, double sun_angular_radius, Color sun_radiance);
 
     // Radiance arriving from direction `dir` (unit, pointing away from the scene), without the
     // sun (or moon) disc, which is a separate light for next-event estimation. Stars (tiny and
@@ -44,7 +46,7 @@ private:
     double perez_[3][5] = {};
     double zenith_[3] = {};
     double sky_scale_ = 1;
-    double sun_theta_ = 0;
+    double perez_at_zenith_[3] = {1, 1, 1};  // F(0, sun zenith angle): normalises to the zenith values
 
     Color preetham(Vec3 dir) const;
     Color night(Vec3 dir, bool stars) const;

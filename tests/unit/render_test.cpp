@@ -268,3 +268,32 @@ TEST(StoredGeometry, GeometryModeParsingAndProceduralRequest) {
     EXPECT_EQ(parse_geometry_mode("procedural", "--geometry-roads"), GeometryMode::Procedural);
     EXPECT_THROW(parse_geometry_mode("triangles", "--geometry-roads"), Error);
 }
+
+// A diffuse plane under a uniform sky and a large sun has a closed-form radiance:
+// albedo * (L_sky + L_sun * pi sin^2(radius) * cos(sun zenith) / pi). Next-event estimation
+// with MIS and pure BSDF sampling must both converge to it (a wrong MIS weight would not).
+TEST(SunSampling, NextEventWithMisAndBsdfSamplingAgreeWithTheClosedForm) {
+    Scene s;
+    s.ground.min = {-100, -100};
+    s.ground.max = {100, 100};
+    const auto scene = build_render_scene(s, GeometryModes{});
+    MaterialTable materials = default_materials();
+    const double albedo = 0.5, sky_radiance = 0.2, radius = 8 * 3.14159265358979 / 180, sun = 40;
+    materials[kGround] = Material{"grey", MaterialType::Diffuse, {albedo, albedo, albedo}, {}, 1, 1.5, {}};
+    const Vec3 sun_direction = normalize(Vec3{0.3, -0.5, 0.7});
+    const Sky sky = Sky::uniform_with_sun({sky_radiance, sky_radiance, sky_radiance}, sun_direction, radius,
+                                          {sun, sun, sun});
+    const double expected = albedo * (sky_radiance + sun * std::pow(std::sin(radius), 2) * sun_direction.z);
+    RenderSettings r = tiny(64);
+    r.width = r.height = 32;
+    r.integrator = IntegratorSettings{};
+    const Camera camera = Camera::look_at({0, 0, 20}, {0, 0, 0}, 40, r.width, r.height);  // sees only the plane
+    for (bool next_event : {true, false}) {
+        r.integrator.sample_sun = next_event;
+        const Film film = render_image({*scene, materials, sky, r.integrator}, camera, r);
+        const ChannelStats st = stats_of(film, 1);
+        // Tight enough that a doubled or missing sun (weights summing to 2 or 0) cannot pass.
+        EXPECT_LT(st.standard_error, (next_event ? 0.005 : 0.04) * expected) << "next event " << next_event;
+        EXPECT_NEAR(st.mean, expected, 4 * st.standard_error + 0.002 * expected) << "next event " << next_event;
+    }
+}
