@@ -38,6 +38,7 @@ enum Salt : uint64_t {
 constexpr double kMinFloorHeight = 2.4;
 constexpr double kMinSlotWidth = 1.6;
 constexpr double kRoomInset = 0.08;
+constexpr double kMinRoomDepth = 0.2;  // even at the sharpest corner a window shows some room
 
 }  // namespace
 
@@ -82,6 +83,13 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     layout.recess = 0.12 + 0.13 * building_unit(kRecess);
     layout.room_depth = 1.8 + 0.8 * building_unit(kRoomDepth);
     layout.room_inset = kRoomInset;
+    // At an acute corner the neighbouring wall runs in behind the end cells at w = u * tan(angle):
+    // keep the room boxes (which start edge_margin + inset from the corner) in front of it.
+    const double corner = std::min(wall.start_angle, wall.end_angle);
+    if (corner < 0.5 * 3.141592653589793) {
+        const double deepest = 0.9 * (edge_margin + kRoomInset) * std::tan(corner);  // 10% to spare
+        layout.room_depth = std::clamp(deepest - layout.recess, kMinRoomDepth, layout.room_depth);
+    }
 
     // Window: centred in its slot, at least 0.25 m of wall either side and 0.35 m above.
     const double window_width = std::min(1.0 + 0.6 * building_unit(kWindowWidth), slot_width - 0.5);
@@ -256,9 +264,31 @@ void building_wall(const Building& building, size_t index, Vec2* a, Vec2* b) {
     }
 }
 
+namespace {
+
+// Interior angle at `corner` between the footprint edges to `ahead` and back to `behind`, with
+// the building on the left of behind -> corner -> ahead: in (0, 2 pi).
+double interior_angle(Vec2 behind, Vec2 corner, Vec2 ahead) {
+    const Vec2 out = ahead - corner, back = behind - corner;
+    double angle = std::atan2(cross(out, back), dot(out, back));
+    if (angle <= 0) angle += 2 * 3.141592653589793;
+    return angle;
+}
+
+}  // namespace
+
 WallInput building_wall_input(const Building& building, size_t index) {
     Vec2 a, b;
     building_wall(building, index, &a, &b);
+    // The neighbours of this wall in the same ring (walls are numbered ring by ring).
+    size_t first = 0, count = building.outer.size();
+    for (size_t h = 0; index >= first + count && h < building.holes.size(); ++h) {
+        first += count;
+        count = building.holes[h].size();
+    }
+    Vec2 before, unused, after;
+    building_wall(building, first + (index - first + count - 1) % count, &before, &unused);
+    building_wall(building, first + (index - first + 1) % count, &unused, &after);
     WallInput wall;
     wall.building_key = facade_building_key(building);
     wall.wall_index = static_cast<uint32_t>(index);
@@ -266,6 +296,8 @@ WallInput building_wall_input(const Building& building, size_t index) {
     wall.bottom_z = building.min_height;
     wall.height = building.height - building.min_height;
     wall.levels = building.levels;
+    if (a != before) wall.start_angle = interior_angle(before, a, b);
+    if (b != after) wall.end_angle = interior_angle(a, b, after);
     return wall;
 }
 

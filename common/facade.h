@@ -47,6 +47,9 @@ struct WallInput {
     double bottom_z = 0;        // building min_height
     double height = 0;          // top minus bottom
     int levels = 0;             // tagged building:levels, 0 when unknown
+    // Interior angles (radians) of the footprint at the wall's two ends; below a right angle
+    // the neighbouring wall cuts in behind this one, so room boxes must be shallower.
+    double start_angle = 3.141592653589793, end_angle = 3.141592653589793;
 };
 
 // An opening (or any rectangle) in cell-relative (u, v): [u0, u1] x [v0, v1].

@@ -43,11 +43,13 @@ Exr read_exr(const std::string& path) {
     return exr;
 }
 
-// Renders `scene` in the given building/class mode flags to an EXR with AOVs.
-Exr render(const TempDir& dir, const std::string& scene, const std::string& name, const std::string& mode_flags) {
+// Renders `scene` with the given geometry mode flags to an EXR with AOVs.
+Exr render(const TempDir& dir, const std::string& scene, const std::string& name, const std::string& mode_flags,
+           int threads = 2) {
     const std::string out = dir.file(name + ".exr");
     CommandResult r = run_command(render_binary() + " " + quoted(scene) + " -o " + quoted(out) +
-                                  " --width 160 --height 90 --spp 4 --seed 3 --threads 2 --quiet"
+                                  " --width 160 --height 90 --spp 4 --seed 3 --threads " + std::to_string(threads) +
+                                  " --quiet"
                                   " --camera=-70,-90,20 --look-at=0,0,8 --fov 45 --aovs depth,id " +
                                   mode_flags);
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -100,4 +102,19 @@ TEST(ProceduralRender, SamePictureAsStoredOnARealExtract) {
     const double mse = squared / (3.0 * pixels);
     const double psnr = mse == 0 ? 1e9 : 10 * std::log10(peak * peak / mse);
     EXPECT_GE(psnr, 40.0);
+}
+
+TEST(ProceduralRender, SameImageWithOneOrTwoThreads) {
+    // The callbacks keep no state between rays, so the thread count cannot change a pixel.
+    const std::string osm = std::string(CITYGEN_SHARED_DATA_DIR) + "/osm2streets/tiny_roundabout/input.osm";
+    if (!std::filesystem::exists(osm)) GTEST_SKIP() << osm << " not available";
+    TempDir dir;
+    const std::string scene = dir.file("tiny.scene");
+    CommandResult parsed = run_command(osmparse_binary() + " --quiet " + quoted(osm) + " -o " + quoted(scene));
+    ASSERT_EQ(parsed.exit_code, 0) << parsed.err;
+    const Exr one = render(dir, scene, "one", "--procedural", 1);
+    const Exr two = render(dir, scene, "two", "--procedural", 2);
+    ASSERT_GT(one.width, 0);
+    ASSERT_EQ(one.pixels.size(), two.pixels.size());
+    EXPECT_TRUE(one.pixels == two.pixels);
 }

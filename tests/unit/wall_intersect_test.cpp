@@ -387,3 +387,41 @@ TEST(FacadeRules, WallsHaveTheBuildingOnTheirLeftWhateverTheRingOrientation) {
         }
     }
 }
+
+TEST(FacadeRules, RoomBoxesStayInsideFootprintsWithAcuteCorners) {
+    // An equilateral triangle (60 degree corners) and a parallelogram (50 degree corners): the
+    // neighbouring wall runs in behind the end cells, so the rooms there must be shallower.
+    std::vector<Ring> footprints = {
+        {{0, 0}, {30, 0}, {15, 25.98}},
+        {{0, 0}, {30, 0}, {30 + 19.28, 22.98}, {19.28, 22.98}},
+    };
+    int deep_rooms_checked = 0;
+    for (uint64_t seed = 0; seed < 20; ++seed) {
+        for (const Ring& ring : footprints) {
+            Building b;
+            b.osm = {OsmType::Way, static_cast<int64_t>(seed)};
+            b.outer = ring;
+            b.height = 30;
+            FacadeOptions options;
+            options.seed = seed;
+            for (size_t i = 0; i < building_wall_count(b); ++i) {
+                Vec2 p, q;
+                building_wall(b, i, &p, &q);
+                const WallLayout l = make_wall_layout(options, building_wall_input(b, i));
+                const WallFrame frame = wall_frame(p, q, 0);
+                if (l.plain()) continue;
+                for (int s = 0; s < l.slots; ++s) {
+                    const double u0 = l.grid_u0 + s * l.slot_width + l.room_inset;
+                    const double u1 = u0 + l.slot_width - 2 * l.room_inset;
+                    for (double u : {u0, u1}) {
+                        Vec3 corner = frame.to_world(u, 1, l.recess + l.room_depth);
+                        EXPECT_TRUE(point_in_ring({corner.x, corner.y}, b.outer))
+                            << "seed " << seed << " wall " << i << " slot " << s;
+                    }
+                }
+                deep_rooms_checked += l.room_depth > 0.5;
+            }
+        }
+    }
+    EXPECT_GT(deep_rooms_checked, 20);
+}
