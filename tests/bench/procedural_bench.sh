@@ -2,7 +2,8 @@
 # Stored vs procedural geometry benchmark, run by hand (never from ctest).
 # Monaco parsed with random building heights averaging about 20, 40 and 80 m (tagged heights
 # stay as mapped), each rendered at 640x360, 16 spp, from the same view, in both modes.
-# Prints a table (median render time of RUNS runs; memory and counts from the first run) and
+# Prints a table (median build and render time of RUNS runs; memory and counts from the first
+# run; build = geometry + Embree BVH, render = tracing only) and
 # draws build/bench/procedural/procedural_bench.png with gnuplot (installed here if missing).
 # Targets (issue 5): procedural geometry memory >= 50x smaller than stored at 80 m;
 # procedural render time <= 2x stored.
@@ -34,7 +35,7 @@ value() { awk -v k="$2:" '$1 == k { print $2; exit }' "$1"; }
 median() { sort -g | awk '{ a[NR] = $1 } END { print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2 }'; }
 
 data=$out/procedural_bench.dat
-echo "# height mode primitives triangles geometry_mb embree_mb buffer_mb peak_rss_mb render_s mrays_per_s" > "$data"
+echo "# height mode primitives triangles geometry_mb embree_mb buffer_mb peak_rss_mb render_s mrays_per_s build_s" > "$data"
 for h in $heights; do
     scene=$out/monaco_h$h.scene
     lo=$(awk -v h="$h" 'BEGIN { print 0.75 * h }')
@@ -43,31 +44,33 @@ for h in $heights; do
     for mode in stored procedural; do
         flag=()
         [ "$mode" = procedural ] && flag=(--procedural)
-        times=() rates=()
+        times=() rates=() builds=()
         for run in $(seq "$runs"); do
             log=$out/h${h}_${mode}_$run.log
             "$bin/render" "$scene" -o "$out/h${h}_${mode}.png" "${view[@]}" "${flag[@]}" --quiet --stats \
                 --print-memory-info --print-scene-geometry-info > "$log" 2>&1
             times+=("$(value "$log" render_seconds)")
             rates+=("$(value "$log" rays_per_second)")
+            builds+=("$(value "$log" build_seconds)")
         done
         log=$out/h${h}_${mode}_1.log
         t=$(printf '%s\n' "${times[@]}" | median)
         r=$(printf '%s\n' "${rates[@]}" | median)
+        bt=$(printf '%s\n' "${builds[@]}" | median)
         awk -v h="$h" -v m="$mode" -v p="$(value "$log" primitives)" -v tri="$(value "$log" triangles)" \
             -v g="$(value "$log" geometry_bytes)" -v e="$(value "$log" embree_bytes)" \
-            -v b="$(value "$log" buffer_bytes)" -v rss="$(value "$log" peak_rss_bytes)" -v t="$t" -v r="$r" \
-            'BEGIN { printf "%s %s %s %s %.3f %.3f %.3f %.1f %.3f %.3f\n", h, m, p, tri, g / 1e6, e / 1e6, b / 1e6, rss / 1e6, t, r / 1e6 }' \
+            -v b="$(value "$log" buffer_bytes)" -v rss="$(value "$log" peak_rss_bytes)" -v t="$t" -v r="$r" -v bt="$bt" \
+            'BEGIN { printf "%s %s %s %s %.3f %.3f %.3f %.1f %.3f %.3f %.3f\n", h, m, p, tri, g / 1e6, e / 1e6, b / 1e6, rss / 1e6, t, r / 1e6, bt }' \
             >> "$data"
     done
 done
 
 echo "Monaco, 640x360, 16 spp, median of $runs runs; memory from --print-memory-info"
-printf '| %6s | %-10s | %11s | %11s | %12s | %11s | %8s | %8s |\n' "avg h" "mode" "primitives" "triangles" \
-    "geometry MB" "peak RSS MB" "render s" "Mrays/s"
-printf '|%s|%s|%s|%s|%s|%s|%s|%s|\n' "--------" "------------" "-------------" "-------------" "--------------" \
-    "-------------" "----------" "----------"
-awk '!/^#/ { printf "| %6s | %-10s | %11s | %11s | %12.1f | %11.1f | %8.2f | %8.2f |\n", $1, $2, $3, $4, $5, $8, $9, $10 }' "$data"
+printf '| %6s | %-10s | %11s | %11s | %12s | %11s | %8s | %8s | %8s |\n' "avg h" "mode" "primitives" "triangles" \
+    "geometry MB" "peak RSS MB" "build s" "render s" "Mrays/s"
+printf '|%s|%s|%s|%s|%s|%s|%s|%s|%s|\n' "--------" "------------" "-------------" "-------------" "--------------" \
+    "-------------" "----------" "----------" "----------"
+awk '!/^#/ { printf "| %6s | %-10s | %11s | %11s | %12.1f | %11.1f | %8.2f | %8.2f | %8.2f |\n", $1, $2, $3, $4, $5, $8, $11, $9, $10 }' "$data"
 echo
 awk '!/^#/ { if ($2 == "stored") { g[$1] = $5; t[$1] = $9 } else { printf "avg %s m: procedural geometry memory %.0fx smaller, render time %.2fx stored\n", $1, g[$1] / $5, $9 / t[$1] } }' "$data"
 
