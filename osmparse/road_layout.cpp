@@ -152,29 +152,54 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
     for (size_t i = 0; i < k && k > 1; ++i) {
         const size_t j = (i + 1) % k;
         if (!(cut_short[i] || cuts_cross(i)) || common_cut[i] || common_cut[j] || (k > 2 && cuts_cross(j))) continue;
+        // The least each end must keep cut: the corner on its other side (or the line
+        // it already shares with its other neighbour).
+        const size_t h = (i + k - 1) % k;
+        const double least[2] = {common_cut[h] ? node.ends[i].trim : demand_right[i], demand_left[j]};
+        // Candidate lines, each given by a point on it and its normal pointing away
+        // from the node: perpendicular to the gap's bisector beyond both square cuts;
+        // failing that (a short edge cannot be cut that far), the same beyond only
+        // what each end must keep, or the square cut line of one end carried across
+        // the other.
+        struct Line { Vec2 point, normal; };
+        std::vector<Line> candidates;
         const Vec2 b = normalize(geo[i].dir + geo[j].dir);
-        if (dot(geo[i].dir, b) <= 0.1 || dot(geo[j].dir, b) <= 0.1) continue;
-        double reach = -1e300;
-        for (size_t e : {i, j})
-            for (Vec2 p : {geo[e].right_at(node.ends[e].trim), geo[e].left_at(node.ends[e].trim)})
-                reach = std::max(reach, dot(p - node.position, b));
-        // Distance along an end's side line to the common line.
-        auto to_line = [&](const EndGeometry& g, Vec2 side_origin) {
-            return (reach - dot(side_origin - node.position, b)) / dot(g.dir, b);
-        };
-        bool fits = true;
-        double cuts[2][2];
-        for (int e = 0; e < 2; ++e) {
-            const EndGeometry& g = geo[e == 0 ? i : j];
-            cuts[e][0] = to_line(g, g.left_at(0));
-            cuts[e][1] = to_line(g, g.right_at(0));
-            fits = fits && std::min(cuts[e][0], cuts[e][1]) >= 0 && std::max(cuts[e][0], cuts[e][1]) <= g.limit;
+        if (dot(geo[i].dir, b) > 0.1 && dot(geo[j].dir, b) > 0.1) {
+            for (bool from_trim : {true, false}) {
+                double reach = -1e300;
+                for (int e = 0; e < 2; ++e) {
+                    const size_t end = e == 0 ? i : j;
+                    const double t = from_trim ? node.ends[end].trim : least[e];
+                    for (Vec2 p : {geo[end].right_at(t), geo[end].left_at(t)}) reach = std::max(reach, dot(p - node.position, b));
+                }
+                candidates.push_back({node.position + b * reach, b});
+            }
         }
-        if (!fits) continue;
+        candidates.push_back({geo[j].left_at(least[1]), geo[j].dir});
+        candidates.push_back({geo[i].left_at(least[0]), geo[i].dir});
+        bool found = false;
+        double cuts[2][2];
+        for (const Line& line : candidates) {
+            bool fits = true;
+            for (int e = 0; e < 2 && fits; ++e) {
+                const size_t end = e == 0 ? i : j;
+                const EndGeometry& g = geo[end];
+                const double along = dot(g.dir, line.normal);
+                if (along < 0.1) { fits = false; break; }
+                // Distance along the end's side lines to the line: never short of the
+                // end's square cut, never past what the edge can give.
+                cuts[e][0] = dot(line.point - g.left_at(0), line.normal) / along;
+                cuts[e][1] = dot(line.point - g.right_at(0), line.normal) / along;
+                fits = std::min(cuts[e][0], cuts[e][1]) >= least[e] - kDedupe &&
+                       std::max(cuts[e][0], cuts[e][1]) <= g.limit;
+            }
+            if (fits) { found = true; break; }
+        }
+        if (!found) continue;
         for (int e = 0; e < 2; ++e) {
             NodeLayout::End& end = node.ends[e == 0 ? i : j];
-            end.cut_left = cuts[e][0];
-            end.cut_right = cuts[e][1];
+            end.cut_left = std::max(cuts[e][0], least[e]);
+            end.cut_right = std::max(cuts[e][1], least[e]);
             end.trim = std::max(end.cut_left, end.cut_right);
         }
         common_cut[i] = true;
