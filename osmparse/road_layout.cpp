@@ -5,6 +5,8 @@
 #include <functional>
 #include <map>
 
+#include "polygon_overlap.h"
+
 namespace citygen {
 
 namespace {
@@ -105,9 +107,10 @@ double joint_demand(const std::vector<EndGeometry>& geo, size_t end) {
     return demand;
 }
 
-// The joint polygon of a node and each edge's square cut (thesis: sort by angle,
-// intersect neighbouring offset lines).
-void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
+// Each edge's cut at a node and the joint's ring (thesis: sort by angle, intersect
+// neighbouring offset lines), unfinished: finish_joint cuts the quads out of it once all
+// cuts are known. Returns the ring, and where cuts cross a smaller fallback ring.
+std::vector<Ring> layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
     const size_t k = node.ends.size();
     std::vector<double> demand_left(k, 0), demand_right(k, 0);
     std::vector<bool> cut_short(k, false);  // the corner of gap (i, i+1) was not reached
@@ -204,13 +207,16 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
         }
         common_cut[i] = true;
     }
-    // Any crossing left (a chain of near-parallel roads): the crossing point stands for
-    // both cut ends and the corner.
+    // Any crossing left (a chain of near-parallel roads): the ring takes the four cut
+    // ends in the order they lie around the node (the two cuts are its diagonals), and
+    // finish_joint cuts the two quads out of it.
     std::vector<bool> crosses(k, false);
     std::vector<Vec2> crossing(k);
     for (size_t i = 0; i < k && k > 1; ++i) {
-        if (common_cut[i]) continue;
         const size_t j = (i + 1) % k;
+        // Only a gap under a half turn has a corner to cross at (with two ends, the same
+        // two cuts would otherwise cross on both sides).
+        if (common_cut[i] || cross(geo[i].dir, geo[j].dir) <= 0) continue;
         const Vec2 ri = geo[i].right_at(node.ends[i].cut_right), li = geo[i].left_at(node.ends[i].cut_left);
         const Vec2 rj = geo[j].right_at(node.ends[j].cut_right), lj = geo[j].left_at(node.ends[j].cut_left);
         double s, u;
@@ -219,25 +225,45 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
             crossing[i] = ri + (li - ri) * s;
         }
     }
-    Ring ring;
-    for (size_t i = 0; i < k; ++i) {
-        NodeLayout::End& end = node.ends[i];
-        const size_t prev = (i + k - 1) % k;
-        push_distinct(ring, crosses[prev] ? crossing[prev] : geo[i].right_at(end.cut_right));
-        if (crosses[i]) {
-            end.gap_points = {crossing[i]};
-            push_distinct(ring, crossing[i]);
-            continue;
+    // With `at_crossing`, crossing cuts meet at their crossing point instead (smaller,
+    // but it can leave a hole beside either quad): the fallback where cutting the quads
+    // out of the larger ring fails.
+    auto ring_with = [&](bool at_crossing) {
+        Ring ring;
+        for (size_t i = 0; i < k; ++i) {
+            const NodeLayout::End& end = node.ends[i];
+            const size_t prev = (i + k - 1) % k;
+            if (!crosses[prev]) push_distinct(ring, geo[i].right_at(end.cut_right));
+            else if (at_crossing) push_distinct(ring, crossing[prev]);
+            if (crosses[i]) {
+                if (at_crossing) {
+                    push_distinct(ring, crossing[i]);
+                } else {
+                    push_distinct(ring, geo[(i + 1) % k].right_at(node.ends[(i + 1) % k].cut_right));
+                    push_distinct(ring, geo[i].left_at(end.cut_left));
+                }
+                continue;
+            }
+            push_distinct(ring, geo[i].left_at(end.cut_left));
+            if (!common_cut[i])
+                for (Vec2 q : end.gap_points) push_distinct(ring, q);
         }
-        push_distinct(ring, geo[i].left_at(end.cut_left));
-        if (common_cut[i]) {
-            end.gap_points.clear();  // the next end starts on the same line
-            continue;
-        }
-        for (Vec2 q : end.gap_points) push_distinct(ring, q);
-    }
+        return ring;
+    };
+    for (size_t i = 0; i < k; ++i)
+        if (common_cut[i]) node.ends[i].gap_points.clear();  // the next end starts on the same line
+    std::vector<Ring> rings{ring_with(false)};
+    if (std::find(crosses.begin(), crosses.end(), true) != crosses.end()) rings.push_back(ring_with(true));
+    return rings;
+}
+
+// A ring without repeated points or spikes (a vertex where the boundary runs out and
+// straight back along itself).
+Ring without_spikes(Ring ring) {
+    Ring out;
+    for (Vec2 p : ring) push_distinct(out, p);
+    ring = std::move(out);
     while (ring.size() > 1 && length(ring.front() - ring.back()) <= kDedupe) ring.pop_back();
-    // Drop spikes: a vertex where the boundary runs out and straight back along itself.
     for (bool removed = true; removed && ring.size() > 3;) {
         removed = false;
         for (size_t i = 0, m = ring.size(); i < m; ++i) {
@@ -249,28 +275,108 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
             }
         }
     }
+    return ring;
+}
+
+// The part of the CCW ring outside the convex CCW quad `q`, where the ring only dips
+// into the quad (a joint beside a neighbour's short quad, or a corner cut short where
+// two roads still overlap): each stretch inside is replaced by the quad's boundary,
+// walked clockwise from where the ring enters to where it leaves.
+Ring cut_away_quad(const Ring& ring, const Ring& q) {
+    constexpr double kInside = 1e-6;  // metres: closer to the quad's boundary is outside
+    auto depth = [&](Vec2 x, int e) {
+        const Vec2 a = q[e], d = q[(e + 1) % 4] - a;
+        return cross(d, x - a) / length(d) - kInside;
+    };
+    auto inside = [&](Vec2 x) {
+        for (int e = 0; e < 4; ++e)
+            if (depth(x, e) <= 0) return false;
+        return true;
+    };
+    // The stretch [t0, t1] of segment a-b inside q, entering through edge e0 and leaving
+    // through e1 (-1 where a, or b, is inside).
+    auto stretch_inside = [&](Vec2 a, Vec2 b, double& t0, double& t1, int& e0, int& e1) {
+        t0 = 0, t1 = 1, e0 = e1 = -1;
+        for (int e = 0; e < 4; ++e) {
+            const double fa = depth(a, e), fb = depth(b, e);
+            if (fa <= 0 && fb <= 0) return false;
+            if (fa <= 0 && fa / (fa - fb) > t0) t0 = fa / (fa - fb), e0 = e;
+            if (fb <= 0 && fa / (fa - fb) < t1) t1 = fa / (fa - fb), e1 = e;
+        }
+        return t0 < t1;
+    };
+    const size_t m = ring.size();
+    size_t start = m;
+    for (size_t i = 0; i < m && start == m; ++i)
+        if (!inside(ring[i])) start = i;
+    if (start == m) return {};  // wholly inside the quad
+    Ring out;
+    int entered = -1;  // the quad edge the ring entered through, while inside
+    for (size_t k = 0; k < m; ++k) {
+        const Vec2 a = ring[(start + k) % m], b = ring[(start + k + 1) % m];
+        if (entered < 0) out.push_back(a);
+        double t0, t1;
+        int e0, e1;
+        if (!stretch_inside(a, b, t0, t1, e0, e1)) continue;
+        if (entered < 0) {
+            if (e0 < 0) continue;  // numerically on the boundary
+            out.push_back(a + (b - a) * t0);
+            entered = e0;
+        }
+        if (e1 >= 0) {
+            for (int e = entered; e != e1; e = (e + 3) % 4) out.push_back(q[e]);
+            out.push_back(a + (b - a) * t1);
+            entered = -1;
+        }
+    }
+    return out;
+}
+
+// Finishes a joint once every quad is known: the parts of the joint's ring inside the
+// quads of its own ends are cut away, so quads and joint meet edge to edge. Where that
+// fails (rare tangles of short edges), the fallback ring, then the points sorted by angle
+// around the node (a star-shaped polygon), then their convex hull are tried, and the
+// one overlapping its quads least is kept.
+void finish_joint(NodeLayout& node, const std::vector<Ring>& raw_rings, const std::vector<Ring>& quads) {
     node.joint.clear();
     node.joint_is_hull = false;
-    if (ring.size() >= 3 && signed_area(ring) > kMinJointArea && ring_is_simple(ring)) {
-        node.joint = ring;
-        return;
-    }
-    // Rare tangles of short edges: the points sorted by angle around the node form a
-    // star-shaped polygon, simple by construction; failing that, their convex hull.
-    Ring star = ring;
+    auto valid = [](const Ring& ring) {
+        return ring.size() >= 3 && signed_area(ring) > kMinJointArea && ring_is_simple(ring);
+    };
+    // Where a quad lies across the ring rather than dipping into it (a sliver of a quad
+    // inside a tangle), cutting it away would split the joint: that quad then stays.
+    auto apart_where_possible = [&](Ring ring) {
+        for (const NodeLayout::End& end : node.ends) {
+            if (quads[end.edge].empty()) continue;
+            Ring cut = without_spikes(cut_away_quad(ring, quads[end.edge]));
+            if (valid(cut)) ring = std::move(cut);
+        }
+        return ring;
+    };
+    std::vector<Ring> candidates;
+    for (const Ring& raw : raw_rings) candidates.push_back(without_spikes(raw));
+    const size_t exact = candidates.size();
+    Ring star = candidates[0];
     std::sort(star.begin(), star.end(), [&](Vec2 a, Vec2 b) {
         return std::atan2(a.y - node.position.y, a.x - node.position.x) <
                std::atan2(b.y - node.position.y, b.x - node.position.x);
     });
-    if (star.size() >= 3 && signed_area(star) > kMinJointArea && ring_is_simple(star)) {
-        node.joint = star;
-        node.joint_is_hull = true;
-        return;
-    }
-    Ring hull = convex_hull(ring);
-    if (hull.size() >= 3 && signed_area(hull) > kMinJointArea) {
-        node.joint = hull;
-        node.joint_is_hull = true;
+    candidates.push_back(star);
+    candidates.push_back(convex_hull(candidates[0]));
+    // The first candidate that cuts away cleanly; failing that, the one that overlaps
+    // its quads least once cut where possible.
+    double least_overlap = 1e300;
+    for (size_t c = 0; c < candidates.size(); ++c) {
+        if (!valid(candidates[c])) continue;
+        Ring joint = apart_where_possible(candidates[c]);
+        double overlap = 0;
+        for (const NodeLayout::End& end : node.ends)
+            if (!quads[end.edge].empty()) overlap += clipped_area(joint, quads[end.edge]);
+        if (overlap >= least_overlap - 1e-9) continue;
+        least_overlap = overlap;
+        node.joint = std::move(joint);
+        node.joint_is_hull = c >= exact;
+        if (overlap < kMinJointArea) return;
     }
 }
 
@@ -477,6 +583,7 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
     }
 
     // Pass 4: joint polygons with the shared-out cuts.
+    std::map<int64_t, std::vector<Ring>> raw_rings;
     for (auto& [id, node] : nodes) {
         if (node.kind != JoinKind::Joint || node.ends.empty()) continue;
         std::vector<EndGeometry> geo = geometry_at(node);
@@ -488,7 +595,7 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
                                              : from_allowed[end.edge] + from_fixed[end.edge];
             geo[i].limit = std::max(geo[i].max_cut, 0.9 * len - other);
         }
-        layout_joint(node, geo);
+        raw_rings[id] = layout_joint(node, geo);
         for (const NodeLayout::End& end : node.ends) cut_of(end) = {end.cut_left, end.cut_right};
     }
 
@@ -497,6 +604,8 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
         Ring q = quad_for_cuts(graph.edges[e], widths[e], out.from_cut[e], out.to_cut[e]);
         if (quad_is_valid(q)) out.quads[e] = std::move(q);
     }
+    for (auto& [id, node] : nodes)
+        if (node.kind == JoinKind::Joint && !node.ends.empty()) finish_joint(node, raw_rings[id], out.quads);
     out.nodes.reserve(nodes.size());
     for (auto& [id, node] : nodes) out.nodes.push_back(std::move(node));
     return out;
