@@ -278,16 +278,22 @@ Ring without_spikes(Ring ring) {
     return ring;
 }
 
-// The part of the CCW ring outside the convex CCW quad `q`, where the ring only dips
-// into the quad (a joint beside a neighbour's short quad, or a corner cut short where
-// two roads still overlap): each stretch inside is replaced by the quad's boundary,
-// walked clockwise from where the ring enters to where it leaves.
-Ring cut_away_quad(const Ring& ring, const Ring& q) {
+// The part of the CCW ring outside the convex CCW quad `q` into `out`, where the ring
+// only dips into the quad (a joint beside a neighbour's short quad, or a corner cut short
+// where two roads still overlap): each stretch inside is replaced by the quad's boundary,
+// walked clockwise from where the ring enters to where it leaves. False when the ring
+// does not reach into the quad (`out` is then not set).
+bool cut_away_quad(const Ring& ring, const Ring& q, Ring& out) {
     constexpr double kInside = 1e-6;  // metres: closer to the quad's boundary is outside
-    auto depth = [&](Vec2 x, int e) {
-        const Vec2 a = q[e], d = q[(e + 1) % 4] - a;
-        return cross(d, x - a) / length(d) - kInside;
-    };
+    Vec2 unit[4];
+    for (int e = 0; e < 4; ++e) unit[e] = normalize(q[(e + 1) % 4] - q[e]);
+    auto depth = [&](Vec2 x, int e) { return cross(unit[e], x - q[e]) - kInside; };
+    // Most rings lie wholly outside one of the quad's edges: nothing to cut.
+    for (int e = 0; e < 4; ++e) {
+        bool outside = true;
+        for (Vec2 p : ring) outside = outside && depth(p, e) <= 0;
+        if (outside) return false;
+    }
     auto inside = [&](Vec2 x) {
         for (int e = 0; e < 4; ++e)
             if (depth(x, e) <= 0) return false;
@@ -309,9 +315,10 @@ Ring cut_away_quad(const Ring& ring, const Ring& q) {
     size_t start = m;
     for (size_t i = 0; i < m && start == m; ++i)
         if (!inside(ring[i])) start = i;
-    if (start == m) return {};  // wholly inside the quad
-    Ring out;
+    out.clear();
+    if (start == m) return true;  // wholly inside the quad
     int entered = -1;  // the quad edge the ring entered through, while inside
+    bool cut = false;
     for (size_t k = 0; k < m; ++k) {
         const Vec2 a = ring[(start + k) % m], b = ring[(start + k + 1) % m];
         if (entered < 0) out.push_back(a);
@@ -322,6 +329,7 @@ Ring cut_away_quad(const Ring& ring, const Ring& q) {
             if (e0 < 0) continue;  // numerically on the boundary
             out.push_back(a + (b - a) * t0);
             entered = e0;
+            cut = true;
         }
         if (e1 >= 0) {
             for (int e = entered; e != e1; e = (e + 3) % 4) out.push_back(q[e]);
@@ -329,7 +337,7 @@ Ring cut_away_quad(const Ring& ring, const Ring& q) {
             entered = -1;
         }
     }
-    return out;
+    return cut;
 }
 
 // Finishes a joint once every quad is known: the parts of the joint's ring inside the
@@ -343,41 +351,70 @@ void finish_joint(NodeLayout& node, const std::vector<Ring>& raw_rings, const st
     auto valid = [](const Ring& ring) {
         return ring.size() >= 3 && signed_area(ring) > kMinJointArea && ring_is_simple(ring);
     };
-    // Where a quad lies across the ring rather than dipping into it (a sliver of a quad
-    // inside a tangle), cutting it away would split the joint: that quad then stays.
-    auto apart_where_possible = [&](Ring ring) {
+    // Cuts the quads away where the ring reaches into them and adds up the overlap
+    // left. Where a quad lies across the ring rather than dipping into it (a sliver of a
+    // quad inside a tangle), cutting it away would split the joint: that quad then stays.
+    auto apart = [&](Ring ring, double& overlap) {
+        overlap = 0;
+        Ring cut;
         for (const NodeLayout::End& end : node.ends) {
-            if (quads[end.edge].empty()) continue;
-            Ring cut = without_spikes(cut_away_quad(ring, quads[end.edge]));
+            const Ring& q = quads[end.edge];
+            if (q.empty() || !cut_away_quad(ring, q, cut)) continue;
+            cut = without_spikes(std::move(cut));
             if (valid(cut)) ring = std::move(cut);
+            else overlap += clipped_area(ring, q);
         }
         return ring;
     };
-    std::vector<Ring> candidates;
-    for (const Ring& raw : raw_rings) candidates.push_back(without_spikes(raw));
-    const size_t exact = candidates.size();
-    Ring star = candidates[0];
+    // Holes left beside a quad: of nine points just beyond its end, those neither in the
+    // joint nor in another quad of the node.
+    auto holes = [&](const Ring& joint) {
+        int count = 0;
+        for (const NodeLayout::End& end : node.ends) {
+            const Ring& q = quads[end.edge];
+            if (q.empty()) continue;
+            const Vec2 c1 = end.at_from ? q[0] : q[1], c2 = end.at_from ? q[3] : q[2];
+            const Vec2 beyond = normalize((c1 + c2) * 0.5 - (q[0] + q[1] + q[2] + q[3]) * 0.25) * 0.01;
+            for (int s = 1; s < 10; ++s) {
+                const Vec2 p = c1 + (c2 - c1) * (s / 10.0) + beyond;
+                bool covered = point_in_ring(p, joint);
+                for (const NodeLayout::End& other : node.ends)
+                    covered = covered || (other.edge != end.edge && !quads[other.edge].empty() &&
+                                          point_in_ring(p, quads[other.edge]));
+                count += !covered;
+            }
+        }
+        return count;
+    };
+    // The candidates in order: the exact ring, the fallback ring where cuts cross, the
+    // star, the convex hull. The first that fits its quads exactly once they are cut
+    // out is kept; failing that, the one with the least overlap and fewest holes.
+    constexpr double kHoleCost = 0.1;  // square metres of overlap one hole sample weighs
+    double least = 1e300;
+    const Ring ring = without_spikes(raw_rings[0]);
+    auto consider = [&](const Ring& candidate, bool is_hull) {
+        if (!valid(candidate)) return false;
+        double overlap;
+        Ring joint = apart(candidate, overlap);
+        // A ring with no crossing cuts leaves holes only where quads overlap it.
+        const bool may_leave_holes = overlap > 0 || raw_rings.size() > 1 || is_hull;
+        const double badness = (overlap < kMinJointArea ? 0 : overlap) + (may_leave_holes ? kHoleCost * holes(joint) : 0);
+        if (badness >= least) return false;
+        least = badness;
+        node.joint = std::move(joint);
+        node.joint_is_hull = is_hull;
+        return badness == 0;
+    };
+    if (consider(ring, false)) return;
+    for (size_t r = 1; r < raw_rings.size(); ++r)
+        if (consider(without_spikes(raw_rings[r]), false)) return;
+    Ring star = ring;
     std::sort(star.begin(), star.end(), [&](Vec2 a, Vec2 b) {
         return std::atan2(a.y - node.position.y, a.x - node.position.x) <
                std::atan2(b.y - node.position.y, b.x - node.position.x);
     });
-    candidates.push_back(star);
-    candidates.push_back(convex_hull(candidates[0]));
-    // The first candidate that cuts away cleanly; failing that, the one that overlaps
-    // its quads least once cut where possible.
-    double least_overlap = 1e300;
-    for (size_t c = 0; c < candidates.size(); ++c) {
-        if (!valid(candidates[c])) continue;
-        Ring joint = apart_where_possible(candidates[c]);
-        double overlap = 0;
-        for (const NodeLayout::End& end : node.ends)
-            if (!quads[end.edge].empty()) overlap += clipped_area(joint, quads[end.edge]);
-        if (overlap >= least_overlap - 1e-9) continue;
-        least_overlap = overlap;
-        node.joint = std::move(joint);
-        node.joint_is_hull = c >= exact;
-        if (overlap < kMinJointArea) return;
-    }
+    if (consider(star, true)) return;
+    consider(convex_hull(ring), true);
 }
 
 bool quad_is_valid(const Ring& q) {

@@ -49,8 +49,8 @@ void check_extract(const std::string& relative, JoinLimits limits) {
 
 }  // namespace
 
-TEST(RoadRealData, Monaco) { check_extract("monaco.osm.pbf", {21, 12}); }
-TEST(RoadRealData, MonacoXml) { check_extract("monaco.osm.bz2", {21, 12}); }
+TEST(RoadRealData, Monaco) { check_extract("monaco.osm.pbf", {18, 13}); }
+TEST(RoadRealData, MonacoXml) { check_extract("monaco.osm.bz2", {18, 13}); }
 TEST(RoadRealData, Neukolln) { check_extract("osm2streets/neukolln/input.osm", {0, 0}); }
 TEST(RoadRealData, MontlakeRoundabout) { check_extract("osm2streets/montlake_roundabout/input.osm", {1, 0}); }
 TEST(RoadRealData, QuadIntersection) { check_extract("osm2streets/quad_intersection/input.osm", {2, 0}); }
