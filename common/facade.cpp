@@ -38,6 +38,7 @@ enum Salt : uint64_t {
 constexpr double kMinFloorHeight = 2.4;
 constexpr double kMinSlotWidth = 1.6;
 constexpr double kRoomInset = 0.08;
+constexpr double kMinRoomDepth = 0.2;  // even at the sharpest corner a window shows some room
 
 }  // namespace
 
@@ -82,6 +83,13 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     layout.recess = 0.12 + 0.13 * building_unit(kRecess);
     layout.room_depth = 1.8 + 0.8 * building_unit(kRoomDepth);
     layout.room_inset = kRoomInset;
+    // At an acute corner the neighbouring wall runs in behind the end cells at w = u * tan(angle):
+    // keep the room boxes (which start edge_margin + inset from the corner) in front of it.
+    const double corner = std::min(wall.start_angle, wall.end_angle);
+    if (corner < 0.5 * 3.141592653589793) {
+        const double deepest = 0.9 * (edge_margin + kRoomInset) * std::tan(corner);  // 10% to spare
+        layout.room_depth = std::clamp(deepest - layout.recess, kMinRoomDepth, layout.room_depth);
+    }
 
     // Window: centred in its slot, at least 0.25 m of wall either side and 0.35 m above.
     const double window_width = std::min(1.0 + 0.6 * building_unit(kWindowWidth), slot_width - 0.5);
@@ -144,7 +152,7 @@ CellRect offset(CellRect r, double du, double dv) { return {r.u0 + du, r.u1 + du
 
 }  // namespace
 
-int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out) {
+int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out, int* layer_end) {
     const double cu = layout.grid_u0 + slot * layout.slot_width;
     const double cv = layout.grid_v0 + floor * layout.floor_height;
     const CellRect cell{cu, cu + layout.slot_width, cv, cv + layout.floor_height};
@@ -160,27 +168,11 @@ int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out) {
     const double back = d + layout.room_depth;
     const double inset = layout.room_inset;
     const CellRect room{cell.u0 + inset, cell.u1 - inset, cell.v0 + inset, cell.v1 - inset};
-
+    int layer_ends[kCellLayers];
     int n = 0;
-    // Facade plane around the opening, seen from outside.
-    n += frame_around(0.0, cell, opening, -1, FacadeSurface::Wall, out + n);
-    // Reveals: the four sides of the recess, facing into the opening.
-    out[n++] = u_plane(opening.u0, opening.v0, opening.v1, 0.0, d, +1, FacadeSurface::Reveal);
-    out[n++] = u_plane(opening.u1, opening.v0, opening.v1, 0.0, d, -1, FacadeSurface::Reveal);
-    out[n++] = v_plane(opening.v0, opening.u0, opening.u1, 0.0, d, +1, FacadeSurface::Reveal);
-    out[n++] = v_plane(opening.v1, opening.u0, opening.u1, 0.0, d, -1, FacadeSurface::Reveal);
-    // The pane at the bottom of the recess.
-    out[n++] = w_plane(d, opening.u0, opening.u1, opening.v0, opening.v1, -1, pane);
-    // Room box behind the pane, every face seen from inside the room.
-    n += frame_around(d, room, opening, +1, FacadeSurface::Room, out + n);
-    out[n++] = w_plane(back, room.u0, room.u1, room.v0, room.v1, -1, FacadeSurface::Room);
-    out[n++] = u_plane(room.u0, room.v0, room.v1, d, back, +1, FacadeSurface::Room);
-    out[n++] = u_plane(room.u1, room.v0, room.v1, d, back, -1, FacadeSurface::Room);
-    out[n++] = v_plane(room.v0, room.u0, room.u1, d, back, +1, FacadeSurface::Room);
-    out[n++] = v_plane(room.v1, room.u0, room.u1, d, back, -1, FacadeSurface::Room);
 
+    // Layer 0: a slab at the bottom of the cell sticking out of the wall, a railing round its edge.
     if (kind == CellKind::Balcony) {
-        // Slab at the bottom of the cell sticking out of the wall, a railing around its edge.
         const double bu0 = cell.u0 + layout.balcony_margin, bu1 = cell.u1 - layout.balcony_margin;
         const double front = -layout.balcony_depth;
         const double top = cv + layout.slab_thickness;
@@ -194,6 +186,30 @@ int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out) {
         out[n++] = u_plane(bu0, top, rail, front, 0.0, -1, FacadeSurface::Fence);
         out[n++] = u_plane(bu1, top, rail, front, 0.0, +1, FacadeSurface::Fence);
     }
+    layer_ends[0] = n;
+    // Layer 1: the facade plane around the opening, seen from outside.
+    n += frame_around(0.0, cell, opening, -1, FacadeSurface::Wall, out + n);
+    layer_ends[1] = n;
+    // Layer 2: reveals, the four sides of the recess, facing into the opening.
+    out[n++] = u_plane(opening.u0, opening.v0, opening.v1, 0.0, d, +1, FacadeSurface::Reveal);
+    out[n++] = u_plane(opening.u1, opening.v0, opening.v1, 0.0, d, -1, FacadeSurface::Reveal);
+    out[n++] = v_plane(opening.v0, opening.u0, opening.u1, 0.0, d, +1, FacadeSurface::Reveal);
+    out[n++] = v_plane(opening.v1, opening.u0, opening.u1, 0.0, d, -1, FacadeSurface::Reveal);
+    layer_ends[2] = n;
+    // Layer 3: the pane at the bottom of the recess, and the room's front wall around it (seen
+    // from inside the room, like every room face).
+    out[n++] = w_plane(d, opening.u0, opening.u1, opening.v0, opening.v1, -1, pane);
+    n += frame_around(d, room, opening, +1, FacadeSurface::Room, out + n);
+    layer_ends[3] = n;
+    // Layer 4: the rest of the room box behind the pane.
+    out[n++] = w_plane(back, room.u0, room.u1, room.v0, room.v1, -1, FacadeSurface::Room);
+    out[n++] = u_plane(room.u0, room.v0, room.v1, d, back, +1, FacadeSurface::Room);
+    out[n++] = u_plane(room.u1, room.v0, room.v1, d, back, -1, FacadeSurface::Room);
+    out[n++] = v_plane(room.v0, room.u0, room.u1, d, back, +1, FacadeSurface::Room);
+    out[n++] = v_plane(room.v1, room.u0, room.u1, d, back, -1, FacadeSurface::Room);
+    layer_ends[4] = n;
+    if (layer_end)
+        for (int i = 0; i < kCellLayers; ++i) layer_end[i] = layer_ends[i];
     return n;
 }
 
@@ -235,13 +251,44 @@ void building_wall(const Building& building, size_t index, Vec2* a, Vec2* b) {
         index -= ring->size();
         ring = &building.holes[hole++];
     }
-    *a = (*ring)[index];
-    *b = (*ring)[(index + 1) % ring->size()];
+    // Walk outer rings counter-clockwise and holes clockwise whatever the file says, so that the
+    // building is always on the left (+w) of a wall.
+    const size_t n = ring->size();
+    const bool counter_clockwise = signed_area(*ring) > 0;
+    if (counter_clockwise == (ring == &building.outer)) {
+        *a = (*ring)[index];
+        *b = (*ring)[(index + 1) % n];
+    } else {
+        *a = (*ring)[n - 1 - index];
+        *b = (*ring)[(2 * n - 2 - index) % n];
+    }
 }
+
+namespace {
+
+// Interior angle at `corner` between the footprint edges to `ahead` and back to `behind`, with
+// the building on the left of behind -> corner -> ahead: in (0, 2 pi).
+double interior_angle(Vec2 behind, Vec2 corner, Vec2 ahead) {
+    const Vec2 out = ahead - corner, back = behind - corner;
+    double angle = std::atan2(cross(out, back), dot(out, back));
+    if (angle <= 0) angle += 2 * 3.141592653589793;
+    return angle;
+}
+
+}  // namespace
 
 WallInput building_wall_input(const Building& building, size_t index) {
     Vec2 a, b;
     building_wall(building, index, &a, &b);
+    // The neighbours of this wall in the same ring (walls are numbered ring by ring).
+    size_t first = 0, count = building.outer.size();
+    for (size_t h = 0; index >= first + count && h < building.holes.size(); ++h) {
+        first += count;
+        count = building.holes[h].size();
+    }
+    Vec2 before, unused, after;
+    building_wall(building, first + (index - first + count - 1) % count, &before, &unused);
+    building_wall(building, first + (index - first + 1) % count, &unused, &after);
     WallInput wall;
     wall.building_key = facade_building_key(building);
     wall.wall_index = static_cast<uint32_t>(index);
@@ -249,6 +296,8 @@ WallInput building_wall_input(const Building& building, size_t index) {
     wall.bottom_z = building.min_height;
     wall.height = building.height - building.min_height;
     wall.levels = building.levels;
+    if (a != before) wall.start_angle = interior_angle(before, a, b);
+    if (b != after) wall.end_angle = interior_angle(a, b, after);
     return wall;
 }
 

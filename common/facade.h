@@ -47,6 +47,9 @@ struct WallInput {
     double bottom_z = 0;        // building min_height
     double height = 0;          // top minus bottom
     int levels = 0;             // tagged building:levels, 0 when unknown
+    // Interior angles (radians) of the footprint at the wall's two ends; below a right angle
+    // the neighbouring wall cuts in behind this one, so room boxes must be shallower.
+    double start_angle = 3.141592653589793, end_angle = 3.141592653589793;
 };
 
 // An opening (or any rectangle) in cell-relative (u, v): [u0, u1] x [v0, v1].
@@ -94,18 +97,27 @@ CellKind cell_kind(const WallLayout& layout, int floor, int slot);
 // An axis-aligned rectangle in wall-local space: coordinate `axis` (0 u, 1 v, 2 w) equals `at`,
 // the other two coordinates (in increasing axis order) lie in [a0, a1] x [b0, b1]. The surface
 // normal is +/- the axis direction (normal_sign); it faces the side the surface is seen from.
+// No default member values on purpose: arrays of them sit on the intersector's stack for
+// every ray and must cost nothing to declare.
 struct FacadeRect {
-    double at = 0, a0 = 0, a1 = 0, b0 = 0, b1 = 0;
-    uint8_t axis = 2;
-    int8_t normal_sign = -1;
-    FacadeSurface surface = FacadeSurface::Wall;
+    double at, a0, a1, b0, b1;
+    uint8_t axis;
+    int8_t normal_sign;
+    FacadeSurface surface;
 };
 
 constexpr int kMaxCellRects = 32;
 constexpr int kMaxMarginRects = 4;
 
-// The rectangles of one cell (all inside the cell's u, v rectangle). Returns the count.
-int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out);
+// A cell's rectangles come in layers ordered by w: balcony (w <= 0), facade plane (w = 0),
+// reveals (0 <= w <= recess), pane and room front (w = recess), room (w >= recess). A ray
+// moving in +w meets the layers in this order (and in reverse moving in -w), so the intersector
+// can stop after the first layer it hits.
+constexpr int kCellLayers = 5;
+
+// The rectangles of one cell (all inside the cell's u, v rectangle), layer after layer.
+// Returns the count; layer_end (optional, kCellLayers entries) receives where each layer ends.
+int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out, int* layer_end = nullptr);
 // The plain facade outside the cell grid (or the whole wall when plain). Returns the count.
 int margin_rects(const WallLayout& layout, FacadeRect* out);
 
@@ -131,7 +143,8 @@ WallFrame wall_frame(Vec2 a, Vec2 b, double bottom_z);
 
 // Walls of a building: outer ring edges, then every hole's edges.
 size_t building_wall_count(const Building& building);
-// Endpoints of wall `index` (edge from a to b).
+// Endpoints of wall `index` (edge from a to b), the building on its left (outer rings walked
+// counter-clockwise, holes clockwise, whatever their orientation in the file).
 void building_wall(const Building& building, size_t index, Vec2* a, Vec2* b);
 // The rules' input for wall `index` of a building.
 WallInput building_wall_input(const Building& building, size_t index);

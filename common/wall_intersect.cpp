@@ -72,10 +72,18 @@ bool walk_wall(const WallLayout& layout, const LocalRay& ray, double tmin, doubl
     ++stats.calls;
     FacadeRect rects[kMaxCellRects];
 
-    // 1. The plain facade outside the grid: a handful of rectangles on the plane w = 0.
+    // 1. Most rays that reach a wall primitive only pass its bounding box: leave unless the ray
+    // crosses the wall's own slab (slightly padded so surfaces on its faces are not missed).
+    const double pad = 1e-9 * (1.0 + layout.length + layout.height);
+    double s0 = tmin, s1 = *t_best;
+    if (!clip_axis(ray, 2, layout.w_min() - pad, layout.w_max() + pad, &s0, &s1)) return false;
+    if (!clip_axis(ray, 0, -pad, layout.length + pad, &s0, &s1)) return false;
+    if (!clip_axis(ray, 1, -pad, layout.height + pad, &s0, &s1)) return false;
+
+    // 2. The plain facade outside the grid: a handful of rectangles on the plane w = 0.
     bool hit = false;
     int n = margin_rects(layout, rects);
-    stats.rects += n;
+    stats.rects += static_cast<uint64_t>(n);
     for (int i = 0; i < n; ++i) {
         if (hit_rect(rects[i], ray, tmin, t_best)) {
             hit = true;
@@ -86,14 +94,13 @@ bool walk_wall(const WallLayout& layout, const LocalRay& ray, double tmin, doubl
     }
     if (layout.plain()) return hit;
 
-    // 2. Clip to the grid's box (slightly padded so surfaces on its faces are not missed).
-    const double pad = 1e-9 * (1.0 + layout.length + layout.height);
+    // 3. Clip to the grid's box.
     double t0 = tmin, t1 = *t_best;
     if (!clip_axis(ray, 0, layout.grid_u0 - pad, layout.grid_u1() + pad, &t0, &t1)) return hit;
     if (!clip_axis(ray, 1, layout.grid_v0 - pad, layout.grid_v1() + pad, &t0, &t1)) return hit;
     if (!clip_axis(ray, 2, layout.w_min() - pad, layout.w_max() + pad, &t0, &t1)) return hit;
 
-    // 3. 2D DDA over (slot, floor) from where the ray enters the box. All geometry of a cell lies
+    // 4. 2D DDA over (slot, floor) from where the ray enters the box. All geometry of a cell lies
     // inside the cell's (u, v) rectangle, so the first cell with a hit holds the nearest hit.
     const double sw = layout.slot_width, fh = layout.floor_height;
     const double u_enter = ray.o[0] + ray.d[0] * t0, v_enter = ray.o[1] + ray.d[1] * t0;
@@ -112,17 +119,26 @@ bool walk_wall(const WallLayout& layout, const LocalRay& ray, double tmin, doubl
     double t_u = next_u(), t_v = next_v();
     for (;;) {
         ++stats.cells;
-        n = cell_rects(layout, floor, slot, rects);
-        stats.rects += n;
+        int layer_end[kCellLayers];
+        n = cell_rects(layout, floor, slot, rects, layer_end);
+        // Layers in the order the ray meets them; after a layer with a hit, later layers can only
+        // be farther. A ray parallel to the wall plane has no order: test everything.
         bool cell_hit = false;
-        for (int i = 0; i < n; ++i) {
-            if (hit_rect(rects[i], ray, tmin, t_best)) {
-                cell_hit = true;
-                found->copy = rects[i];
-                found->floor = floor;
-                found->slot = slot;
-                if (any_hit) return true;
+        for (int step = 0; step < kCellLayers && !cell_hit; ++step) {
+            const int layer = ray.d[2] < 0 ? kCellLayers - 1 - step : step;
+            const int begin = layer == 0 ? 0 : layer_end[layer - 1];
+            const int end = ray.d[2] == 0 ? n : layer_end[layer];
+            for (int i = begin; i < end; ++i) {
+                ++stats.rects;
+                if (hit_rect(rects[i], ray, tmin, t_best)) {
+                    cell_hit = true;
+                    found->copy = rects[i];
+                    found->floor = floor;
+                    found->slot = slot;
+                    if (any_hit) return true;
+                }
             }
+            if (ray.d[2] == 0) break;
         }
         if (cell_hit) return true;
         if (std::min(t_u, t_v) > std::min(t1, *t_best)) return hit;

@@ -1,0 +1,29 @@
+#include "build_render_scene.h"
+
+#include <string>
+
+#include "procedural_geometry.h"
+#include "stored_geometry.h"
+
+namespace citygen {
+
+std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes,
+                                                const FacadeOptions& facades) {
+    auto render_scene = std::make_unique<RenderScene>();
+    auto stored = [](TriangleMesh mesh) { return std::make_unique<StoredMeshGeometry>(std::move(mesh)); };
+    auto procedural = [&](GeometryClass c) { return modes[c] == GeometryMode::Procedural; };
+    if (procedural(GeometryClass::Buildings)) render_scene->add(build_procedural_buildings(scene, facades));
+    else render_scene->add(stored(build_stored_buildings(scene, facades)));
+    if (procedural(GeometryClass::Terrain)) render_scene->add(build_procedural_terrain(scene));
+    else render_scene->add(stored(build_stored_terrain(scene)));
+    if (procedural(GeometryClass::Roads)) render_scene->add(build_procedural_roads(scene));
+    else render_scene->add(stored(build_stored_roads(scene)));
+    if (procedural(GeometryClass::Joints)) render_scene->add(build_procedural_joints(scene));
+    else render_scene->add(stored(build_stored_joints(scene)));
+    if (procedural(GeometryClass::Sidewalks)) render_scene->add(build_procedural_sidewalks(scene));
+    else render_scene->add(stored(build_stored_sidewalks(scene)));
+    render_scene->commit();
+    return render_scene;
+}
+
+}  // namespace citygen

@@ -1,0 +1,103 @@
+#include "image_output.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <cerrno>
+#include <memory>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "error.h"
+
+namespace citygen {
+
+namespace {
+
+std::string lower_extension(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    const size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string ext = path.substr(dot + 1);
+    for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return ext;
+}
+
+float srgb_encode(float v) {
+    v = std::clamp(v, 0.f, 1.f);
+    return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1 / 2.4f) - 0.055f;
+}
+
+}  // namespace
+
+ImageFormat image_format_for(const std::string& path) {
+    const std::string ext = lower_extension(path);
+    if (ext == "png") return ImageFormat::Png;
+    if (ext == "jpg" || ext == "jpeg") return ImageFormat::Jpeg;
+    if (ext == "exr") return ImageFormat::Exr;
+    throw Error(path + ": unknown image extension (use .png, .jpg or .exr)");
+}
+
+float tone_map(float linear, double exposure) {
+    const double x = std::max(0.0, static_cast<double>(linear) * exposure);
+    return srgb_encode(static_cast<float>(1 - std::exp(-x)));
+}
+
+void write_image(const Film& film, const std::string& path, double exposure) {
+    using namespace OIIO;
+    const ImageFormat format = image_format_for(path);
+    const size_t pixels = static_cast<size_t>(film.width) * film.height;
+    const std::string ext = path.substr(path.find_last_of('.'));
+    const std::string tmp = path.substr(0, path.size() - ext.size()) + ".tmp" + std::to_string(::getpid()) + ext;
+
+    std::vector<float> data;
+    ImageSpec spec;
+    if (format == ImageFormat::Exr) {
+        std::vector<std::string> names{"R", "G", "B"};
+        const bool aovs = !film.depth.empty();
+        if (aovs)
+            names.insert(names.end(), {"Z", "N.X", "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B", "id.kind",
+                                       "id.index"});
+        const int channels = static_cast<int>(names.size());
+        spec = ImageSpec(film.width, film.height, channels, TypeDesc::FLOAT);
+        spec.channelnames = names;
+        spec.z_channel = aovs ? 3 : -1;
+        spec.attribute("compression", "zip");
+        data.resize(pixels * channels);
+        for (size_t i = 0; i < pixels; ++i) {
+            float* p = &data[i * channels];
+            for (int c = 0; c < 3; ++c) p[c] = static_cast<float>(film.rgb[3 * i + c] * exposure);
+            if (!aovs) continue;
+            p[3] = film.depth[i];
+            for (int c = 0; c < 3; ++c) p[4 + c] = film.normal[3 * i + c];
+            for (int c = 0; c < 3; ++c) p[7 + c] = film.albedo[3 * i + c];
+            p[10] = film.object_kind[i];
+            p[11] = film.object_index[i];
+        }
+    } else {
+        spec = ImageSpec(film.width, film.height, 3, TypeDesc::UINT8);
+        if (format == ImageFormat::Jpeg) spec.attribute("Compression", "jpeg:92");
+        data.resize(pixels * 3);
+        for (size_t i = 0; i < 3 * pixels; ++i) data[i] = tone_map(film.rgb[i], exposure);
+    }
+
+    auto out = ImageOutput::create(tmp);
+    bool ok = out && out->open(tmp, spec) && out->write_image(TypeDesc::FLOAT, data.data());
+    std::string reason = out ? out->geterror() : OIIO::geterror();
+    if (out) ok = out->close() && ok;
+    if (ok && std::rename(tmp.c_str(), path.c_str()) != 0) {
+        ok = false;
+        reason = std::strerror(errno);
+    }
+    if (!ok) {
+        std::remove(tmp.c_str());
+        if (reason.empty()) reason = "write failed";
+        const size_t newline = reason.find('\n');
+        throw Error(path + ": cannot write image (" + reason.substr(0, newline) + ")");
+    }
+}
+
+}  // namespace citygen

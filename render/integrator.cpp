@@ -1,0 +1,97 @@
+#include "integrator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "bsdf.h"
+
+namespace citygen {
+
+namespace {
+
+double power_heuristic(double a, double b) {
+    const double a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0 ? a2 / (a2 + b2) : 0;
+}
+
+bool finite(Color c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
+
+}  // namespace
+
+Vec3 offset_origin(Vec3 position, Vec3 normal) {
+    const double scale = std::max({std::fabs(position.x), std::fabs(position.y), std::fabs(position.z)});
+    return position + normal * (1e-4 + 2e-6 * scale);
+}
+
+Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) {
+    const Sky& sky = context.sky;
+    const IntegratorSettings& settings = context.settings;
+    const double sun_pdf = sky.has_sun() ? 1 / sky.sun_solid_angle() : 0;
+    Color radiance{0, 0, 0}, throughput{1, 1, 1};
+    bool previous_delta = true;  // the camera ray counts as delta: it sees the sun at full weight
+    double previous_pdf = 0;
+
+    for (int bounce = 0;; ++bounce) {
+        Hit hit;
+        ++rays;
+        if (!context.scene.intersect(ray, hit)) {
+            radiance = radiance + throughput * sky.radiance(ray.direction, previous_delta);
+            if (sky.in_sun_disc(ray.direction)) {
+                const double w =
+                    previous_delta || !settings.sample_sun ? 1 : power_heuristic(previous_pdf, sun_pdf);
+                radiance = radiance + throughput * sky.sun_radiance() * w;
+            }
+            break;
+        }
+        const Material& material = context.materials[hit.material];
+        const Vec3 wo = -ray.direction;
+        const bool front = dot(hit.geometric_normal, wo) > 0;
+        if (front) radiance = radiance + throughput * material.emission;
+        if (bounce >= settings.max_depth) break;
+
+        // Normal on the side the ray came from; glass wants the true outward normal.
+        const Vec3 n = front ? hit.geometric_normal : -hit.geometric_normal;
+        const bool delta = is_delta(material);
+
+        if (!delta && sky.has_sun() && settings.sample_sun) {
+            const Vec3 wi = sample_cone(sky.sun_direction(), sky.sun_cos_radius(), rng.next_double(),
+                                        rng.next_double());
+            const double cos_i = dot(n, wi);
+            if (cos_i > 0) {
+                const Color f = bsdf_eval(material, n, wo, wi);
+                if (f.x + f.y + f.z > 0) {
+                    Ray shadow{offset_origin(hit.position, n), wi, 0, 1e30};
+                    ++rays;
+                    if (!context.scene.occluded(shadow)) {
+                        const double w = power_heuristic(sun_pdf, bsdf_pdf(material, n, wo, wi));
+                        radiance = radiance + throughput * f * sky.sun_radiance() * (cos_i * w / sun_pdf);
+                    }
+                }
+            }
+        } else {
+            // Keep the random sequence aligned whatever the material, so images stay comparable.
+            rng.next_double();
+            rng.next_double();
+        }
+
+        BsdfSample sample;
+        const double u1 = rng.next_double(), u2 = rng.next_double(), u3 = rng.next_double();
+        const Vec3 scatter_normal = material.type == MaterialType::Glass ? hit.geometric_normal : n;
+        if (!bsdf_sample(material, scatter_normal, wo, u1, u2, u3, sample)) break;
+        throughput = throughput * sample.weight;
+        if (!finite(throughput) || throughput.x + throughput.y + throughput.z <= 0) break;
+        previous_delta = sample.delta;
+        previous_pdf = sample.pdf;
+
+        if (bounce + 1 >= settings.rr_depth) {
+            if (rng.next_double() >= settings.rr_prob) break;
+            throughput = throughput * (1 / settings.rr_prob);
+        }
+        // Leave on the side the new direction points to (reflection or transmission).
+        const Vec3 side = dot(sample.wi, hit.geometric_normal) > 0 ? hit.geometric_normal : -hit.geometric_normal;
+        ray = Ray{offset_origin(hit.position, side), sample.wi, 0, 1e30};
+    }
+    return radiance;
+}
+
+}  // namespace citygen

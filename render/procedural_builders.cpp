@@ -1,0 +1,83 @@
+// The procedural builders: the same surfaces as the stored builders (stored_buildings.cpp,
+// stored_flat_polygons.cpp), as user-geometry primitives instead of triangles.
+#include <algorithm>
+
+#include "facade_materials.h"
+#include "materials.h"
+#include "procedural_geometry.h"
+#include "stored_geometry.h"
+
+namespace citygen {
+
+namespace {
+
+ProceduralGeometry::SurfaceMaterials all_surfaces(uint16_t material) {
+    ProceduralGeometry::SurfaceMaterials m;
+    m.fill(material);
+    return m;
+}
+
+}  // namespace
+
+std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Building, facade_surface_materials());
+    const double ground = scene.ground.z;
+    for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
+        const Building& b = scene.buildings[index];
+        if (b.outer.size() < 3 || !(b.height > b.min_height)) continue;
+        const double bottom = ground + b.min_height, top = ground + b.height;
+        for (size_t w = 0, n = building_wall_count(b); w < n; ++w) {
+            Vec2 p, q;
+            building_wall(b, w, &p, &q);
+            if (p == q) continue;
+            geometry->add_wall(index, make_wall_layout(facades, building_wall_input(b, w)), wall_frame(p, q, bottom));
+        }
+        geometry->add_polygon(index, b.outer, b.holes, top, kRoof, +1);
+        if (b.min_height > 0) geometry->add_polygon(index, b.outer, b.holes, bottom, kFacade, -1);
+    }
+    return geometry;
+}
+
+std::unique_ptr<ProceduralGeometry> build_procedural_roads(const Scene& scene) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Road, all_surfaces(kAsphalt));
+    const double z = scene.ground.z + kRoadLift;
+    for (uint32_t i = 0; i < scene.roads.size(); ++i) geometry->add_polygon(i, scene.roads[i].quad, {}, z, kAsphalt);
+    return geometry;
+}
+
+std::unique_ptr<ProceduralGeometry> build_procedural_joints(const Scene& scene) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Joint, all_surfaces(kAsphalt));
+    const double z = scene.ground.z + kRoadLift;
+    for (uint32_t i = 0; i < scene.joints.size(); ++i)
+        geometry->add_polygon(i, scene.joints[i].polygon, {}, z, kAsphalt);
+    return geometry;
+}
+
+std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scene) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Sidewalk, all_surfaces(kCurb));
+    const double road = scene.ground.z + kRoadLift;
+    for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
+        const Sidewalk& s = scene.sidewalks[i];
+        if (s.polygon.size() < 3) continue;
+        Ring ring = s.polygon;
+        if (signed_area(ring) < 0) std::reverse(ring.begin(), ring.end());
+        const double top = road + std::max(0.0, s.curb_height);
+        geometry->add_polygon(i, ring, {}, top, kSidewalk);
+        if (top <= road) continue;
+        for (size_t k = 0, n = ring.size(); k < n; ++k) {
+            const Vec2 a = ring[k], b = ring[(k + 1) % n];
+            if (a == b) continue;
+            geometry->add_plain_wall(i, a, b, road, top - road);
+        }
+    }
+    return geometry;
+}
+
+std::unique_ptr<ProceduralGeometry> build_procedural_terrain(const Scene& scene) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Terrain, all_surfaces(kGround));
+    const Box2 e = terrain_extent(scene);
+    geometry->add_polygon(0, Ring{e.min, {e.max.x, e.min.y}, e.max, {e.min.x, e.max.y}}, {}, scene.ground.z, kGround);
+    return geometry;
+}
+
+}  // namespace citygen

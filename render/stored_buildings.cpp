@@ -1,0 +1,100 @@
+#include <algorithm>
+
+#include "facade_materials.h"
+#include "facade_mesh.h"
+#include "materials.h"
+#include "stored_geometry.h"
+#include "triangulate_polygon.h"
+
+namespace citygen {
+
+namespace {
+
+// The walls with their facades (common/facade.h): every window, balcony and shop front as
+// triangles. Wall i is the same wall the procedural mode intersects (building_wall), with the
+// building on its left, so each surface's front faces the side it is seen from.
+void add_facade_walls(const Building& b, uint32_t object, double bottom, const FacadeOptions& facades,
+                      FacadeMesh& scratch, TriangleMesh& mesh) {
+    static const auto materials = facade_surface_materials();
+    for (size_t w = 0, n = building_wall_count(b); w < n; ++w) {
+        Vec2 p, q;
+        building_wall(b, w, &p, &q);
+        if (p == q) continue;
+        scratch.clear();
+        append_wall_mesh(make_wall_layout(facades, building_wall_input(b, w)), wall_frame(p, q, bottom), scratch);
+        const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
+        for (Vec3 v : scratch.vertices) mesh.add_vertex(v);
+        for (size_t t = 0; t < scratch.triangles.size(); ++t) {
+            const auto& tri = scratch.triangles[t];
+            mesh.add_triangle(first + tri[0], first + tri[1], first + tri[2], object,
+                              materials[static_cast<int>(scratch.surfaces[t])]);
+        }
+    }
+}
+
+// Whether a building gets any geometry at all (the same test in both modes).
+bool has_volume(const Building& b) { return b.outer.size() >= 3 && b.height > b.min_height; }
+
+// Buffer sizes for all buildings (facades exact, roofs and undersides a bound), so the buffers
+// are allocated once instead of doubling: at tall heights they hold tens of millions of triangles.
+void reserve_buildings(const Scene& scene, const FacadeOptions& facades, TriangleMesh& mesh) {
+    size_t triangles = 0, vertices = 0;
+    for (const Building& b : scene.buildings) {
+        if (!has_volume(b)) continue;
+        size_t ring_points = b.outer.size();
+        for (const Ring& h : b.holes) ring_points += h.size();
+        for (size_t w = 0, n = building_wall_count(b); w < n; ++w) {
+            const size_t t = wall_triangle_count(make_wall_layout(facades, building_wall_input(b, w)));
+            triangles += t;
+            vertices += 2 * t;  // 4 vertices per rectangle of 2 triangles
+        }
+        triangles += 2 * (ring_points + 2 * b.holes.size());  // roof and underside
+        vertices += 2 * ring_points;
+    }
+    mesh.vertices.reserve(3 * vertices + 4);  // + Embree's padding
+    mesh.indices.reserve(3 * triangles);
+    mesh.face_object.reserve(triangles);
+    mesh.face_material.reserve(triangles);
+}
+
+Ring oriented(const Ring& ring, bool counter_clockwise) {
+    Ring r = ring;
+    if ((signed_area(r) > 0) != counter_clockwise) std::reverse(r.begin(), r.end());
+    return r;
+}
+
+}  // namespace
+
+TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& facades) {
+    TriangleMesh mesh;
+    mesh.kind = ObjectKind::Building;
+    reserve_buildings(scene, facades, mesh);
+    FacadeMesh scratch;
+    const double ground = scene.ground.z;
+    for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
+        const Building& b = scene.buildings[index];
+        if (!has_volume(b)) continue;
+        const double bottom = ground + b.min_height, top = ground + b.height;
+        const Ring outer = oriented(b.outer, true);
+        std::vector<Ring> holes;
+        for (const Ring& h : b.holes) holes.push_back(oriented(h, false));
+
+        add_facade_walls(b, index, bottom, facades, scratch, mesh);
+
+        const PolygonTriangulation roof = triangulate_polygon(outer, holes);
+        const uint32_t first_top = static_cast<uint32_t>(mesh.vertex_count());
+        for (Vec2 p : roof.points) mesh.add_vertex({p.x, p.y, top});
+        for (const auto& t : roof.triangles)
+            mesh.add_triangle(first_top + t[0], first_top + t[1], first_top + t[2], index, kRoof);
+        if (b.min_height > 0) {  // a floating part (bridge, overhang) needs an underside
+            const uint32_t first_bottom = static_cast<uint32_t>(mesh.vertex_count());
+            for (Vec2 p : roof.points) mesh.add_vertex({p.x, p.y, bottom});
+            for (const auto& t : roof.triangles)
+                mesh.add_triangle(first_bottom + t[0], first_bottom + t[2], first_bottom + t[1], index,
+                                  kFacade);
+        }
+    }
+    return mesh;
+}
+
+}  // namespace citygen

@@ -1,0 +1,33 @@
+// Stored-mode builders: one function per object class, each turning the scene's objects into
+// a triangle mesh whose faces remember (object index, material).
+#pragma once
+
+#include "facade.h"
+#include "scene.h"
+#include "triangle_mesh.h"
+
+namespace citygen {
+
+// Heights of the flat layers above the ground plane, so coplanar surfaces never fight.
+constexpr double kRoadLift = 0.02;
+
+// Walls from every ring (holes included) from min_height to height, carrying the facade rules
+// (windows, balconies, shop fronts; common/facade.h) as triangles, flat roof triangulated with
+// holes, and a floor when the building floats (min_height > 0).
+TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& facades);
+
+// Road quadrangles and joint polygons, flat just above the ground.
+TriangleMesh build_stored_roads(const Scene& scene);
+TriangleMesh build_stored_joints(const Scene& scene);
+
+// Sidewalk tops raised by their curb height, with vertical curb faces around each piece.
+TriangleMesh build_stored_sidewalks(const Scene& scene);
+
+// The ground plane: the scene's ground extent plus a wide margin, so the default view never
+// looks past its edge.
+TriangleMesh build_stored_terrain(const Scene& scene);
+
+// The rectangle build_stored_terrain covers (shared with the procedural terrain).
+Box2 terrain_extent(const Scene& scene);
+
+}  // namespace citygen
