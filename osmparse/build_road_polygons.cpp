@@ -1,6 +1,48 @@
 #include "build_road_polygons.h"
 
+#include <algorithm>
+
+#include "polygon_overlap.h"
+
 namespace citygen {
+
+namespace {
+
+double distance_to_boundary(Vec2 p, const Ring& ring) {
+    double best = 1e300;
+    for (size_t i = 0, n = ring.size(); i < n; ++i) {
+        const Vec2 a = ring[i], b = ring[(i + 1) % n], ab = b - a;
+        const double t = std::clamp(dot(p - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
+        best = std::min(best, length(p - (a + ab * t)));
+    }
+    return best;
+}
+
+// The widest hole (metres) just beyond the end of `roads[r]` at joint `j`: ground
+// covered by neither the joint nor another of its quads.
+double hole_beyond_end(const std::vector<RoadEdge>& roads, const Joint& joint, uint32_t r, bool at_from) {
+    const Ring& q = roads[r].quad;
+    const Vec2 c1 = at_from ? q[0] : q[1], c2 = at_from ? q[3] : q[2];
+    const Vec2 beyond = normalize((c1 + c2) * 0.5 - (q[0] + q[1] + q[2] + q[3]) * 0.25) * 0.01;
+    double hole = 0;
+    for (int k = 1; k < 10; ++k) {
+        const Vec2 p = c1 + (c2 - c1) * (k / 10.0) + beyond;
+        if (point_in_ring(p, joint.polygon)) continue;
+        double nearest = distance_to_boundary(p, joint.polygon);
+        for (uint32_t other : joint.edges) {
+            if (other == r) continue;
+            if (point_in_ring(p, roads[other].quad)) {
+                nearest = 0;
+                break;
+            }
+            nearest = std::min(nearest, distance_to_boundary(p, roads[other].quad));
+        }
+        hole = std::max(hole, nearest);
+    }
+    return hole;
+}
+
+}  // namespace
 
 std::vector<SideWidths> carriageway_widths(const RoadGraph& graph) {
     std::vector<SideWidths> w;
@@ -59,6 +101,16 @@ RoadSurface build_road_polygons(const RoadGraph& graph, const RoadParams& params
             if (road < 0) continue;
             j.edges.push_back(static_cast<uint32_t>(road));
             (end.at_from ? out.roads[road].from_joint : out.roads[road].to_joint) = index;
+        }
+        // Quads meet their joint edge to edge; what the layout could not achieve in a
+        // tangle of short edges is counted.
+        for (const NodeLayout::End& end : node.ends) {
+            const int road = out.road_of_edge[end.edge];
+            if (road < 0) continue;
+            if (hole_beyond_end(out.roads, j, static_cast<uint32_t>(road), end.at_from) > kJoinTolerance)
+                report.note("road joints", "a quad end leaves a hole over 1 cm");
+            if (clipped_area(j.polygon, out.roads[road].quad) > kJoinOverlapTolerance)
+                report.note("road joints", "a quad overlaps its joint by over 0.01 m2");
         }
         out.joints.push_back(std::move(j));
     }

@@ -12,6 +12,11 @@
 
 namespace citygen {
 
+// How exactly quads and joints meet: the widest hole beyond a quad's end (metres) and
+// the largest overlap of a quad with its joint (square metres).
+constexpr double kJoinTolerance = 0.01;
+constexpr double kJoinOverlapTolerance = 0.01;
+
 struct RoadSurface {
     std::vector<RoadEdge> roads;
     std::vector<Joint> joints;

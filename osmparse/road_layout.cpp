@@ -5,6 +5,8 @@
 #include <functional>
 #include <map>
 
+#include "polygon_overlap.h"
+
 namespace citygen {
 
 namespace {
@@ -105,9 +107,10 @@ double joint_demand(const std::vector<EndGeometry>& geo, size_t end) {
     return demand;
 }
 
-// The joint polygon of a node and each edge's square cut (thesis: sort by angle,
-// intersect neighbouring offset lines).
-void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
+// Each edge's cut at a node and the joint's ring (thesis: sort by angle, intersect
+// neighbouring offset lines), unfinished: finish_joint cuts the quads out of it once all
+// cuts are known. Returns the ring, and where cuts cross a smaller fallback ring.
+std::vector<Ring> layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
     const size_t k = node.ends.size();
     std::vector<double> demand_left(k, 0), demand_right(k, 0);
     std::vector<bool> cut_short(k, false);  // the corner of gap (i, i+1) was not reached
@@ -152,40 +155,68 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
     for (size_t i = 0; i < k && k > 1; ++i) {
         const size_t j = (i + 1) % k;
         if (!(cut_short[i] || cuts_cross(i)) || common_cut[i] || common_cut[j] || (k > 2 && cuts_cross(j))) continue;
+        // The least each end must keep cut: the corner on its other side (or the line
+        // it already shares with its other neighbour).
+        const size_t h = (i + k - 1) % k;
+        const double least[2] = {common_cut[h] ? node.ends[i].trim : demand_right[i], demand_left[j]};
+        // Candidate lines, each given by a point on it and its normal pointing away
+        // from the node: perpendicular to the gap's bisector beyond both square cuts;
+        // failing that (a short edge cannot be cut that far), the same beyond only
+        // what each end must keep, or the square cut line of one end carried across
+        // the other.
+        struct Line { Vec2 point, normal; };
+        std::vector<Line> candidates;
         const Vec2 b = normalize(geo[i].dir + geo[j].dir);
-        if (dot(geo[i].dir, b) <= 0.1 || dot(geo[j].dir, b) <= 0.1) continue;
-        double reach = -1e300;
-        for (size_t e : {i, j})
-            for (Vec2 p : {geo[e].right_at(node.ends[e].trim), geo[e].left_at(node.ends[e].trim)})
-                reach = std::max(reach, dot(p - node.position, b));
-        // Distance along an end's side line to the common line.
-        auto to_line = [&](const EndGeometry& g, Vec2 side_origin) {
-            return (reach - dot(side_origin - node.position, b)) / dot(g.dir, b);
-        };
-        bool fits = true;
-        double cuts[2][2];
-        for (int e = 0; e < 2; ++e) {
-            const EndGeometry& g = geo[e == 0 ? i : j];
-            cuts[e][0] = to_line(g, g.left_at(0));
-            cuts[e][1] = to_line(g, g.right_at(0));
-            fits = fits && std::min(cuts[e][0], cuts[e][1]) >= 0 && std::max(cuts[e][0], cuts[e][1]) <= g.limit;
+        if (dot(geo[i].dir, b) > 0.1 && dot(geo[j].dir, b) > 0.1) {
+            for (bool from_trim : {true, false}) {
+                double reach = -1e300;
+                for (int e = 0; e < 2; ++e) {
+                    const size_t end = e == 0 ? i : j;
+                    const double t = from_trim ? node.ends[end].trim : least[e];
+                    for (Vec2 p : {geo[end].right_at(t), geo[end].left_at(t)}) reach = std::max(reach, dot(p - node.position, b));
+                }
+                candidates.push_back({node.position + b * reach, b});
+            }
         }
-        if (!fits) continue;
+        candidates.push_back({geo[j].left_at(least[1]), geo[j].dir});
+        candidates.push_back({geo[i].left_at(least[0]), geo[i].dir});
+        bool found = false;
+        double cuts[2][2];
+        for (const Line& line : candidates) {
+            bool fits = true;
+            for (int e = 0; e < 2 && fits; ++e) {
+                const size_t end = e == 0 ? i : j;
+                const EndGeometry& g = geo[end];
+                const double along = dot(g.dir, line.normal);
+                if (along < 0.1) { fits = false; break; }
+                // Distance along the end's side lines to the line: never short of the
+                // end's square cut, never past what the edge can give.
+                cuts[e][0] = dot(line.point - g.left_at(0), line.normal) / along;
+                cuts[e][1] = dot(line.point - g.right_at(0), line.normal) / along;
+                fits = std::min(cuts[e][0], cuts[e][1]) >= least[e] - kDedupe &&
+                       std::max(cuts[e][0], cuts[e][1]) <= g.limit;
+            }
+            if (fits) { found = true; break; }
+        }
+        if (!found) continue;
         for (int e = 0; e < 2; ++e) {
             NodeLayout::End& end = node.ends[e == 0 ? i : j];
-            end.cut_left = cuts[e][0];
-            end.cut_right = cuts[e][1];
+            end.cut_left = std::max(cuts[e][0], least[e]);
+            end.cut_right = std::max(cuts[e][1], least[e]);
             end.trim = std::max(end.cut_left, end.cut_right);
         }
         common_cut[i] = true;
     }
-    // Any crossing left (a chain of near-parallel roads): the crossing point stands for
-    // both cut ends and the corner.
+    // Any crossing left (a chain of near-parallel roads): the ring takes the four cut
+    // ends in the order they lie around the node (the two cuts are its diagonals), and
+    // finish_joint cuts the two quads out of it.
     std::vector<bool> crosses(k, false);
     std::vector<Vec2> crossing(k);
     for (size_t i = 0; i < k && k > 1; ++i) {
-        if (common_cut[i]) continue;
         const size_t j = (i + 1) % k;
+        // Only a gap under a half turn has a corner to cross at (with two ends, the same
+        // two cuts would otherwise cross on both sides).
+        if (common_cut[i] || cross(geo[i].dir, geo[j].dir) <= 0) continue;
         const Vec2 ri = geo[i].right_at(node.ends[i].cut_right), li = geo[i].left_at(node.ends[i].cut_left);
         const Vec2 rj = geo[j].right_at(node.ends[j].cut_right), lj = geo[j].left_at(node.ends[j].cut_left);
         double s, u;
@@ -194,25 +225,45 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
             crossing[i] = ri + (li - ri) * s;
         }
     }
-    Ring ring;
-    for (size_t i = 0; i < k; ++i) {
-        NodeLayout::End& end = node.ends[i];
-        const size_t prev = (i + k - 1) % k;
-        push_distinct(ring, crosses[prev] ? crossing[prev] : geo[i].right_at(end.cut_right));
-        if (crosses[i]) {
-            end.gap_points = {crossing[i]};
-            push_distinct(ring, crossing[i]);
-            continue;
+    // With `at_crossing`, crossing cuts meet at their crossing point instead (smaller,
+    // but it can leave a hole beside either quad): the fallback where cutting the quads
+    // out of the larger ring fails.
+    auto ring_with = [&](bool at_crossing) {
+        Ring ring;
+        for (size_t i = 0; i < k; ++i) {
+            const NodeLayout::End& end = node.ends[i];
+            const size_t prev = (i + k - 1) % k;
+            if (!crosses[prev]) push_distinct(ring, geo[i].right_at(end.cut_right));
+            else if (at_crossing) push_distinct(ring, crossing[prev]);
+            if (crosses[i]) {
+                if (at_crossing) {
+                    push_distinct(ring, crossing[i]);
+                } else {
+                    push_distinct(ring, geo[(i + 1) % k].right_at(node.ends[(i + 1) % k].cut_right));
+                    push_distinct(ring, geo[i].left_at(end.cut_left));
+                }
+                continue;
+            }
+            push_distinct(ring, geo[i].left_at(end.cut_left));
+            if (!common_cut[i])
+                for (Vec2 q : end.gap_points) push_distinct(ring, q);
         }
-        push_distinct(ring, geo[i].left_at(end.cut_left));
-        if (common_cut[i]) {
-            end.gap_points.clear();  // the next end starts on the same line
-            continue;
-        }
-        for (Vec2 q : end.gap_points) push_distinct(ring, q);
-    }
+        return ring;
+    };
+    for (size_t i = 0; i < k; ++i)
+        if (common_cut[i]) node.ends[i].gap_points.clear();  // the next end starts on the same line
+    std::vector<Ring> rings{ring_with(false)};
+    if (std::find(crosses.begin(), crosses.end(), true) != crosses.end()) rings.push_back(ring_with(true));
+    return rings;
+}
+
+// A ring without repeated points or spikes (a vertex where the boundary runs out and
+// straight back along itself).
+Ring without_spikes(Ring ring) {
+    Ring out;
+    for (Vec2 p : ring) push_distinct(out, p);
+    ring = std::move(out);
     while (ring.size() > 1 && length(ring.front() - ring.back()) <= kDedupe) ring.pop_back();
-    // Drop spikes: a vertex where the boundary runs out and straight back along itself.
     for (bool removed = true; removed && ring.size() > 3;) {
         removed = false;
         for (size_t i = 0, m = ring.size(); i < m; ++i) {
@@ -224,29 +275,146 @@ void layout_joint(NodeLayout& node, const std::vector<EndGeometry>& geo) {
             }
         }
     }
+    return ring;
+}
+
+// The part of the CCW ring outside the convex CCW quad `q` into `out`, where the ring
+// only dips into the quad (a joint beside a neighbour's short quad, or a corner cut short
+// where two roads still overlap): each stretch inside is replaced by the quad's boundary,
+// walked clockwise from where the ring enters to where it leaves. False when the ring
+// does not reach into the quad (`out` is then not set).
+bool cut_away_quad(const Ring& ring, const Ring& q, Ring& out) {
+    constexpr double kInside = 1e-6;  // metres: closer to the quad's boundary is outside
+    Vec2 unit[4];
+    for (int e = 0; e < 4; ++e) unit[e] = normalize(q[(e + 1) % 4] - q[e]);
+    auto depth = [&](Vec2 x, int e) { return cross(unit[e], x - q[e]) - kInside; };
+    // Most rings lie wholly outside one of the quad's edges: nothing to cut.
+    for (int e = 0; e < 4; ++e) {
+        bool outside = true;
+        for (Vec2 p : ring) outside = outside && depth(p, e) <= 0;
+        if (outside) return false;
+    }
+    auto inside = [&](Vec2 x) {
+        for (int e = 0; e < 4; ++e)
+            if (depth(x, e) <= 0) return false;
+        return true;
+    };
+    // The stretch [t0, t1] of segment a-b inside q, entering through edge e0 and leaving
+    // through e1 (-1 where a, or b, is inside).
+    auto stretch_inside = [&](Vec2 a, Vec2 b, double& t0, double& t1, int& e0, int& e1) {
+        t0 = 0, t1 = 1, e0 = e1 = -1;
+        for (int e = 0; e < 4; ++e) {
+            const double fa = depth(a, e), fb = depth(b, e);
+            if (fa <= 0 && fb <= 0) return false;
+            if (fa <= 0 && fa / (fa - fb) > t0) t0 = fa / (fa - fb), e0 = e;
+            if (fb <= 0 && fa / (fa - fb) < t1) t1 = fa / (fa - fb), e1 = e;
+        }
+        return t0 < t1;
+    };
+    const size_t m = ring.size();
+    size_t start = m;
+    for (size_t i = 0; i < m && start == m; ++i)
+        if (!inside(ring[i])) start = i;
+    out.clear();
+    if (start == m) return true;  // wholly inside the quad
+    int entered = -1;  // the quad edge the ring entered through, while inside
+    bool cut = false;
+    for (size_t k = 0; k < m; ++k) {
+        const Vec2 a = ring[(start + k) % m], b = ring[(start + k + 1) % m];
+        if (entered < 0) out.push_back(a);
+        double t0, t1;
+        int e0, e1;
+        if (!stretch_inside(a, b, t0, t1, e0, e1)) continue;
+        if (entered < 0) {
+            if (e0 < 0) continue;  // numerically on the boundary
+            out.push_back(a + (b - a) * t0);
+            entered = e0;
+            cut = true;
+        }
+        if (e1 >= 0) {
+            for (int e = entered; e != e1; e = (e + 3) % 4) out.push_back(q[e]);
+            out.push_back(a + (b - a) * t1);
+            entered = -1;
+        }
+    }
+    return cut;
+}
+
+// Finishes a joint once every quad is known: the parts of the joint's ring inside the
+// quads of its own ends are cut away, so quads and joint meet edge to edge. Where that
+// fails (rare tangles of short edges), the fallback ring, then the points sorted by angle
+// around the node (a star-shaped polygon), then their convex hull are tried, and the
+// one overlapping its quads least is kept.
+void finish_joint(NodeLayout& node, const std::vector<Ring>& raw_rings, const std::vector<Ring>& quads) {
     node.joint.clear();
     node.joint_is_hull = false;
-    if (ring.size() >= 3 && signed_area(ring) > kMinJointArea && ring_is_simple(ring)) {
-        node.joint = ring;
-        return;
-    }
-    // Rare tangles of short edges: the points sorted by angle around the node form a
-    // star-shaped polygon, simple by construction; failing that, their convex hull.
+    auto valid = [](const Ring& ring) {
+        return ring.size() >= 3 && signed_area(ring) > kMinJointArea && ring_is_simple(ring);
+    };
+    // Cuts the quads away where the ring reaches into them and adds up the overlap
+    // left. Where a quad lies across the ring rather than dipping into it (a sliver of a
+    // quad inside a tangle), cutting it away would split the joint: that quad then stays.
+    auto apart = [&](Ring ring, double& overlap) {
+        overlap = 0;
+        Ring cut;
+        for (const NodeLayout::End& end : node.ends) {
+            const Ring& q = quads[end.edge];
+            if (q.empty() || !cut_away_quad(ring, q, cut)) continue;
+            cut = without_spikes(std::move(cut));
+            if (valid(cut)) ring = std::move(cut);
+            else overlap += clipped_area(ring, q);
+        }
+        return ring;
+    };
+    // Holes left beside a quad: of nine points just beyond its end, those neither in the
+    // joint nor in another quad of the node.
+    auto holes = [&](const Ring& joint) {
+        int count = 0;
+        for (const NodeLayout::End& end : node.ends) {
+            const Ring& q = quads[end.edge];
+            if (q.empty()) continue;
+            const Vec2 c1 = end.at_from ? q[0] : q[1], c2 = end.at_from ? q[3] : q[2];
+            const Vec2 beyond = normalize((c1 + c2) * 0.5 - (q[0] + q[1] + q[2] + q[3]) * 0.25) * 0.01;
+            for (int s = 1; s < 10; ++s) {
+                const Vec2 p = c1 + (c2 - c1) * (s / 10.0) + beyond;
+                bool covered = point_in_ring(p, joint);
+                for (const NodeLayout::End& other : node.ends)
+                    covered = covered || (other.edge != end.edge && !quads[other.edge].empty() &&
+                                          point_in_ring(p, quads[other.edge]));
+                count += !covered;
+            }
+        }
+        return count;
+    };
+    // The candidates in order: the exact ring, the fallback ring where cuts cross, the
+    // star, the convex hull. The first that fits its quads exactly once they are cut
+    // out is kept; failing that, the one with the least overlap and fewest holes.
+    constexpr double kHoleCost = 0.1;  // square metres of overlap one hole sample weighs
+    double least = 1e300;
+    const Ring ring = without_spikes(raw_rings[0]);
+    auto consider = [&](const Ring& candidate, bool is_hull) {
+        if (!valid(candidate)) return false;
+        double overlap;
+        Ring joint = apart(candidate, overlap);
+        // A ring with no crossing cuts leaves holes only where quads overlap it.
+        const bool may_leave_holes = overlap > 0 || raw_rings.size() > 1 || is_hull;
+        const double badness = (overlap < kMinJointArea ? 0 : overlap) + (may_leave_holes ? kHoleCost * holes(joint) : 0);
+        if (badness >= least) return false;
+        least = badness;
+        node.joint = std::move(joint);
+        node.joint_is_hull = is_hull;
+        return badness == 0;
+    };
+    if (consider(ring, false)) return;
+    for (size_t r = 1; r < raw_rings.size(); ++r)
+        if (consider(without_spikes(raw_rings[r]), false)) return;
     Ring star = ring;
     std::sort(star.begin(), star.end(), [&](Vec2 a, Vec2 b) {
         return std::atan2(a.y - node.position.y, a.x - node.position.x) <
                std::atan2(b.y - node.position.y, b.x - node.position.x);
     });
-    if (star.size() >= 3 && signed_area(star) > kMinJointArea && ring_is_simple(star)) {
-        node.joint = star;
-        node.joint_is_hull = true;
-        return;
-    }
-    Ring hull = convex_hull(ring);
-    if (hull.size() >= 3 && signed_area(hull) > kMinJointArea) {
-        node.joint = hull;
-        node.joint_is_hull = true;
-    }
+    if (consider(star, true)) return;
+    consider(convex_hull(ring), true);
 }
 
 bool quad_is_valid(const Ring& q) {
@@ -452,6 +620,7 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
     }
 
     // Pass 4: joint polygons with the shared-out cuts.
+    std::map<int64_t, std::vector<Ring>> raw_rings;
     for (auto& [id, node] : nodes) {
         if (node.kind != JoinKind::Joint || node.ends.empty()) continue;
         std::vector<EndGeometry> geo = geometry_at(node);
@@ -463,7 +632,7 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
                                              : from_allowed[end.edge] + from_fixed[end.edge];
             geo[i].limit = std::max(geo[i].max_cut, 0.9 * len - other);
         }
-        layout_joint(node, geo);
+        raw_rings[id] = layout_joint(node, geo);
         for (const NodeLayout::End& end : node.ends) cut_of(end) = {end.cut_left, end.cut_right};
     }
 
@@ -472,6 +641,8 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
         Ring q = quad_for_cuts(graph.edges[e], widths[e], out.from_cut[e], out.to_cut[e]);
         if (quad_is_valid(q)) out.quads[e] = std::move(q);
     }
+    for (auto& [id, node] : nodes)
+        if (node.kind == JoinKind::Joint && !node.ends.empty()) finish_joint(node, raw_rings[id], out.quads);
     out.nodes.reserve(nodes.size());
     for (auto& [id, node] : nodes) out.nodes.push_back(std::move(node));
     return out;

@@ -69,7 +69,13 @@ inline RoadCheckCounts check_road_network(const Scene& scene, bool strict_joins)
                 bool covered = point_in_ring(p, joint.polygon);
                 for (uint32_t other : joint.edges)
                     covered = covered || (other != r && point_in_ring(p, scene.roads[other].quad));
-                if (!covered) gap = std::max(gap, distance_to_boundary(p, joint.polygon));
+                if (covered) continue;
+                // How far the nearest surface is: the joint, or a neighbour's quad that
+                // overlaps beyond it.
+                double nearest = distance_to_boundary(p, joint.polygon);
+                for (uint32_t other : joint.edges)
+                    if (other != r) nearest = std::min(nearest, distance_to_boundary(p, scene.roads[other].quad));
+                gap = std::max(gap, nearest);
             }
             const double overlap = clipped_area(joint.polygon, road.quad);
             if (gap > 0.01) ++c.quad_joint_gaps;

@@ -1,6 +1,7 @@
 // The road network invariants on every real extract in the shared data folder (skipped
 // when it is absent): quads convex with positive area, joints simple, no road or joint
-// surface inside a building, lamps outside roads, joints and buildings.
+// surface inside a building, lamps outside roads, joints and buildings, quads meeting
+// their joints edge to edge (up to counted leftovers).
 #include <sys/stat.h>
 
 #include <gtest/gtest.h>
@@ -17,7 +18,14 @@ bool exists(const std::string& path) {
     return ::stat(path.c_str(), &st) == 0;
 }
 
-void check_extract(const std::string& relative) {
+// Quad ends meeting their joint with a hole over 1 cm or an overlap over 0.01 m^2: the
+// layout still fails on a few tangles of short edges. The counts measured when the
+// limits were set; they may only go down.
+struct JoinLimits {
+    int gaps = 0, overlaps = 0;
+};
+
+void check_extract(const std::string& relative, JoinLimits limits) {
     const std::string path = std::string(CITYGEN_SHARED_DATA_DIR) + "/" + relative;
     if (!exists(path)) GTEST_SKIP() << path << " not present";
     ParseJob job;
@@ -32,13 +40,19 @@ void check_extract(const std::string& relative) {
                 relative.c_str(), c.quads, c.bad_quads, c.joints, c.bad_joints, scene.sidewalks.size(),
                 c.sidewalks_bad, c.sidewalks_on_road, scene.lamps.size(), c.lamps_inside, c.building_overlaps, c.quad_joint_gaps,
                 c.quad_joint_overlaps);
+    EXPECT_LE(c.quad_joint_gaps, limits.gaps) << "holes between quads and joints";
+    EXPECT_LE(c.quad_joint_overlaps, limits.overlaps) << "quads overlapping their joint";
+    // osmparse counts the same cases in its report.
+    EXPECT_EQ(report.note_count("road joints", "a quad end leaves a hole over 1 cm"), c.quad_joint_gaps);
+    EXPECT_EQ(report.note_count("road joints", "a quad overlaps its joint by over 0.01 m2"), c.quad_joint_overlaps);
 }
 
 }  // namespace
 
-TEST(RoadRealData, Monaco) { check_extract("monaco.osm.pbf"); }
-TEST(RoadRealData, Neukolln) { check_extract("osm2streets/neukolln/input.osm"); }
-TEST(RoadRealData, MontlakeRoundabout) { check_extract("osm2streets/montlake_roundabout/input.osm"); }
-TEST(RoadRealData, QuadIntersection) { check_extract("osm2streets/quad_intersection/input.osm"); }
-TEST(RoadRealData, SeattleTriangle) { check_extract("osm2streets/seattle_triangle/input.osm"); }
-TEST(RoadRealData, TinyRoundabout) { check_extract("osm2streets/tiny_roundabout/input.osm"); }
+TEST(RoadRealData, Monaco) { check_extract("monaco.osm.pbf", {18, 13}); }
+TEST(RoadRealData, MonacoXml) { check_extract("monaco.osm.bz2", {18, 13}); }
+TEST(RoadRealData, Neukolln) { check_extract("osm2streets/neukolln/input.osm", {0, 0}); }
+TEST(RoadRealData, MontlakeRoundabout) { check_extract("osm2streets/montlake_roundabout/input.osm", {1, 0}); }
+TEST(RoadRealData, QuadIntersection) { check_extract("osm2streets/quad_intersection/input.osm", {2, 0}); }
+TEST(RoadRealData, SeattleTriangle) { check_extract("osm2streets/seattle_triangle/input.osm", {0, 0}); }
+TEST(RoadRealData, TinyRoundabout) { check_extract("osm2streets/tiny_roundabout/input.osm", {0, 0}); }
