@@ -16,6 +16,8 @@ constexpr double kSidewalkStep = 0.25;      // metres of width given up per step
 constexpr double kMinSidewalkWidth = 0.75;  // narrower is no sidewalk
 constexpr double kMaxRoadOverlap = 0.5;     // square metres of another road a piece may cover
 constexpr double kMinPieceArea = 0.01;
+constexpr double kMinTrimmedArea = 0.5;     // square metres: a piece trimmed smaller is dropped
+constexpr int kMaxTrims = 4;
 
 void push_distinct(Ring& ring, Vec2 p) {
     if (ring.empty() || length(ring.back() - p) > 1e-4) ring.push_back(p);
@@ -51,6 +53,34 @@ Ring clean_piece(Ring ring) {
         }
     }
     return out;
+}
+
+// The part of `piece` off the road pieces it lies on: for the road piece it overlaps
+// most, the piece is cut along whichever edge of that road piece (or of its convex hull,
+// for a joint) keeps the most of it, and so on while it overlaps any by more than the
+// tolerance. Cutting on one line keeps the piece in one piece.
+Ring trim_off_roads(Ring piece, const BuildingIndex& roads, const std::vector<Building>& road_pieces) {
+    for (int round = 0; round < kMaxTrims && piece.size() >= 3; ++round) {
+        double most = kRoadBuildingOverlapTolerance;
+        int worst = -1;
+        roads.for_each_near(bounds_of(piece), [&](uint32_t i) {
+            const double a = overlap_area(piece, road_pieces[i]);
+            if (a > most) most = a, worst = static_cast<int>(i);
+        });
+        if (worst < 0) break;
+        const Ring& outer = road_pieces[worst].outer;
+        const Ring road = ring_is_convex(outer) ? outer : convex_hull(outer);
+        Ring best;
+        double best_area = 0;
+        for (size_t e = 0, m = road.size(); e < m; ++e) {
+            const Vec2 a = road[e], b = road[(e + 1) % m];
+            Ring kept = clean_piece(clip_to_half_planes(piece, {{b, a}}));  // the side away from the road
+            const double area = kept.size() >= 3 ? signed_area(kept) : 0;
+            if (area > best_area + 1e-9) best_area = area, best = std::move(kept);
+        }
+        piece = std::move(best);
+    }
+    return piece;
 }
 
 struct Frame {
@@ -129,6 +159,16 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             return;
         }
         road_index.overlap(polygon, &largest);
+        // Where roads lie closer than their sidewalks are wide (close or overlapping
+        // roads, the inside of a hairpin), the piece keeps only its part off them.
+        if (largest > kRoadBuildingOverlapTolerance) {
+            Ring trimmed = trim_off_roads(polygon, road_index, road_pieces);
+            if (trimmed.size() >= 3 && signed_area(trimmed) >= kMinTrimmedArea && ring_is_simple(trimmed)) {
+                report.note(what, "trimmed off another road");
+                polygon = std::move(trimmed);
+                road_index.overlap(polygon, &largest);
+            }
+        }
         if (largest > kMaxRoadOverlap) {
             report.dropped(what, "lies on another road");
             return;

@@ -45,8 +45,8 @@ struct NodeLayout {
     };
     std::vector<End> ends;  // counter-clockwise by direction leaving the node
     Ring joint;             // CCW; empty when kind != Joint or nothing was left of it
-    bool joint_is_hull = false;  // the exact polygon was not simple; a star-shaped ordering
-                                 // of its points (or their convex hull) stands in
+    bool joint_is_hull = false;  // the exact polygon did not fit its quads; a star-shaped
+                                 // ordering of its points (or their convex hull) stands in
 };
 
 struct RoadLayout {
@@ -63,7 +63,11 @@ struct RoadLayout {
 // otherwise it is treated like a junction. Each edge's length is shared between the cuts
 // at its two ends, keeping 10% for the quad, so quads never fold. Junctions joined by an
 // edge shorter than their joints need (within 25 m) are merged into one joint polygon and
-// the edge is absorbed; near-parallel neighbours share one cut line.
+// the edge is absorbed; near-parallel neighbours share one cut line (across the bisector,
+// or one end's cut carried across the other where a short edge cannot reach that far).
+// Joints are finished once every quad is known: the quads of a joint's ends are cut out
+// of it, so quad and joint meet edge to edge; what a tangle of short edges still leaves
+// (a hole or overlap) is counted by build_road_polygons.
 RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWidths>& widths,
                                 double miter_limit, const RoadLayout* follow = nullptr);
 
