@@ -10,8 +10,12 @@ constexpr double kRedrawSeconds = 0.25;
 }
 
 Progress::Progress(std::string label, uint64_t total, bool quiet)
-    : label_(std::move(label)), total_(total ? total : 1), quiet_(quiet),
-      start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
+    : Progress(std::move(label), total, ProgressSettings{quiet, kShowAfterSeconds}) {}
+
+Progress::Progress(std::string label, uint64_t total, const ProgressSettings& settings)
+    : label_(std::move(label)), total_(total ? total : 1), quiet_(settings.quiet),
+      show_after_seconds_(settings.show_after_seconds), start_(std::chrono::steady_clock::now()),
+      last_draw_(start_) {}
 
 Progress::~Progress() { finish(); }
 
@@ -19,7 +23,7 @@ void Progress::advance(uint64_t amount) {
     const uint64_t done = done_.fetch_add(amount) + amount;
     if (quiet_) return;
     const auto now = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(now - start_).count() < kShowAfterSeconds) return;
+    if (std::chrono::duration<double>(now - start_).count() < show_after_seconds_) return;
     std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
     if (!lock.owns_lock() || finished_) return;
     if (std::chrono::duration<double>(now - last_draw_).count() < kRedrawSeconds) return;
@@ -31,7 +35,9 @@ void Progress::finish() {
     std::lock_guard<std::mutex> lock(mutex_);
     if (finished_) return;
     finished_ = true;
-    if (shown_) draw(total_, true);
+    // Work that ran long in few steps (never redrawn) still says how long it took.
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (shown_ || (!quiet_ && elapsed >= show_after_seconds_)) draw(total_, true);
 }
 
 void Progress::draw(uint64_t done, bool final) {

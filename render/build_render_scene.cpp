@@ -8,12 +8,14 @@
 namespace citygen {
 
 std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes,
-                                                const FacadeOptions& facades) {
+                                                const FacadeOptions& facades, const ProgressSettings& progress) {
     auto render_scene = std::make_unique<RenderScene>();
+    // Buildings are nearly all of the work (every facade triangle), so they measure it.
+    Progress geometry_progress("geometry", scene.buildings.size(), progress);
     auto stored = [](TriangleMesh mesh) { return std::make_unique<StoredMeshGeometry>(std::move(mesh)); };
     auto procedural = [&](GeometryClass c) { return modes[c] == GeometryMode::Procedural; };
-    if (procedural(GeometryClass::Buildings)) render_scene->add(build_procedural_buildings(scene, facades));
-    else render_scene->add(stored(build_stored_buildings(scene, facades)));
+    if (procedural(GeometryClass::Buildings)) render_scene->add(build_procedural_buildings(scene, facades, &geometry_progress));
+    else render_scene->add(stored(build_stored_buildings(scene, facades, &geometry_progress)));
     if (procedural(GeometryClass::Terrain)) render_scene->add(build_procedural_terrain(scene));
     else render_scene->add(stored(build_stored_terrain(scene)));
     if (procedural(GeometryClass::Roads)) render_scene->add(build_procedural_roads(scene));
@@ -22,7 +24,8 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     else render_scene->add(stored(build_stored_joints(scene)));
     if (procedural(GeometryClass::Sidewalks)) render_scene->add(build_procedural_sidewalks(scene));
     else render_scene->add(stored(build_stored_sidewalks(scene)));
-    render_scene->commit();
+    geometry_progress.finish();
+    render_scene->commit(progress);
     return render_scene;
 }
 

@@ -6,13 +6,16 @@
 
 #include "facade.h"
 #include "geometry_mode.h"
+#include "progress.h"
 #include "render_scene.h"
 #include "scene.h"
 
 namespace citygen {
 
 // `facades` sets the facade rules' seed and shop probability; both modes build the same facades.
+// `progress` shows the two long phases on stderr: building geometry (per building) and the BVH.
 std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes,
-                                                const FacadeOptions& facades = FacadeOptions{});
+                                                const FacadeOptions& facades = FacadeOptions{},
+                                                const ProgressSettings& progress = ProgressSettings{});
 
 }  // namespace citygen

@@ -100,7 +100,7 @@ int run(const Options& o) {
     facades.seed = scene.header.seed;
     facades.shop_probability = o.shop_probability;
     const Clock::time_point build_start = Clock::now();
-    const std::unique_ptr<RenderScene> render_scene = build_render_scene(scene, modes, facades);
+    const std::unique_ptr<RenderScene> render_scene = build_render_scene(scene, modes, facades, ProgressSettings{settings.quiet});
     const double build_seconds = seconds_since(build_start);
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
     const MaterialTable materials = default_materials();

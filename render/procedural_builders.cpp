@@ -19,10 +19,12 @@ ProceduralGeometry::SurfaceMaterials all_surfaces(uint16_t material) {
 
 }  // namespace
 
-std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades) {
+std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades,
+                                                               Progress* progress) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Building, facade_surface_materials());
     const double ground = scene.ground.z;
     for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
+        if (progress) progress->advance();
         const Building& b = scene.buildings[index];
         if (b.outer.size() < 3 || !(b.height > b.min_height)) continue;
         const double bottom = ground + b.min_height, top = ground + b.height;

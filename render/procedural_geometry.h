@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "facade.h"
+#include "progress.h"
 #include "render_scene.h"
 #include "scene.h"
 
@@ -110,7 +111,9 @@ private:
 };
 
 // Procedural builders, one per object class, producing the same surfaces as build_stored_*.
-std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades);
+// `progress` (optional) advances once per building.
+std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades,
+                                                               Progress* progress = nullptr);
 std::unique_ptr<ProceduralGeometry> build_procedural_roads(const Scene& scene);
 std::unique_ptr<ProceduralGeometry> build_procedural_joints(const Scene& scene);
 std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scene);

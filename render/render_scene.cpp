@@ -1,5 +1,6 @@
 #include "render_scene.h"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
@@ -14,6 +15,23 @@ void embree_error(void*, RTCError code, const char* message) {
     // matters, so only report here.
     std::fprintf(stderr, "render: embree error %d: %s\n", static_cast<int>(code), message ? message : "");
 }
+
+// Embree reports a BVH build as a fraction in [0, 1], possibly from several threads at once and
+// not always increasing; the bar moves forward by the largest fraction seen.
+struct BvhProgress {
+    static constexpr uint64_t kSteps = 1000;
+    Progress bar;
+    std::atomic<uint64_t> reported{0};
+    static bool monitor(void* self_ptr, double fraction) {
+        auto* self = static_cast<BvhProgress*>(self_ptr);
+        const uint64_t now = static_cast<uint64_t>(std::clamp(fraction, 0.0, 1.0) * kSteps);
+        uint64_t before = self->reported.load();
+        while (now > before && !self->reported.compare_exchange_weak(before, now)) {
+        }
+        if (now > before) self->bar.advance(now - before);
+        return true;  // never cancel the build
+    }
+};
 
 }  // namespace
 
@@ -78,8 +96,12 @@ void RenderScene::add(std::unique_ptr<RenderGeometry> geometry) {
     geometries_.push_back(std::move(geometry));
 }
 
-void RenderScene::commit() {
+void RenderScene::commit(const ProgressSettings& settings) {
+    BvhProgress bvh{Progress("BVH", BvhProgress::kSteps, settings)};
+    rtcSetSceneProgressMonitorFunction(scene_, &BvhProgress::monitor, &bvh);
     rtcCommitScene(scene_);
+    rtcSetSceneProgressMonitorFunction(scene_, nullptr, nullptr);
+    bvh.bar.finish();
     const RTCError err = rtcGetDeviceError(device_);
     if (err != RTC_ERROR_NONE)
         throw Error("Embree could not build the scene (error " + std::to_string(err) + ")");

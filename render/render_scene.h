@@ -10,6 +10,7 @@
 
 #include "geometry_mode.h"
 #include "hit.h"
+#include "progress.h"
 #include "triangle_mesh.h"
 
 namespace citygen {
@@ -69,8 +70,8 @@ public:
 
     RTCDevice device() const { return device_; }
     void add(std::unique_ptr<RenderGeometry> geometry);
-    // Builds the BVH; call once after the last add().
-    void commit();
+    // Builds the BVH, showing its progress as configured; call once after the last add().
+    void commit(const ProgressSettings& progress = ProgressSettings{});
 
     // Closest hit in (tmin, tmax); thread-safe.
     bool intersect(const Ray& ray, Hit& hit) const;

@@ -65,13 +65,14 @@ Ring oriented(const Ring& ring, bool counter_clockwise) {
 
 }  // namespace
 
-TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& facades) {
+TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& facades, Progress* progress) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Building;
     reserve_buildings(scene, facades, mesh);
     FacadeMesh scratch;
     const double ground = scene.ground.z;
     for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
+        if (progress) progress->advance();
         const Building& b = scene.buildings[index];
         if (!has_volume(b)) continue;
         const double bottom = ground + b.min_height, top = ground + b.height;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "facade.h"
+#include "progress.h"
 #include "scene.h"
 #include "triangle_mesh.h"
 
@@ -14,7 +15,8 @@ constexpr double kRoadLift = 0.02;
 // Walls from every ring (holes included) from min_height to height, carrying the facade rules
 // (windows, balconies, shop fronts; common/facade.h) as triangles, flat roof triangulated with
 // holes, and a floor when the building floats (min_height > 0).
-TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& facades);
+// `progress` (optional) advances once per building.
+TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& facades, Progress* progress = nullptr);
 
 // Road quadrangles and joint polygons, flat just above the ground.
 TriangleMesh build_stored_roads(const Scene& scene);
