@@ -84,6 +84,10 @@ void write_image(const Film& film, const std::string& path, double exposure) {
         for (size_t i = 0; i < 3 * pixels; ++i) data[i] = tone_map(film.rgb[i], exposure);
     }
 
+    // Same scene, options and seed must give the same bytes: OpenImageIO stamps EXR files with the
+    // write time unless DateTime is set, and it leaves out an empty one.
+    spec.attribute("DateTime", "");
+
     auto out = ImageOutput::create(tmp);
     bool ok = out && out->open(tmp, spec) && out->write_image(TypeDesc::FLOAT, data.data());
     std::string reason = out ? out->geterror() : OIIO::geterror();

@@ -101,6 +101,27 @@ TEST_F(RenderCli, PngJpegAndInfoLines) {
         EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
+TEST_F(RenderCli, SameSeedGivesByteIdenticalFilesWithOneOrTwoThreads) {
+    // Identical pixels are not enough: files must not carry the write time either (EXR did).
+    for (const std::string ext : {".exr", ".png", ".jpg"}) {
+        const std::string aovs = ext == ".exr" ? " --aovs depth,normal,albedo,id" : "";
+        std::string bytes[2];
+        for (int threads = 1; threads <= 2; ++threads) {
+            const std::string out = file("threads" + std::to_string(threads) + ext);
+            const CommandResult r = render(quoted(scene()) + " -o " + quoted(out) +
+                                           " --width 40 --height 24 --spp 2 --seed 7 -q --threads " +
+                                           std::to_string(threads) + aovs);
+            ASSERT_EQ(r.exit_code, 0) << r.err;
+            bytes[threads - 1] = read_text(out);
+            auto in = OIIO::ImageInput::open(out);
+            ASSERT_TRUE(in) << out;
+            EXPECT_EQ(in->spec().find_attribute("DateTime"), nullptr) << out;
+        }
+        EXPECT_GT(bytes[0].size(), 100u) << ext;
+        EXPECT_TRUE(bytes[0] == bytes[1]) << ext << " files differ between 1 and 2 threads";
+    }
+}
+
 TEST_F(RenderCli, ExportPlyHasOneFacePerTriangleWithMaterials) {
     const CommandResult info = render(quoted(scene()) + " --print-scene-geometry-info --export-ply " +
                                       quoted(file("scene.ply")));
