@@ -288,10 +288,11 @@ bool cut_away_quad(const Ring& ring, const Ring& q, Ring& out) {
     Vec2 unit[4];
     for (int e = 0; e < 4; ++e) unit[e] = normalize(q[(e + 1) % 4] - q[e]);
     auto depth = [&](Vec2 x, int e) { return cross(unit[e], x - q[e]) - kInside; };
-    // Most rings lie wholly outside one of the quad's edges: nothing to cut.
-    for (int e = 0; e < 4; ++e) {
+    // Most rings lie wholly behind the quad's cut at their node (edge 3 at the edge's
+    // `from` end, edge 1 at its `to` end), or outside another edge: nothing to cut.
+    for (int e : {3, 1, 0, 2}) {
         bool outside = true;
-        for (Vec2 p : ring) outside = outside && depth(p, e) <= 0;
+        for (size_t i = 0; i < ring.size() && outside; ++i) outside = depth(ring[i], e) <= 0;
         if (outside) return false;
     }
     auto inside = [&](Vec2 x) {
@@ -392,12 +393,12 @@ void finish_joint(NodeLayout& node, const std::vector<Ring>& raw_rings, const st
     constexpr double kHoleCost = 0.1;  // square metres of overlap one hole sample weighs
     double least = 1e300;
     const Ring ring = without_spikes(raw_rings[0]);
-    auto consider = [&](const Ring& candidate, bool is_hull) {
+    auto consider = [&](const Ring& candidate, bool exact, bool is_hull) {
         if (!valid(candidate)) return false;
         double overlap;
         Ring joint = apart(candidate, overlap);
-        // A ring with no crossing cuts leaves holes only where quads overlap it.
-        const bool may_leave_holes = overlap > 0 || raw_rings.size() > 1 || is_hull;
+        // The exact ring leaves holes only where a quad could not be cut out of it.
+        const bool may_leave_holes = overlap > 0 || !exact;
         const double badness = (overlap < kMinJointArea ? 0 : overlap) + (may_leave_holes ? kHoleCost * holes(joint) : 0);
         if (badness >= least) return false;
         least = badness;
@@ -405,16 +406,16 @@ void finish_joint(NodeLayout& node, const std::vector<Ring>& raw_rings, const st
         node.joint_is_hull = is_hull;
         return badness == 0;
     };
-    if (consider(ring, false)) return;
+    if (consider(ring, true, false)) return;
     for (size_t r = 1; r < raw_rings.size(); ++r)
-        if (consider(without_spikes(raw_rings[r]), false)) return;
+        if (consider(without_spikes(raw_rings[r]), false, false)) return;
     Ring star = ring;
     std::sort(star.begin(), star.end(), [&](Vec2 a, Vec2 b) {
         return std::atan2(a.y - node.position.y, a.x - node.position.x) <
                std::atan2(b.y - node.position.y, b.x - node.position.x);
     });
-    if (consider(star, true)) return;
-    consider(convex_hull(ring), true);
+    if (consider(star, false, true)) return;
+    consider(convex_hull(ring), false, true);
 }
 
 bool quad_is_valid(const Ring& q) {
