@@ -9,13 +9,22 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Any orthonormal basis around n (Duff et al. 2017).
-void basis(Vec3 n, Vec3& t, Vec3& b) {
+// Any orthonormal basis around n (Duff et al. 2017), taken in a fixed tilted frame. Duff's basis
+// jumps where the normal's third coordinate changes sign; in world coordinates that is every
+// wall (n.z = 0), so a wall normal off by one rounding (stored triangles vs procedural walls)
+// would scatter in a different direction. Tilted, the jump sits on normals perpendicular to
+// (0.36, 0.48, 0.8): no roof or ground, and walls only at two azimuths.
+const Vec3 kFrameX{-0.8, 0.6, 0}, kFrameY{-0.48, -0.64, 0.6}, kFrameZ{0.36, 0.48, 0.8};
+
+void basis(Vec3 world_n, Vec3& t, Vec3& b) {
+    const Vec3 n{dot(world_n, kFrameX), dot(world_n, kFrameY), dot(world_n, kFrameZ)};
     const double sign = std::copysign(1.0, n.z);
     const double a = -1.0 / (sign + n.z);
     const double c = n.x * n.y * a;
-    t = {1 + sign * n.x * n.x * a, sign * c, -sign * n.x};
-    b = {c, sign + n.y * n.y * a, -n.y};
+    const Vec3 local_t{1 + sign * n.x * n.x * a, sign * c, -sign * n.x};
+    const Vec3 local_b{c, sign + n.y * n.y * a, -n.y};
+    t = kFrameX * local_t.x + kFrameY * local_t.y + kFrameZ * local_t.z;
+    b = kFrameX * local_b.x + kFrameY * local_b.y + kFrameZ * local_b.z;
 }
 
 Vec3 around(Vec3 axis, double cos_theta, double phi) {
