@@ -18,6 +18,11 @@ bool finite(Color c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::i
 
 }  // namespace
 
+double russian_roulette_survival(Color throughput, double min_survival) {
+    const double strongest = std::max({throughput.x, throughput.y, throughput.z});
+    return std::clamp(strongest, min_survival, 1.0);
+}
+
 Vec3 offset_origin(Vec3 position, Vec3 normal) {
     const double scale = std::max({std::fabs(position.x), std::fabs(position.y), std::fabs(position.z)});
     return position + normal * (1e-4 + 2e-6 * scale);
@@ -83,9 +88,11 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         previous_delta = sample.delta;
         previous_pdf = sample.pdf;
 
-        if (bounce + 1 >= settings.rr_depth) {
-            if (rng.next_double() >= settings.rr_prob) break;
-            throughput = throughput * (1 / settings.rr_prob);
+        // The next ray is bounce number bounce + 1: the first rr_depth are always traced.
+        if (bounce >= settings.rr_depth) {
+            const double survival = russian_roulette_survival(throughput, settings.rr_prob);
+            if (rng.next_double() >= survival) break;  // drawn even when survival is 1: streams stay aligned
+            throughput = throughput * (1 / survival);
         }
         // Leave on the side the new direction points to (reflection or transmission).
         const Vec3 side = dot(sample.wi, hit.geometric_normal) > 0 ? hit.geometric_normal : -hit.geometric_normal;

@@ -1,5 +1,6 @@
 // Unidirectional path tracing with next-event estimation of the sun and multiple importance
-// sampling (power heuristic) against BSDF sampling; Russian roulette after rr_depth bounces.
+// sampling (power heuristic) against BSDF sampling; throughput-based Russian roulette after
+// rr_depth bounces.
 #pragma once
 
 #include <cstdint>
@@ -13,8 +14,8 @@ namespace citygen {
 
 struct IntegratorSettings {
     int max_depth = 8;       // bounces after the first hit (0: direct light only)
-    int rr_depth = 3;        // bounces before Russian roulette starts
-    double rr_prob = 0.8;    // probability a path continues at each bounce after rr_depth
+    int rr_depth = 3;        // bounces always traced; Russian roulette decides on every later one
+    double rr_prob = 0.8;    // least survival probability of a roulette step (see russian_roulette_survival)
     bool sample_sun = true;  // next-event estimation; false leaves the sun to BSDF sampling alone
 };
 
@@ -24,6 +25,13 @@ struct PathContext {
     const Sky& sky;
     IntegratorSettings settings;
 };
+
+// Survival probability of a Russian roulette step: the path's largest throughput component,
+// at most 1 and at least min_survival (--rr-prob). A path that still carries much light is kept,
+// a dim one is cut, and a survivor's throughput divided by this probability stays bounded (about
+// 1, or 1 / min_survival), so the roulette adds little variance even on white walls. A fixed
+// probability below the albedo would let survivors' weights grow without bound.
+double russian_roulette_survival(Color throughput, double min_survival);
 
 // Radiance arriving along `ray`. `rays` counts every ray traced (closest hit and shadow).
 Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays);

@@ -161,9 +161,11 @@ int main(int argc, char** argv) {
     app.add_option("--time", o.time, "day, sunset or night")->capture_default_str();
     app.add_option("--max-depth", r.integrator.max_depth, "bounces after the first hit")
         ->check(CLI::Range(0, 1000))->capture_default_str();
-    app.add_option("--rr-depth", r.integrator.rr_depth, "bounces before Russian roulette starts")
+    app.add_option("--rr-depth", r.integrator.rr_depth, "bounces always traced before Russian roulette starts")
         ->check(CLI::Range(0, 1000))->capture_default_str();
-    app.add_option("--rr-prob", r.integrator.rr_prob, "probability a path survives each roulette step")
+    app.add_option("--rr-prob", r.integrator.rr_prob,
+                   "least survival probability of a roulette step: a path survives with its largest "
+                   "throughput component, clamped to [rr-prob, 1], and is reweighted by 1/survival")
         ->check(CLI::Range(0.01, 1.0))->capture_default_str();
     app.add_flag("--procedural", o.procedural, "every class in procedural geometry mode");
     for (int c = 0; c < kGeometryClassCount; ++c) {
