@@ -213,10 +213,29 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
             reader.close();
         };
 
+        LocationIndex positive, negative;
+        LocationHandler locations{positive, negative};
+        locations.ignore_errors();  // clipped extracts: missing nodes are normal, counted later
+        Collector collector{data, report};
+        BuildingCounter building_counter{report};
+        // Everything but multipolygon assembly: node locations filled into ways (in the
+        // buffer itself, where assembly finds them), street lamps, highways, counts.
+        auto collect = [&](osmium::memory::Buffer& buffer) {
+            osmium::apply(buffer, locations, building_counter, collector);
+        };
+        auto assemble_areas = [&](osmium::memory::Buffer& buffer) {
+            osmium::apply(buffer, multipolygons.handler([&collector](osmium::memory::Buffer&& areas) {
+                              osmium::apply(areas, collector);
+                          }));
+        };
+
         // Walk 1: which relations are building multipolygons, and which ways they need.
+        // For XML, collecting happens here too, while the parser thread reads on; only
+        // assembly waits for walk 2.
         if (keep_in_memory) {
             read_all(osmium::osm_entity_bits::object, [&](osmium::memory::Buffer& buffer) {
                 osmium::apply(buffer, multipolygons);
+                collect(buffer);
                 buffers.push_back(std::move(buffer));
             });
         } else {
@@ -225,23 +244,15 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
         }
         multipolygons.prepare_for_lookup();
 
-        // Walk 2: everything else, with node locations filled into ways.
-        LocationIndex positive, negative;
-        LocationHandler locations{positive, negative};
-        locations.ignore_errors();  // clipped extracts: missing nodes are normal, counted later
-        Collector collector{data, report};
-        BuildingCounter building_counter{report};
-        auto collect = [&](osmium::memory::Buffer& buffer) {
-            osmium::apply(buffer, locations, building_counter, collector,
-                          multipolygons.handler([&collector](osmium::memory::Buffer&& areas) {
-                              osmium::apply(areas, collector);
-                          }));
-        };
+        // Walk 2: areas assembled from the ways, now that the relations are known.
         if (keep_in_memory) {
-            for (osmium::memory::Buffer& buffer : buffers) collect(buffer);
+            for (osmium::memory::Buffer& buffer : buffers) assemble_areas(buffer);
             buffers.clear();
         } else {
-            read_all(osmium::osm_entity_bits::object, collect);
+            read_all(osmium::osm_entity_bits::object, [&](osmium::memory::Buffer& buffer) {
+                collect(buffer);
+                assemble_areas(buffer);
+            });
         }
 
         int64_t incomplete = 0;
