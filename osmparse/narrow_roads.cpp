@@ -65,7 +65,10 @@ RoadGraph narrow_roads(RoadGraph graph, const std::vector<Building>& buildings,
         auto needs_check = [&](int64_t node) { return round == 0 || dirty.count(node) > 0; };
         std::vector<SideWidths> widths;
         for (const RoadGraphEdge& e : graph.edges) widths.push_back({0.5 * e.width, 0.5 * e.width});
-        const RoadLayout layout = layout_road_polygons(graph, widths, params.miter_limit);
+        const RoadLayout layout =
+            round == 0 ? layout_road_polygons(graph, widths, params.miter_limit)
+                       : layout_road_polygons(graph, widths, params.miter_limit, nullptr,
+                                              [&](int64_t node) { return dirty.count(node) > 0; });
         std::set<size_t> offending;
         for (size_t e = 0; e < graph.edges.size(); ++e) {
             // A quad with no negative cut lies inside its rectangle, cleared above.

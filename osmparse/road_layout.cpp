@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <set>
 
 #include "polygon_overlap.h"
 
@@ -449,7 +450,8 @@ Ring convex_hull(std::vector<Vec2> p) {
 }
 
 RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWidths>& widths,
-                                double miter_limit, const RoadLayout* follow) {
+                                double miter_limit, const RoadLayout* follow,
+                                const std::function<bool(int64_t)>& only) {
     const size_t n = graph.edges.size();
     RoadLayout out;
     out.from_cut.assign(n, {});
@@ -620,10 +622,30 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
         to_allowed[e] = to_demand[e] * scale;
     }
 
+    // With `only`: the accepted nodes, the edges whose quads they need, and every node
+    // whose cuts those quads need (both ends of each such edge).
+    auto accepts = [](const NodeLayout& node, const std::function<bool(int64_t)>& f) {
+        return f(node.node) || std::any_of(node.members.begin(), node.members.end(), f);
+    };
+    std::vector<bool> quad_wanted(n, !only);
+    std::set<int64_t> cut_wanted;
+    if (only)
+        for (const auto& [id, node] : nodes) {
+            if (!accepts(node, only)) continue;
+            for (const NodeLayout::End& end : node.ends) {
+                quad_wanted[end.edge] = true;
+                cut_wanted.insert(graph.edges[end.edge].from_node);
+                cut_wanted.insert(graph.edges[end.edge].to_node);
+            }
+        }
+    auto lay_out = [&](const NodeLayout& node) {
+        return !only || accepts(node, [&](int64_t v) { return cut_wanted.count(v) > 0; });
+    };
+
     // Pass 4: joint polygons with the shared-out cuts.
     std::map<int64_t, std::vector<Ring>> raw_rings;
     for (auto& [id, node] : nodes) {
-        if (node.kind != JoinKind::Joint || node.ends.empty()) continue;
+        if (node.kind != JoinKind::Joint || node.ends.empty() || !lay_out(node)) continue;
         std::vector<EndGeometry> geo = geometry_at(node);
         for (size_t i = 0; i < geo.size(); ++i) {
             const NodeLayout::End& end = node.ends[i];
@@ -638,12 +660,13 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
     }
 
     for (uint32_t e = 0; e < n; ++e) {
-        if (out.absorbed[e]) continue;
+        if (out.absorbed[e] || !quad_wanted[e]) continue;
         Ring q = quad_for_cuts(graph.edges[e], widths[e], out.from_cut[e], out.to_cut[e]);
         if (quad_is_valid(q)) out.quads[e] = std::move(q);
     }
     for (auto& [id, node] : nodes)
-        if (node.kind == JoinKind::Joint && !node.ends.empty()) finish_joint(node, raw_rings[id], out.quads);
+        if (node.kind == JoinKind::Joint && !node.ends.empty() && (!only || accepts(node, only)))
+            finish_joint(node, raw_rings[id], out.quads);
     out.nodes.reserve(nodes.size());
     for (auto& [id, node] : nodes) out.nodes.push_back(std::move(node));
     return out;

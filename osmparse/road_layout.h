@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "build_road_graph.h"
@@ -68,8 +69,14 @@ struct RoadLayout {
 // Joints are finished once every quad is known: the quads of a joint's ends are cut out
 // of it, so quad and joint meet edge to edge; what a tangle of short edges still leaves
 // (a hole or overlap) is counted by build_road_polygons.
+// With `only`, just the pieces around the nodes it accepts are built: the joint of each
+// accepted node (or merged junction with an accepted member) and the quads of its edges;
+// other joints and quads are left empty. Joins and merges are still chosen over the whole
+// graph, so every piece built is exactly the one the full layout has (narrow_roads
+// rechecks only what its last narrowing can have changed).
 RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWidths>& widths,
-                                double miter_limit, const RoadLayout* follow = nullptr);
+                                double miter_limit, const RoadLayout* follow = nullptr,
+                                const std::function<bool(int64_t)>& only = nullptr);
 
 // The four corners of edge `e`'s quad for the given cuts, CCW: right side from -> to,
 // then the left side back.
