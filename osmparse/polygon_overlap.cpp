@@ -96,30 +96,16 @@ std::vector<Ring> triangulate(const Ring& polygon) {
     return out;
 }
 
-namespace {
-
-// A piece as convex polygons, which clipped_area can clip footprints to.
-std::vector<Ring> convex_parts(const Ring& piece) {
-    return ring_is_convex(piece) ? std::vector<Ring>{piece} : triangulate(piece);
-}
-
-double area_inside(const Ring& convex, const Building& b) {
-    double a = clipped_area(b.outer, convex);
-    for (const Ring& hole : b.holes) a -= clipped_area(hole, convex);
-    return std::max(0.0, a);
-}
-
-double area_inside(const std::vector<Ring>& convex_parts, const Building& b) {
-    double total = 0;
-    for (const Ring& convex : convex_parts) total += area_inside(convex, b);
-    return total;
-}
-
-}  // namespace
-
 double overlap_area(const Ring& piece, const Building& b) {
-    if (ring_is_convex(piece)) return area_inside(piece, b);
-    return area_inside(triangulate(piece), b);
+    auto inside_footprint = [&](const Ring& convex) {
+        double a = clipped_area(b.outer, convex);
+        for (const Ring& hole : b.holes) a -= clipped_area(hole, convex);
+        return std::max(0.0, a);
+    };
+    if (ring_is_convex(piece)) return inside_footprint(piece);
+    double total = 0;
+    for (const Ring& t : triangulate(piece)) total += inside_footprint(t);
+    return total;
 }
 
 BuildingIndex::BuildingIndex(const std::vector<Building>& buildings, double cell)
@@ -152,10 +138,8 @@ std::vector<uint32_t> BuildingIndex::near(const Box2& box) const {
 
 double BuildingIndex::overlap(const Ring& piece, double* max_one) const {
     double total = 0, largest = 0;
-    std::vector<Ring> parts;  // split once, at the first nearby building
     for_each_near(bounds_of(piece), [&](uint32_t i) {
-        if (parts.empty()) parts = convex_parts(piece);
-        const double a = area_inside(parts, buildings_[i]);
+        const double a = overlap_area(piece, buildings_[i]);
         total += a;
         largest = std::max(largest, a);
     });
