@@ -16,7 +16,12 @@ const char* const kParts = "building parts";
 Ring project_ring(const std::vector<LatLon>& points, const Projection& projection) {
     Ring ring;
     ring.reserve(points.size());
-    for (const LatLon& p : points) ring.push_back(round_to_stored_precision(projection.to_local(p.lat, p.lon)));
+    for (const LatLon& p : points) {
+        // Rings are closed: the last point repeats the first, already projected (projecting is costly).
+        const bool closing = ring.size() + 1 == points.size() && ring.size() > 1 &&
+                             p.lat == points.front().lat && p.lon == points.front().lon;
+        ring.push_back(closing ? ring.front() : round_to_stored_precision(projection.to_local(p.lat, p.lon)));
+    }
     return ring;
 }
 

@@ -141,11 +141,13 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
             continue;
         }
         WayPieces wp{&way, {}};
+        std::vector<Vec2> points;  // each node projected once (projecting is costly)
+        points.reserve(way.locations.size());
+        for (const LatLon& l : way.locations) points.push_back(projection.to_local(l.lat, l.lon));
         for (size_t i = 0; i + 1 < way.nodes.size(); ++i) {
             const int64_t a = way.nodes[i], b = way.nodes[i + 1];
             if (a == b) continue;  // repeated node: not a piece at all
-            const Vec2 pa = projection.to_local(way.locations[i].lat, way.locations[i].lon);
-            const Vec2 pb = projection.to_local(way.locations[i + 1].lat, way.locations[i + 1].lon);
+            const Vec2 pa = points[i], pb = points[i + 1];
             if (length(pb - pa) < kMinEdgeLength) {
                 report.dropped("road edges", "zero length");
                 continue;
