@@ -67,6 +67,18 @@ inline bool point_in_ring(Vec2 p, const Ring& ring) {
     return winding != 0;
 }
 
+// Distance from p to the nearest point on the ring's boundary.
+inline double distance_to_boundary(Vec2 p, const Ring& ring) {
+    double best = 1e300;
+    for (size_t i = 0, n = ring.size(); i < n; ++i) {
+        const Vec2 a = ring[i], b = ring[(i + 1) % n], ab = b - a;
+        const double len2 = dot(ab, ab);
+        const double t = len2 > 0 ? std::fmin(std::fmax(dot(p - a, ab) / len2, 0.0), 1.0) : 0.0;
+        best = std::fmin(best, length(p - (a + ab * t)));
+    }
+    return best;
+}
+
 // True when segments [a,b] and [c,d] share any point.
 bool segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 

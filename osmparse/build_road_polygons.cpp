@@ -8,16 +8,6 @@ namespace citygen {
 
 namespace {
 
-double distance_to_boundary(Vec2 p, const Ring& ring) {
-    double best = 1e300;
-    for (size_t i = 0, n = ring.size(); i < n; ++i) {
-        const Vec2 a = ring[i], b = ring[(i + 1) % n], ab = b - a;
-        const double t = std::clamp(dot(p - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
-        best = std::min(best, length(p - (a + ab * t)));
-    }
-    return best;
-}
-
 // The widest hole (metres) just beyond the end of `roads[r]` at joint `j`: ground
 // covered by neither the joint nor another of its quads.
 double hole_beyond_end(const std::vector<RoadEdge>& roads, const Joint& joint, uint32_t r, bool at_from) {

@@ -5,6 +5,19 @@
 
 namespace citygen {
 
+namespace {
+// One Sutherland-Hodgman step: the part of `poly` left of the line a->b, into `out`.
+void clip_to_left_of(const Ring& poly, Vec2 a, Vec2 b, Ring& out) {
+    out.clear();
+    for (size_t j = 0, m = poly.size(); j < m; ++j) {
+        const Vec2 p = poly[j], q = poly[(j + 1) % m];
+        const double dp = cross(b - a, p - a), dq = cross(b - a, q - a);
+        if (dp >= 0) out.push_back(p);
+        if ((dp >= 0) != (dq >= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
+    }
+}
+}  // namespace
+
 double clipped_area(const Ring& subject, const Ring& clip) {
     const size_t n = clip.size();
     if (n < 3 || subject.size() < 3) return 0;
@@ -31,13 +44,7 @@ double clipped_area(const Ring& subject, const Ring& clip) {
     for (size_t i = 0; i < n && !poly.empty(); ++i) {
         Vec2 a, b;
         edge(i, a, b);
-        out.clear();
-        for (size_t j = 0, m = poly.size(); j < m; ++j) {
-            const Vec2 p = poly[j], q = poly[(j + 1) % m];
-            const double dp = cross(b - a, p - a), dq = cross(b - a, q - a);
-            if (dp >= 0) out.push_back(p);
-            if ((dp >= 0) != (dq >= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
-        }
+        clip_to_left_of(poly, a, b, out);
         poly.swap(out);
     }
     return poly.size() < 3 ? 0.0 : std::fabs(signed_area(poly));
@@ -46,13 +53,7 @@ double clipped_area(const Ring& subject, const Ring& clip) {
 Ring clip_to_half_planes(const Ring& subject, const std::vector<std::pair<Vec2, Vec2>>& lines) {
     Ring poly = subject, out;
     for (const auto& [a, b] : lines) {
-        out.clear();
-        for (size_t j = 0, m = poly.size(); j < m; ++j) {
-            const Vec2 p = poly[j], q = poly[(j + 1) % m];
-            const double dp = cross(b - a, p - a), dq = cross(b - a, q - a);
-            if (dp >= 0) out.push_back(p);
-            if ((dp >= 0) != (dq >= 0)) out.push_back(p + (q - p) * (dp / (dp - dq)));
-        }
+        clip_to_left_of(poly, a, b, out);
         poly.swap(out);
         if (poly.size() < 3) return {};
     }

@@ -465,11 +465,11 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
         NodeLayout& a = nodes[edge.from_node];
         a.node = edge.from_node;
         a.position = edge.from;
-        a.ends.push_back({e, true, edge.from, 0, {}});
+        a.ends.push_back({e, true, edge.from, 0, 0, 0, {}});
         NodeLayout& b = nodes[edge.to_node];
         b.node = edge.to_node;
         b.position = edge.to;
-        b.ends.push_back({e, false, edge.to, 0, {}});
+        b.ends.push_back({e, false, edge.to, 0, 0, 0, {}});
     }
     auto geometry_of = [&](const NodeLayout::End& end) {
         return end_geometry(graph.edges[end.edge], widths[end.edge], end.at_from);

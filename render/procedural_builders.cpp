@@ -57,19 +57,16 @@ std::unique_ptr<ProceduralGeometry> build_procedural_joints(const Scene& scene) 
 
 std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Sidewalk, all_surfaces(kCurb));
-    const double road = scene.ground.z + kRoadLift;
+    SidewalkShape shape;
     for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
-        const Sidewalk& s = scene.sidewalks[i];
-        if (s.polygon.size() < 3) continue;
-        Ring ring = s.polygon;
-        if (signed_area(ring) < 0) std::reverse(ring.begin(), ring.end());
-        const double top = road + std::max(0.0, s.curb_height);
-        geometry->add_polygon(i, ring, {}, top, kSidewalk);
-        if (top <= road) continue;
+        if (!sidewalk_shape(scene, i, &shape)) continue;
+        geometry->add_polygon(i, shape.ring, {}, shape.top_z, kSidewalk);
+        if (!shape.has_curb()) continue;
+        const Ring& ring = shape.ring;
         for (size_t k = 0, n = ring.size(); k < n; ++k) {
             const Vec2 a = ring[k], b = ring[(k + 1) % n];
             if (a == b) continue;
-            geometry->add_plain_wall(i, a, b, road, top - road);
+            geometry->add_plain_wall(i, a, b, shape.road_z, shape.top_z - shape.road_z);
         }
     }
     return geometry;

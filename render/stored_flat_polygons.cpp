@@ -35,19 +35,27 @@ TriangleMesh build_stored_joints(const Scene& scene) {
     return mesh;
 }
 
+bool sidewalk_shape(const Scene& scene, uint32_t index, SidewalkShape* shape) {
+    const Sidewalk& s = scene.sidewalks[index];
+    if (s.polygon.size() < 3) return false;
+    shape->ring = s.polygon;
+    if (signed_area(shape->ring) < 0) std::reverse(shape->ring.begin(), shape->ring.end());
+    shape->road_z = scene.ground.z + kRoadLift;
+    shape->top_z = shape->road_z + std::max(0.0, s.curb_height);
+    return true;
+}
+
 TriangleMesh build_stored_sidewalks(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Sidewalk;
-    const double road = scene.ground.z + kRoadLift;
+    SidewalkShape shape;
     for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
-        const Sidewalk& s = scene.sidewalks[i];
-        if (s.polygon.size() < 3) continue;
-        Ring ring = s.polygon;
-        if (signed_area(ring) < 0) std::reverse(ring.begin(), ring.end());
-        const double top = road + std::max(0.0, s.curb_height);
-        add_flat_polygon(ring, top, i, kSidewalk, mesh);
-        if (top <= road) continue;
+        if (!sidewalk_shape(scene, i, &shape)) continue;
+        add_flat_polygon(shape.ring, shape.top_z, i, kSidewalk, mesh);
+        if (!shape.has_curb()) continue;
         // Curb faces on every edge, facing out of the (counter-clockwise) polygon.
+        const Ring& ring = shape.ring;
+        const double road = shape.road_z, top = shape.top_z;
         for (size_t k = 0, n = ring.size(); k < n; ++k) {
             const Vec2 a = ring[k], b = ring[(k + 1) % n];
             if (a == b) continue;

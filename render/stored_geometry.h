@@ -29,6 +29,15 @@ TriangleMesh build_stored_sidewalks(const Scene& scene);
 // looks past its edge.
 TriangleMesh build_stored_terrain(const Scene& scene);
 
+// A sidewalk piece as both geometry modes build it: its ring counter-clockwise, the road
+// level and the curb top. False for a degenerate piece (fewer than 3 points).
+struct SidewalkShape {
+    Ring ring;
+    double road_z = 0, top_z = 0;
+    bool has_curb() const { return top_z > road_z; }
+};
+bool sidewalk_shape(const Scene& scene, uint32_t index, SidewalkShape* shape);
+
 // The rectangle build_stored_terrain covers (shared with the procedural terrain).
 Box2 terrain_extent(const Scene& scene);
 

@@ -228,7 +228,9 @@ TEST(Sampling, DirectionsAreContinuousInTheNormalAcrossWalls) {
                 const bool ok_a = bsdf_sample(m, up, wo, u, 1 - u, u * u, a);
                 const bool ok_b = bsdf_sample(m, down, wo, u, 1 - u, u * u, b);
                 ASSERT_EQ(ok_a, ok_b);
-                if (ok_a) EXPECT_LT(length(a.wi - b.wi), 1e-6) << m.name << " azimuth " << azimuth << " u " << u;
+                if (ok_a) {
+                    EXPECT_LT(length(a.wi - b.wi), 1e-6) << m.name << " azimuth " << azimuth << " u " << u;
+                }
             }
         }
     }

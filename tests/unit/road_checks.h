@@ -17,17 +17,6 @@ struct RoadCheckCounts {
     int quad_joint_overlaps = 0, quad_joint_gaps = 0, lamps_inside = 0, sidewalks_bad = 0, sidewalks_on_road = 0;
 };
 
-// Distance from p to the nearest point on the ring's boundary.
-inline double distance_to_boundary(Vec2 p, const Ring& ring) {
-    double best = 1e300;
-    for (size_t i = 0, n = ring.size(); i < n; ++i) {
-        const Vec2 a = ring[i], b = ring[(i + 1) % n], ab = b - a;
-        const double t = std::clamp(dot(p - a, ab) / std::max(dot(ab, ab), 1e-300), 0.0, 1.0);
-        best = std::min(best, length(p - (a + ab * t)));
-    }
-    return best;
-}
-
 // Checks quads, joints, sidewalks and lamps; adds a failure per violation when `strict`
 // (fixtures), and always returns the counts (real data reports them).
 inline RoadCheckCounts check_road_network(const Scene& scene, bool strict_joins) {

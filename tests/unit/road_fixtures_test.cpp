@@ -78,7 +78,9 @@ TEST(RoadFixtures, CrossJointIsTheSquareBetweenTheRoads) {
     double walk = 0;
     for (const Sidewalk& w : s.sidewalks) {
         walk += signed_area(w.polygon);
-        if (w.kind == SidewalkKind::Corner) EXPECT_NEAR(signed_area(w.polygon), 4.0, 0.05);
+        if (w.kind == SidewalkKind::Corner) {
+            EXPECT_NEAR(signed_area(w.polygon), 4.0, 0.05);
+        }
         EXPECT_DOUBLE_EQ(w.curb_height, 0.15);
     }
     EXPECT_NEAR(walk, 1900.0 - 1164.0, 4.0);
