@@ -87,7 +87,6 @@ TEST_P(RealExtract, EveryStoredRingIsSimpleOrientedAndPositive) {
 }
 
 TEST_P(RealExtract, ParsingTwiceGivesTheSameBytes) {
-    if (GetParam() == "monaco.osm.bz2") GTEST_SKIP() << "same data as monaco.osm.pbf, slower to read";
     ParseReport first_report, second_report;
     const std::vector<uint8_t> first = encode_scene(parse(path(), first_report));
     const std::vector<uint8_t> second = encode_scene(parse(path(), second_report));
