@@ -57,15 +57,25 @@ Exr render(const TempDir& dir, const std::string& scene, const std::string& name
     return read_exr(out);
 }
 
+// The real extract both tests render: small, with facades filling most of the default view.
+std::string tiny_roundabout_osm() {
+    return std::string(CITYGEN_SHARED_DATA_DIR) + "/osm2streets/tiny_roundabout/input.osm";
+}
+
+std::string parse_to_scene(TempDir& dir, const std::string& osm) {
+    const std::string scene = dir.file("tiny.scene");
+    const CommandResult parsed = run_command(osmparse_binary() + " --quiet " + quoted(osm) + " -o " + quoted(scene));
+    EXPECT_EQ(parsed.exit_code, 0) << parsed.err;
+    return scene;
+}
+
 }  // namespace
 
 TEST(ProceduralRender, SamePictureAsStoredOnARealExtract) {
-    const std::string osm = std::string(CITYGEN_SHARED_DATA_DIR) + "/osm2streets/tiny_roundabout/input.osm";
+    const std::string osm = tiny_roundabout_osm();
     if (!std::filesystem::exists(osm)) GTEST_SKIP() << osm << " not available";
     TempDir dir;
-    const std::string scene = dir.file("tiny.scene");
-    CommandResult parsed = run_command(osmparse_binary() + " --quiet " + quoted(osm) + " -o " + quoted(scene));
-    ASSERT_EQ(parsed.exit_code, 0) << parsed.err;
+    const std::string scene = parse_to_scene(dir, osm);
 
     const Exr stored = render(dir, scene, "stored", "");
     const Exr procedural = render(dir, scene, "procedural", "--procedural");
@@ -110,12 +120,10 @@ TEST(ProceduralRender, SamePictureAsStoredOnARealExtract) {
 
 TEST(ProceduralRender, SameImageWithOneOrTwoThreads) {
     // The callbacks keep no state between rays, so the thread count cannot change a pixel.
-    const std::string osm = std::string(CITYGEN_SHARED_DATA_DIR) + "/osm2streets/tiny_roundabout/input.osm";
+    const std::string osm = tiny_roundabout_osm();
     if (!std::filesystem::exists(osm)) GTEST_SKIP() << osm << " not available";
     TempDir dir;
-    const std::string scene = dir.file("tiny.scene");
-    CommandResult parsed = run_command(osmparse_binary() + " --quiet " + quoted(osm) + " -o " + quoted(scene));
-    ASSERT_EQ(parsed.exit_code, 0) << parsed.err;
+    const std::string scene = parse_to_scene(dir, osm);
     const Exr one = render(dir, scene, "one", "--procedural", 1);
     const Exr two = render(dir, scene, "two", "--procedural", 2);
     ASSERT_GT(one.width, 0);
