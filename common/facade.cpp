@@ -66,9 +66,12 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     }
     const double usable_height = wall.height - bottom_margin - top_margin;
     const double usable_length = wall.length - 2 * edge_margin;
-    const int floors = static_cast<int>(std::floor(usable_height / floor_target));
+    // Clamped before the conversion: a float beyond int's range does not convert (scenes bound
+    // walls far below this anyway, see scene_limits.h).
+    constexpr double kMaxCells = 1e6;
+    const int floors = static_cast<int>(std::clamp(std::floor(usable_height / floor_target), 0.0, kMaxCells));
     const double slot_target = 2.4 + 1.4 * building_unit(kSlotWidth);
-    const int slots = static_cast<int>(std::floor(usable_length / slot_target));
+    const int slots = static_cast<int>(std::clamp(std::floor(usable_length / slot_target), 0.0, kMaxCells));
     if (floors < 1 || slots < 1) return layout;  // too short or too narrow: plain wall
     const double floor_height = usable_height / floors;
     const double slot_width = usable_length / slots;
@@ -244,6 +247,29 @@ size_t building_wall_count(const Building& building) {
     return n;
 }
 
+namespace {
+
+// building_wall runs once per wall (three times for building_wall_input), so a ring's
+// orientation, O(n) to find, is remembered for the ring last asked about: a building's walls
+// stay O(1) each instead of O(n). The key includes the end points, so a ring reversed or
+// refilled in place is not mistaken for the one remembered.
+bool ring_is_counter_clockwise(const Ring& ring) {
+    struct Remembered {
+        const Vec2* data = nullptr;
+        size_t size = 0;
+        Vec2 front, back;
+        bool counter_clockwise = false;
+    };
+    thread_local Remembered last;
+    if (ring.empty()) return false;
+    if (last.data != ring.data() || last.size != ring.size() || last.front != ring.front() ||
+        last.back != ring.back())
+        last = {ring.data(), ring.size(), ring.front(), ring.back(), signed_area(ring) > 0};
+    return last.counter_clockwise;
+}
+
+}  // namespace
+
 void building_wall(const Building& building, size_t index, Vec2* a, Vec2* b) {
     const Ring* ring = &building.outer;
     size_t hole = 0;
@@ -254,7 +280,7 @@ void building_wall(const Building& building, size_t index, Vec2* a, Vec2* b) {
     // Walk outer rings counter-clockwise and holes clockwise whatever the file says, so that the
     // building is always on the left (+w) of a wall.
     const size_t n = ring->size();
-    const bool counter_clockwise = signed_area(*ring) > 0;
+    const bool counter_clockwise = ring_is_counter_clockwise(*ring);
     if (counter_clockwise == (ring == &building.outer)) {
         *a = (*ring)[index];
         *b = (*ring)[(index + 1) % n];

@@ -26,20 +26,6 @@ bool segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     return false;
 }
 
-bool ring_is_simple(const Ring& ring) {
-    const size_t n = ring.size();
-    if (n < 3) return false;
-    for (size_t i = 0; i < n; ++i)
-        for (size_t j = i + 1; j < n; ++j) {
-            if (ring[i] == ring[j]) return false;
-            // Adjacent edges share a vertex by construction; skip them.
-            if (j == i + 1 || (i == 0 && j == n - 1)) continue;
-            if (segments_intersect(ring[i], ring[(i + 1) % n], ring[j], ring[(j + 1) % n]))
-                return false;
-        }
-    return true;
-}
-
 bool ring_is_convex(const Ring& ring) {
     const size_t n = ring.size();
     if (n < 3) return false;

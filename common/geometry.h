@@ -83,6 +83,7 @@ inline double distance_to_boundary(Vec2 p, const Ring& ring) {
 bool segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 
 // True when no two non-adjacent edges of the ring touch and it has >= 3 distinct points.
+// O(n log n) (a sweep; common/ring_is_simple.cpp), exact on float-rounded coordinates.
 bool ring_is_simple(const Ring& ring);
 
 // True for a convex ring (either orientation), allowing collinear vertices.

@@ -6,9 +6,12 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "error.h"
+#include "output_target.h"
+#include "scene_limits.h"
 #include "scene_generated.h"
 
 namespace citygen {
@@ -53,20 +56,51 @@ struct Checker {
         if (!std::isfinite(v)) fail(std::string("non-finite coordinate in ") + what);
         return v;
     }
+    // A coordinate: finite and within kMaxCoordinate of the origin.
+    double coordinate(float v, const char* what, double limit = kMaxCoordinate) const {
+        finite(v, what);
+        if (std::fabs(v) > limit)
+            fail(std::string("coordinate in ") + what + " is " + std::to_string(v) + " m from the origin (limit " +
+                 std::to_string(static_cast<long>(limit)) + " m)");
+        return v;
+    }
+    // A height or curb height in [0, kMaxHeight] metres.
+    double height(float v, const char* what) const {
+        finite(v, what);
+        if (v < 0 || v > kMaxHeight)
+            fail(std::string(what) + " " + std::to_string(v) + " m outside [0, " +
+                 std::to_string(static_cast<long>(kMaxHeight)) + "] m");
+        return v;
+    }
     Vec2 vec(const fb::Vec2* p, const char* what) const {
         if (!p) fail(std::string("missing point in ") + what);
-        return {finite(p->x(), what), finite(p->y(), what)};
+        return {coordinate(p->x(), what), coordinate(p->y(), what)};
     }
     std::vector<Vec2> pts(const flatbuffers::Vector<const fb::Vec2*>* v, const char* what) const {
         std::vector<Vec2> out;
         if (!v) return out;
+        if (v->size() > kMaxRingPoints)
+            fail(std::string(what) + " has " + std::to_string(v->size()) + " points (limit " +
+                 std::to_string(kMaxRingPoints) + ")");
         out.reserve(v->size());
         for (const fb::Vec2* p : *v) out.push_back(vec(p, what));
+        extent(out, what);
         return out;
+    }
+    // One object's points fit in a kMaxObjectExtent square.
+    void extent(const std::vector<Vec2>& points, const char* what) const {
+        const Box2 box = bounds_of(points);
+        if (!box.empty() && std::max(box.max.x - box.min.x, box.max.y - box.min.y) > kMaxObjectExtent)
+            fail(std::string(what) + " is over " + std::to_string(static_cast<long>(kMaxObjectExtent)) + " m across");
     }
     Ring ring(const fb::Ring* r, const char* what) const {
         if (!r) fail(std::string("missing ring in ") + what);
         return pts(r->points(), what);
+    }
+    // A ring the renderer extrudes and triangulates: at least 3 points, not all on one line.
+    void area_ring(const Ring& ring, const char* what) const {
+        if (ring.size() < 3) fail(std::string(what) + " has fewer than 3 points");
+        if (!(std::fabs(signed_area(ring)) > 0)) fail(std::string(what) + " has zero area (points identical or collinear)");
     }
     OsmRef osm(const fb::OsmRef* r) const {
         if (!r) return {};
@@ -190,10 +224,14 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             Building bld;
             bld.osm = check.osm(x->osm());
             bld.outer = check.ring(x->outer(), "building outline");
+            check.area_ring(bld.outer, "building outline");
             if (x->holes())
-                for (const fb::Ring* r : *x->holes()) bld.holes.push_back(check.ring(r, "building hole"));
-            bld.min_height = check.finite(x->min_height(), "building height");
-            bld.height = check.finite(x->height(), "building height");
+                for (const fb::Ring* r : *x->holes()) {
+                    bld.holes.push_back(check.ring(r, "building hole"));
+                    check.area_ring(bld.holes.back(), "building hole");
+                }
+            bld.min_height = check.height(x->min_height(), "building min_height");
+            bld.height = check.height(x->height(), "building height");
             bld.levels = x->levels();
             if (x->height_source() > fb::HeightSource::MAX) check.fail("invalid height source");
             bld.height_source = static_cast<HeightSource>(x->height_source());
@@ -213,7 +251,7 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             r.to_node = x->to_node();
             r.centreline = check.pts(x->centreline(), "road centreline");
             r.quad = check.pts(x->quad(), "road quadrangle");
-            r.width = check.finite(x->width(), "road width");
+            r.width = check.height(x->width(), "road width");
             if (x->road_class() > fb::RoadClass::MAX) check.fail("invalid road class");
             r.road_class = static_cast<RoadClass>(x->road_class());
             r.lanes = x->lanes();
@@ -247,7 +285,7 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             w.polygon = check.pts(x->polygon(), "sidewalk polygon");
             w.road = check.index(x->road(), road_count, "sidewalk road");
             w.joint = check.index(x->joint(), joint_count, "sidewalk joint");
-            w.curb_height = check.finite(x->curb_height(), "sidewalk curb height");
+            w.curb_height = check.height(x->curb_height(), "sidewalk curb height");
             s.sidewalks.push_back(std::move(w));
         }
 
@@ -256,24 +294,33 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             Lamp l;
             l.osm = check.osm(x->osm());
             if (!x->position()) check.fail("lamp without position");
-            l.position = {check.finite(x->position()->x(), "lamp position"),
-                          check.finite(x->position()->y(), "lamp position"),
-                          check.finite(x->position()->z(), "lamp position")};
-            l.height = check.finite(x->height(), "lamp height");
+            l.position = {check.coordinate(x->position()->x(), "lamp position"),
+                          check.coordinate(x->position()->y(), "lamp position"),
+                          check.coordinate(x->position()->z(), "lamp position")};
+            l.height = check.height(x->height(), "lamp height");
             if (x->source() > fb::LampSource::MAX) check.fail("invalid lamp source");
             l.source = static_cast<LampSource>(x->source());
             s.lamps.push_back(l);
         }
 
     if (const fb::Ground* g = in->ground()) {
-        s.ground.min = check.vec(g->min(), "ground");
-        s.ground.max = check.vec(g->max(), "ground");
-        s.ground.z = check.finite(g->z(), "ground");
+        // The ground reaches a margin beyond the objects.
+        for (const fb::Vec2* p : {g->min(), g->max()}) {
+            if (!p) check.fail("missing point in ground");
+            check.coordinate(p->x(), "ground", 2 * kMaxCoordinate);
+            check.coordinate(p->y(), "ground", 2 * kMaxCoordinate);
+        }
+        s.ground.min = {g->min()->x(), g->min()->y()};
+        s.ground.max = {g->max()->x(), g->max()->y()};
+        s.ground.z = check.coordinate(g->z(), "ground");
     }
     return s;
 }
 
 Scene load_scene(const std::string& path) {
+    struct stat info;
+    if (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode))
+        throw Error(path + ": not a regular file (a directory, device or pipe cannot be a scene)");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open scene file (" + std::strerror(errno) + ")");
     std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -282,6 +329,7 @@ Scene load_scene(const std::string& path) {
 }
 
 void write_file_atomically(const std::string& path, const void* data, size_t size) {
+    check_output_target(path);  // the rename would replace a symlink, FIFO or device node
     const std::string tmp = path + ".tmp" + std::to_string(::getpid());
     FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw Error(path + ": cannot write (" + std::strerror(errno) + ")");

@@ -5,6 +5,7 @@
 
 #include "building_heights.h"
 #include "clean_footprint.h"
+#include "scene_limits.h"
 
 namespace citygen {
 
@@ -23,6 +24,18 @@ Ring project_ring(const std::vector<LatLon>& points, const Projection& projectio
         ring.push_back(closing ? ring.front() : round_to_stored_precision(projection.to_local(p.lat, p.lon)));
     }
     return ring;
+}
+
+// Why a projected ring is beyond the scene limits (scene_limits.h), or nullptr. Such outlines
+// are mapping mistakes (a node moved across the map); their cost must not reach later stages.
+const char* ring_beyond_limits(const Ring& ring) {
+    if (ring.size() > kMaxRingPoints + 1) return "too many points (limit in scene_limits.h)";
+    const Box2 box = bounds_of(ring);
+    if (box.empty()) return nullptr;
+    if (std::max(box.max.x - box.min.x, box.max.y - box.min.y) > kMaxObjectExtent) return "over 10 km across";
+    if (std::max({-box.min.x, -box.min.y, box.max.x, box.max.y}) > kMaxCoordinate)
+        return "over 1000 km from the scene origin";
+    return nullptr;
 }
 
 bool is_ignored(const std::string& type, const BuildingParams& params) {
@@ -87,8 +100,14 @@ std::vector<Building> build_buildings(const OsmData& osm, const Projection& proj
         for (const OsmPolygon& polygon : area.polygons) {
             std::vector<Ring> holes;
             for (const std::vector<LatLon>& inner : polygon.inners) holes.push_back(project_ring(inner, projection));
-            for (Footprint& footprint :
-                 clean_footprint(project_ring(polygon.outer, projection), holes, params, report, kind)) {
+            Ring outer = project_ring(polygon.outer, projection);
+            const char* beyond = ring_beyond_limits(outer);
+            for (const Ring& hole : holes) beyond = beyond ? beyond : ring_beyond_limits(hole);
+            if (beyond) {
+                report.dropped(kind, beyond);
+                continue;
+            }
+            for (Footprint& footprint : clean_footprint(outer, holes, params, report, kind)) {
                 Building b;
                 b.osm = area.ref;
                 b.outer = std::move(footprint.outer);

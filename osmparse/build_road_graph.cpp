@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "osm_units.h"
+#include "scene_limits.h"
 
 namespace citygen {
 
@@ -152,6 +153,15 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
                 report.dropped("road edges", "zero length");
                 continue;
             }
+            // A mapping mistake (a node moved across the map); later stages' cost grows with it.
+            if (length(pb - pa) > kMaxObjectExtent) {
+                report.dropped("road edges", "over 10 km long");
+                continue;
+            }
+            if (std::max({std::fabs(pa.x), std::fabs(pa.y), std::fabs(pb.x), std::fabs(pb.y)}) > kMaxCoordinate) {
+                report.dropped("road edges", "over 1000 km from the scene origin");
+                continue;
+            }
             if (!seen_pairs.insert({std::min(a, b), std::max(a, b)}).second) {
                 report.dropped("road edges", "duplicate of another way's piece");
                 continue;
@@ -181,7 +191,7 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
         if (run.front().a == next.b) return false;  // would close a loop
         const Vec2 chord = end - start;
         const double chord_len = length(chord);
-        if (chord_len < kMinEdgeLength) return false;
+        if (chord_len < kMinEdgeLength || chord_len > kMaxObjectExtent) return false;
         const Vec2 dir = chord * (1.0 / chord_len);
         auto check = [&](const Piece& p) {
             const Vec2 d = normalize(p.pb - p.pa);

@@ -23,9 +23,15 @@ constexpr double kFootprintTolerance = 0.01;
 // The scene stores float32 coordinates. Cleaning works on values already rounded to
 // float, so the rings that were checked are exactly the rings that are stored (and the
 // double-precision predicates in geometry.h are exact on them).
-inline Vec2 round_to_stored_precision(Vec2 p) {
-    return {static_cast<double>(static_cast<float>(p.x)), static_cast<double>(static_cast<float>(p.y))};
+// The float goes through a volatile store: gcc 12.2 at -O2 drops a paired
+// double->float->double conversion when it vectorizes the pair, so release builds skipped the
+// rounding and gave other scenes than -O1, sanitizer or clang builds. A volatile float must be
+// stored and reloaded as a float, whatever the optimizer does.
+inline double round_to_float(double v) {
+    volatile float rounded = static_cast<float>(v);
+    return rounded;
 }
+inline Vec2 round_to_stored_precision(Vec2 p) { return {round_to_float(p.x), round_to_float(p.y)}; }
 
 // The whole clean-up of one polygon, in this order:
 //  1. drop repeated vertices (closer than kFootprintTolerance) and collinear ones or spikes;

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "error.h"
+#include "output_target.h"
 #include "pipeline.h"
 #include "scene_io.h"
 #include "scene_summary.h"
@@ -99,6 +100,12 @@ int main(int argc, char** argv) {
         if (!diff_files.empty()) return run_diff(diff_files, tolerance);
         if (job.input.empty() || output.empty())
             throw Error("need an input file and -o OUTPUT.scene (see --help)");
+        // Every output is checked before the (possibly long) parse.
+        check_output_target(output, {job.input});
+        if (!geojson.empty()) {
+            check_output_target(geojson, {job.input, output});
+            if (geojson == output) throw Error("--geojson and -o name the same file");
+        }
         if (p.buildings.random_min_height > p.buildings.random_max_height)
             throw Error("--building-min-h is larger than --building-max-h");
         if (!ignore_types.empty()) p.buildings.ignore_types = split_list(ignore_types);

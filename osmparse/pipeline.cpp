@@ -1,6 +1,7 @@
 // osmparse from top to bottom: each stage is a function from data to data.
 #include "pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "build_buildings.h"
@@ -30,9 +31,36 @@ std::string base_name(const std::string& path) {
     return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// The origin is the centre of the data's bounding box, so coordinates stay small.
+// The median of every kept location, per axis.
+LatLon median_location(const OsmData& osm) {
+    std::vector<double> lats, lons;
+    auto add = [&](const LatLon& l) {
+        lats.push_back(l.lat);
+        lons.push_back(l.lon);
+    };
+    for (const OsmArea& a : osm.building_areas)
+        for (const OsmPolygon& p : a.polygons)
+            for (const LatLon& l : p.outer) add(l);
+    for (const OsmWay& w : osm.highways)
+        for (const LatLon& l : w.locations) add(l);
+    for (const OsmNode& n : osm.street_lamps) add(n.location);
+    if (lats.empty()) return {0.5 * (osm.min.lat + osm.max.lat), 0.5 * (osm.min.lon + osm.max.lon)};
+    const size_t mid = lats.size() / 2;
+    std::nth_element(lats.begin(), lats.begin() + mid, lats.end());
+    std::nth_element(lons.begin(), lons.begin() + mid, lons.end());
+    return {lats[mid], lons[mid]};
+}
+
+// The origin is the centre of the data's bounding box, so coordinates stay small. Data
+// spanning more than a degree is a region, or a city with a stray node far away (a mapping
+// mistake): then the median location, which a few strays cannot move out of town (their
+// objects are dropped as beyond the scene limits).
 Projection projection_for(const OsmData& osm) {
     if (osm.min.lat > osm.max.lat) return Projection(0, 0);  // nothing located
+    if (osm.max.lat - osm.min.lat > 1 || osm.max.lon - osm.min.lon > 1) {
+        const LatLon m = median_location(osm);
+        return Projection(m.lat, m.lon);
+    }
     return Projection(0.5 * (osm.min.lat + osm.max.lat), 0.5 * (osm.min.lon + osm.max.lon));
 }
 

@@ -7,6 +7,7 @@
 #include "osm_units.h"
 #include "polygon_overlap.h"
 #include "rng.h"
+#include "scene_limits.h"
 
 namespace citygen {
 
@@ -82,6 +83,10 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
     LampGrid tagged(params.min_distance_to_tagged);
     for (const OsmNode& node : osm.street_lamps) {
         Vec2 p = projection.to_local(node.location.lat, node.location.lon);
+        if (std::max(std::fabs(p.x), std::fabs(p.y)) > kMaxCoordinate) {
+            report.dropped("tagged street lamps", "over 1000 km from the scene origin");
+            continue;
+        }
         if (const Ring* ring = surface_containing(p)) {
             p = push_out_of(*ring, p, kKerbOffset);
             report.note("tagged street lamps", "moved off the road surface");

@@ -116,6 +116,11 @@ BuildingIndex::BuildingIndex(const std::vector<Building>& buildings, double cell
     for (uint32_t i = 0; i < buildings.size(); ++i) {
         const Box2 box = bounds_of(buildings[i].outer);
         boxes_.push_back(box);
+        if (box.empty()) continue;
+        if (cells_spanned(box) > kMaxCellsPerObject) {
+            large_.push_back(i);
+            continue;
+        }
         for (int64_t cx = std::floor(box.min.x / cell_); cx <= std::floor(box.max.x / cell_); ++cx)
             for (int64_t cy = std::floor(box.min.y / cell_); cy <= std::floor(box.max.y / cell_); ++cy)
                 grid_[key(cx, cy)].push_back(i);
@@ -124,16 +129,8 @@ BuildingIndex::BuildingIndex(const std::vector<Building>& buildings, double cell
 
 std::vector<uint32_t> BuildingIndex::near(const Box2& box) const {
     std::vector<uint32_t> out;
-    if (box.empty()) return out;
-    for (int64_t cx = std::floor(box.min.x / cell_); cx <= std::floor(box.max.x / cell_); ++cx)
-        for (int64_t cy = std::floor(box.min.y / cell_); cy <= std::floor(box.max.y / cell_); ++cy) {
-            auto it = grid_.find(key(cx, cy));
-            if (it == grid_.end()) continue;
-            for (uint32_t i : it->second)
-                if (boxes_[i].overlaps(box)) out.push_back(i);
-        }
+    for_each_near(box, [&](uint32_t i) { out.push_back(i); });
     std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
 }
 

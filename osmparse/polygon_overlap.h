@@ -37,33 +37,50 @@ public:
     // Indices of buildings whose bounding box overlaps `box`, ascending, no repeats.
     std::vector<uint32_t> near(const Box2& box) const;
     // Calls f(index) once for each of them, in grid order (no sorting, no allocation).
+    // The cost is bounded by the number of buildings, never by the box's extent: a box
+    // covering more cells than that (and than kMaxCellsPerObject) scans the buildings instead.
     template <typename F>
     void for_each_near(const Box2& box, F&& f) const {
         if (box.empty()) return;
         if (++epoch_ == 0) std::fill(seen_.begin(), seen_.end(), 0), epoch_ = 1;
+        auto visit = [&](uint32_t i) {
+            if (seen_[i] == epoch_ || !boxes_[i].overlaps(box)) return;
+            seen_[i] = epoch_;
+            f(i);
+        };
+        if (cells_spanned(box) > std::max(kMaxCellsPerObject, static_cast<double>(boxes_.size()))) {
+            for (uint32_t i = 0; i < boxes_.size(); ++i) visit(i);
+            return;
+        }
         for (int64_t cx = cell_of(box.min.x); cx <= cell_of(box.max.x); ++cx)
             for (int64_t cy = cell_of(box.min.y); cy <= cell_of(box.max.y); ++cy) {
                 auto it = grid_.find(key(cx, cy));
                 if (it == grid_.end()) continue;
-                for (uint32_t i : it->second) {
-                    if (seen_[i] == epoch_ || !boxes_[i].overlaps(box)) continue;
-                    seen_[i] = epoch_;
-                    f(i);
-                }
+                for (uint32_t i : it->second) visit(i);
             }
+        for (uint32_t i : large_) visit(i);
     }
     // Sum over nearby buildings of overlap_area; the largest single overlap in `max_one`.
     double overlap(const Ring& piece, double* max_one = nullptr) const;
     bool contains(Vec2 p) const;  // inside some building's footprint (not in a hole)
     const std::vector<Building>& buildings() const { return buildings_; }
+    size_t cell_count() const { return grid_.size(); }  // grid cells in use (for tests)
+    // An object covering more cells than this is kept in one list that every query checks,
+    // so no object's extent decides the index's memory or build time.
+    static constexpr double kMaxCellsPerObject = 4096;
 
 private:
+    double cells_spanned(const Box2& box) const {  // in double: a box may be absurdly large
+        return (std::floor(box.max.x / cell_) - std::floor(box.min.x / cell_) + 1) *
+               (std::floor(box.max.y / cell_) - std::floor(box.min.y / cell_) + 1);
+    }
     int64_t key(int64_t cx, int64_t cy) const { return cx * 73856093 ^ cy * 19349663; }
     int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
     const std::vector<Building>& buildings_;
     std::vector<Box2> boxes_;
     double cell_;
     std::unordered_map<int64_t, std::vector<uint32_t>> grid_;
+    std::vector<uint32_t> large_;  // objects spanning more than kMaxCellsPerObject cells
     mutable std::vector<uint32_t> seen_;  // for_each_near's "already visited" marks
     mutable uint32_t epoch_ = 0;
 };

@@ -9,9 +9,11 @@
 #include <memory>
 #include <unistd.h>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "error.h"
+#include "scene_io.h"
 
 namespace citygen {
 
@@ -50,8 +52,6 @@ void write_image(const Film& film, const std::string& path, double exposure) {
     using namespace OIIO;
     const ImageFormat format = image_format_for(path);
     const size_t pixels = static_cast<size_t>(film.width) * film.height;
-    const std::string ext = path.substr(path.find_last_of('.'));
-    const std::string tmp = path.substr(0, path.size() - ext.size()) + ".tmp" + std::to_string(::getpid()) + ext;
 
     std::vector<float> data;
     ImageSpec spec;
@@ -88,20 +88,23 @@ void write_image(const Film& film, const std::string& path, double exposure) {
     // write time unless DateTime is set, and it leaves out an empty one.
     spec.attribute("DateTime", "");
 
-    auto out = ImageOutput::create(tmp);
-    bool ok = out && out->open(tmp, spec) && out->write_image(TypeDesc::FLOAT, data.data());
+    // The image is encoded in memory and then written by write_file_atomically, which checks
+    // every write, the flush and the close, and removes its temporary file on failure: the
+    // image libraries do not all report a full disk (libpng did not), and libjpeg prints its
+    // own line.
+    std::vector<unsigned char> bytes;
+    Filesystem::IOVecOutput memory(bytes);
+    auto out = ImageOutput::create(path);
+    bool ok = out && out->supports("ioproxy") && out->set_ioproxy(&memory) && out->open(path, spec) &&
+              out->write_image(TypeDesc::FLOAT, data.data());
     std::string reason = out ? out->geterror() : OIIO::geterror();
     if (out) ok = out->close() && ok;
-    if (ok && std::rename(tmp.c_str(), path.c_str()) != 0) {
-        ok = false;
-        reason = std::strerror(errno);
-    }
     if (!ok) {
-        std::remove(tmp.c_str());
-        if (reason.empty()) reason = "write failed";
+        if (reason.empty()) reason = "encoding failed";
         const size_t newline = reason.find('\n');
         throw Error(path + ": cannot write image (" + reason.substr(0, newline) + ")");
     }
+    write_file_atomically(path, bytes.data(), bytes.size());
 }
 
 }  // namespace citygen

@@ -13,9 +13,12 @@
 #include "bsdf.h"
 #include "build_render_scene.h"
 #include "camera.h"
+#include "cli_values.h"
 #include "error.h"
 #include "export_ply.h"
 #include "image_output.h"
+#include "memory_estimate.h"
+#include "output_target.h"
 #include "render_image.h"
 #include "render_report.h"
 #include "scene_io.h"
@@ -42,17 +45,6 @@ struct Options {
     bool print_scene_info = false, print_memory_info = false, print_geometry_info = false, stats = false;
 };
 
-Vec3 parse_point(const std::string& text, const std::string& option) {
-    std::stringstream in(text);
-    double v[3];
-    char comma1 = 0, comma2 = 0;
-    in >> v[0] >> comma1 >> v[1] >> comma2 >> v[2];
-    if (in.fail() || comma1 != ',' || comma2 != ',' || !(in >> std::ws).eof() || !std::isfinite(v[0]) ||
-        !std::isfinite(v[1]) || !std::isfinite(v[2]))
-        throw Error(option + ": expected X,Y,Z in metres, got '" + text + "'");
-    return {v[0], v[1], v[2]};
-}
-
 bool parse_aovs(const std::string& text) {
     if (text.empty()) return false;
     std::stringstream in(text);
@@ -63,11 +55,9 @@ bool parse_aovs(const std::string& text) {
 }
 
 // Fails before the (possibly long) render when the image could not be written anyway.
-void check_output_path(const std::string& path) {
+void check_output_path(const std::string& path, const std::string& scene_path) {
     image_format_for(path);
-    const size_t slash = path.find_last_of('/');
-    const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-    if (::access(dir.c_str(), W_OK) != 0) throw Error(path + ": cannot write (directory missing or not writable)");
+    check_output_target(path, {scene_path});
 }
 
 int run(const Options& o) {
@@ -79,12 +69,14 @@ int run(const Options& o) {
     const TimeOfDay time = parse_time_of_day(o.time);
     RenderSettings settings = o.render;
     settings.aovs = parse_aovs(o.aovs);
-    if (!o.output.empty()) check_output_path(o.output);
+    if (!o.output.empty()) check_output_path(o.output, o.scene_path);
+    if (!o.export_ply_path.empty()) check_output_target(o.export_ply_path, {o.scene_path, o.output});
     if (settings.aovs && !o.output.empty() && image_format_for(o.output) != ImageFormat::Exr)
         throw Error("--aovs needs an .exr output");
     const bool want_camera = !o.camera.empty() || !o.look_at.empty();
     if (want_camera && (o.camera.empty() || o.look_at.empty()))
         throw Error("--camera and --look-at go together");
+    if (want_camera) check_view(parse_point(o.camera, "--camera"), parse_point(o.look_at, "--look-at"));
     if (o.output.empty() && o.export_ply_path.empty() && !o.print_scene_info && !o.print_memory_info &&
         !o.print_geometry_info)
         throw Error("need -o OUTPUT.png|jpg|exr (see --help)");
@@ -100,6 +92,7 @@ int run(const Options& o) {
     facades.seed = scene.header.seed;
     facades.shop_probability = o.shop_probability;
     const Clock::time_point build_start = Clock::now();
+    check_memory_fits(estimate_render_memory(scene, modes, facades, settings));
     const std::unique_ptr<RenderScene> render_scene = build_render_scene(scene, modes, facades, ProgressSettings{settings.quiet});
     const double build_seconds = seconds_since(build_start);
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);

@@ -87,6 +87,9 @@ PolygonTriangulation triangulate_polygon(const Ring& outer, const std::vector<Ri
     insert_ring(cdt, outer);
     for (const Ring& hole : holes)
         if (hole.size() >= 3) insert_ring(cdt, hole);
+    // Identical or collinear points give a 0- or 1-dimensional triangulation with no faces to
+    // walk (its "faces" have no neighbours): nothing to cover.
+    if (cdt.dimension() < 2) return {};
     mark_nesting(cdt);
 
     PolygonTriangulation out;

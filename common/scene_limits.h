@@ -1,0 +1,20 @@
+// Limits on scene geometry that no real city reaches. osmparse drops (and counts) objects
+// beyond them; decode_scene refuses a file that holds any, so the renderer's cost stays
+// bounded by the file's size and never by the values inside it. Documented in README.md.
+#pragma once
+
+#include <cstddef>
+
+namespace citygen {
+
+// Any x, y (and z) of a scene point, metres from the origin: 1000 km. float32 still resolves
+// 6 cm there; a city extract spans a few tens of km.
+constexpr double kMaxCoordinate = 1e6;
+// Bounding box side of one building ring, road edge, joint or sidewalk piece, metres.
+constexpr double kMaxObjectExtent = 10000;
+// Building heights and lamp heights, metres above the ground (the tallest building is 828 m).
+constexpr double kMaxHeight = 1000;
+// Points in one ring or polygon (an OSM way has at most 2000 nodes).
+constexpr size_t kMaxRingPoints = 10000;
+
+}  // namespace citygen

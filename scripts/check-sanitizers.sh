@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# The sanitizer and fuzz stage of CI (run by scripts/test.sh): builds everything with clang,
+# AddressSanitizer and UndefinedBehaviorSanitizer (any report aborts) in a second build
+# directory, runs the whole test suite there (so a compiler-dependent result cannot hide
+# behind gcc either), then runs each libFuzzer harness in tests/fuzz for FUZZ_SECONDS
+# (default 60) from its seed corpus. Fails on any test failure, crash, sanitizer report,
+# timeout (over 10 s on one input) or out-of-memory (over 2 GB).
+# Environment: SANITIZE_BUILD_DIR (default build-sanitize), FUZZ_SECONDS.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+start=$(date +%s)
+dir=${SANITIZE_BUILD_DIR:-build-sanitize}
+seconds=${FUZZ_SECONDS:-60}
+jobs=$(nproc)
+
+sanitize="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+# Coverage instrumentation for the fuzzers' benefit; harmless in the other binaries.
+coverage="-fsanitize=fuzzer-no-link"
+cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g $sanitize $coverage" \
+    -DCMAKE_EXE_LINKER_FLAGS="$sanitize" \
+    -DCITYGEN_FUZZ=ON > /dev/null
+cmake --build "$dir" -j"$jobs"
+built=$(date +%s)
+
+# Third-party libraries (TBB, Embree, OpenImageIO) keep some memory until exit on purpose.
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1
+export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp:print_suppressions=0
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+(cd "$dir" && ctest --output-on-failure -j"$jobs")
+tested=$(date +%s)
+
+# Each fuzzer: a scratch corpus (where libFuzzer adds what it finds) seeded from the repository.
+run_fuzzer() {
+    local name=$1; shift
+    local work; work=$(mktemp -d)
+    echo "fuzzing $name for ${seconds}s" >&2
+    if ! "$dir/bin/$name" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+            -artifact_prefix="$dir/fuzz-$name-" "$work" "$@" > "$dir/fuzz-$name.log" 2>&1; then
+        tail -n 60 "$dir/fuzz-$name.log" >&2
+        echo "check-sanitizers: $name failed (reproducer in $dir/fuzz-$name-*)" >&2
+        rm -rf "$work"
+        return 1
+    fi
+    local runs cov
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$dir/fuzz-$name.log")
+    cov=$(grep -o 'cov: [0-9]* ft: [0-9]*' "$dir/fuzz-$name.log" | tail -n 1)
+    echo "$name: $runs runs, $cov, corpus $(ls "$work" | wc -l) new inputs" >&2
+    rm -rf "$work"
+}
+run_fuzzer scene_loader_fuzz tests/fuzz/corpus/scene_loader tests/golden
+run_fuzzer parse_pipeline_fuzz -max_len=65536 tests/fuzz/corpus/parse_pipeline
+run_fuzzer cli_values_fuzz -max_len=256 tests/fuzz/corpus/cli_values
+rm -f /tmp/citygen-fuzz-*.osm
+end=$(date +%s)
+echo "check-sanitizers: build $((built - start)) s, sanitized tests $((tested - built)) s, fuzzing $((end - tested)) s, total $((end - start)) s" >&2
