@@ -21,18 +21,18 @@ std::string directory_of(const std::string& path) {
 
 void check_output_target(const std::string& path, const std::vector<std::string>& inputs) {
     if (path.empty()) throw Error("empty output file name");
-    if (path.back() == '/') throw Error(path + ": is a directory name, not an output file");
+    if (path.back() == '/') throw Error(path + ": cannot write: a directory name, not a file name");
     struct stat target;
     if (::lstat(path.c_str(), &target) == 0) {
         if (S_ISLNK(target.st_mode))
-            throw Error(path + ": is a symbolic link; refusing to replace it (name the file it points to)");
+            throw Error(path + ": cannot write: a symbolic link; refusing to replace it (name the file it points to)");
         if (!S_ISREG(target.st_mode))
-            throw Error(path + ": exists and is not a regular file (directory, device or pipe); refusing to replace it");
+            throw Error(path + ": cannot write: exists and is not a regular file (a directory, device or pipe); refusing to replace it");
         for (const std::string& input : inputs) {
             struct stat in;
             if (!input.empty() && ::stat(input.c_str(), &in) == 0 && in.st_dev == target.st_dev &&
                 in.st_ino == target.st_ino)
-                throw Error(path + ": is the same file as the input " + input + "; refusing to overwrite the input");
+                throw Error(path + ": cannot write: the same file as the input " + input + "; refusing to overwrite the input");
         }
     } else if (errno != ENOENT) {
         throw Error(path + ": cannot write (" + std::strerror(errno) + ")");
