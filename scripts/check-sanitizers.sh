@@ -17,7 +17,7 @@ sanitize="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame
 # Coverage instrumentation for the fuzzers' benefit; harmless in the other binaries.
 coverage="-fsanitize=fuzzer-no-link"
 cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+    -DCMAKE_CXX_COMPILER=clang++ \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g $sanitize $coverage" \
     -DCMAKE_EXE_LINKER_FLAGS="$sanitize" \
     -DCITYGEN_FUZZ=ON > /dev/null

@@ -14,6 +14,9 @@ PACKAGES=(
   openimageio-tools
   # tests/bench/parse_bench.sh compares with `osmium fileinfo -e` and reads peak memory with GNU time.
   osmium-tool time
+  # scripts/check-sanitizers.sh: clang with ASan, UBSan and libFuzzer (the runtimes are in
+  # libclang-rt-14-dev).
+  clang libclang-rt-14-dev
 )
 
 missing=()
