@@ -16,6 +16,9 @@ namespace {
 
 constexpr double kMinEdgeLength = 0.01;   // metres: shorter pieces are degenerate
 constexpr double kMergeDeviation = 0.25;  // metres a skipped node may lie off the merged piece
+// Longest straight node-to-node edge kept: half the scene limit on one object's extent, so an
+// edge's quad, sidewalks and miters stay well inside it (see scene_limits.h).
+constexpr double kMaxRoadEdgeLength = kMaxObjectExtent / 2;
 constexpr double kMinTaggedWidth = 1.0;
 constexpr double kMaxLanes = 12;
 
@@ -154,8 +157,8 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
                 continue;
             }
             // A mapping mistake (a node moved across the map); later stages' cost grows with it.
-            if (length(pb - pa) > kMaxObjectExtent) {
-                report.dropped("road edges", "over 10 km long");
+            if (length(pb - pa) > kMaxRoadEdgeLength) {
+                report.dropped("road edges", "over 5 km long");
                 continue;
             }
             if (std::max({std::fabs(pa.x), std::fabs(pa.y), std::fabs(pb.x), std::fabs(pb.y)}) > kMaxCoordinate) {
@@ -191,7 +194,7 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
         if (run.front().a == next.b) return false;  // would close a loop
         const Vec2 chord = end - start;
         const double chord_len = length(chord);
-        if (chord_len < kMinEdgeLength || chord_len > kMaxObjectExtent) return false;
+        if (chord_len < kMinEdgeLength || chord_len > kMaxRoadEdgeLength) return false;
         const Vec2 dir = chord * (1.0 / chord_len);
         auto check = [&](const Piece& p) {
             const Vec2 d = normalize(p.pb - p.pa);

@@ -60,9 +60,9 @@ old() { echo "old contents of $1" > "$1"; sha256sum < "$1"; }
 for case in far_road far_building_node duplicate_node ring_100k_nodes; do
     run "$case" "$bin/osmparse" "in/$case.osm" -o "$case.scene"
     case $case in
-        far_road) expect_drop "over 10 km long" ;;
+        far_road) expect_drop "over 5 km long" ;;
         far_building_node) expect_drop "over 10 km across" ;;
-        duplicate_node) expect_drop "over 10 km" ;;
+        duplicate_node) expect_drop "over 5 km long" ;;
         ring_100k_nodes) expect_drop "too many points" ;;
     esac
 done
