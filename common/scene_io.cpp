@@ -123,31 +123,47 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
     b.ForceDefaults(true);  // a field equal to its default is still written: stable layout
     const SceneHeader& h = scene.header;
 
+    // Every nested object is created into a named offset first, in a fixed order: the order in
+    // which a compiler evaluates function arguments is unspecified (gcc goes right to left,
+    // clang left to right), and it decides the bytes. The order below is gcc's, so scenes
+    // written before this stayed byte-identical.
     std::vector<flatbuffers::Offset<fb::KeyValue>> options;
-    for (const auto& [k, v] : h.options)
-        options.push_back(fb::CreateKeyValue(b, b.CreateString(k), b.CreateString(v)));
+    for (const auto& [k, v] : h.options) {
+        const auto value = b.CreateString(v);
+        const auto key = b.CreateString(k);
+        options.push_back(fb::CreateKeyValue(b, key, value));
+    }
     fb::Vec2 bmin = to_fb(h.bounds_min), bmax = to_fb(h.bounds_max);
-    auto header = fb::CreateHeader(b, h.format_major, h.format_minor, b.CreateString(h.generator),
-                                   h.origin_lat, h.origin_lon, b.CreateString(h.projection),
-                                   &bmin, &bmax, h.seed, b.CreateVector(options),
-                                   b.CreateString(h.source));
+    const auto source = b.CreateString(h.source);
+    const auto option_vector = b.CreateVector(options);
+    const auto projection = b.CreateString(h.projection);
+    const auto generator = b.CreateString(h.generator);
+    auto header = fb::CreateHeader(b, h.format_major, h.format_minor, generator,
+                                   h.origin_lat, h.origin_lon, projection,
+                                   &bmin, &bmax, h.seed, option_vector,
+                                   source);
 
     std::vector<flatbuffers::Offset<fb::Building>> buildings;
     for (const Building& x : scene.buildings) {
         std::vector<flatbuffers::Offset<fb::Ring>> holes;
         for (const Ring& r : x.holes) holes.push_back(ring(b, r));
         fb::OsmRef osm = to_fb(x.osm);
+        const auto type = b.CreateString(x.type);
+        const auto hole_vector = b.CreateVector(holes);
+        const auto outer = ring(b, x.outer);
         buildings.push_back(fb::CreateBuilding(
-            b, &osm, ring(b, x.outer), b.CreateVector(holes), static_cast<float>(x.min_height),
+            b, &osm, outer, hole_vector, static_cast<float>(x.min_height),
             static_cast<float>(x.height), static_cast<int16_t>(x.levels),
-            static_cast<fb::HeightSource>(x.height_source), b.CreateString(x.type), x.is_part));
+            static_cast<fb::HeightSource>(x.height_source), type, x.is_part));
     }
 
     std::vector<flatbuffers::Offset<fb::RoadEdge>> roads;
     for (const RoadEdge& x : scene.roads) {
         fb::OsmRef osm = to_fb(x.osm);
+        const auto quad = points(b, x.quad);
+        const auto centreline = points(b, x.centreline);
         roads.push_back(fb::CreateRoadEdge(
-            b, &osm, x.from_node, x.to_node, points(b, x.centreline), points(b, x.quad),
+            b, &osm, x.from_node, x.to_node, centreline, quad,
             static_cast<float>(x.width), static_cast<fb::RoadClass>(x.road_class),
             static_cast<uint8_t>(x.lanes), x.oneway, x.bridge, x.from_joint, x.to_joint,
             x.sidewalk_left, x.sidewalk_right));
@@ -156,8 +172,10 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
     std::vector<flatbuffers::Offset<fb::Joint>> joints;
     for (const Joint& x : scene.joints) {
         fb::OsmRef osm = to_fb(x.osm);
+        const auto edges = b.CreateVector(x.edges);
+        const auto polygon = points(b, x.polygon);
         joints.push_back(
-            fb::CreateJoint(b, &osm, points(b, x.polygon), b.CreateVector(x.edges)));
+            fb::CreateJoint(b, &osm, polygon, edges));
     }
 
     std::vector<flatbuffers::Offset<fb::Sidewalk>> sidewalks;
@@ -177,9 +195,14 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
     fb::Vec2 gmin = to_fb(scene.ground.min), gmax = to_fb(scene.ground.max);
     auto ground = fb::CreateGround(b, &gmin, &gmax, static_cast<float>(scene.ground.z));
 
-    auto root = fb::CreateScene(b, header, b.CreateVector(buildings), b.CreateVector(roads),
-                                b.CreateVector(joints), b.CreateVector(sidewalks),
-                                b.CreateVector(lamps), ground);
+    const auto lamp_vector = b.CreateVector(lamps);
+    const auto sidewalk_vector = b.CreateVector(sidewalks);
+    const auto joint_vector = b.CreateVector(joints);
+    const auto road_vector = b.CreateVector(roads);
+    const auto building_vector = b.CreateVector(buildings);
+    auto root = fb::CreateScene(b, header, building_vector, road_vector,
+                                joint_vector, sidewalk_vector,
+                                lamp_vector, ground);
     fb::FinishSceneBuffer(b, root);
     return {b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize()};
 }

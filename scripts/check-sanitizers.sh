@@ -28,6 +28,8 @@ built=$(date +%s)
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+# ASan reserves terabytes of address space for its shadow: no ulimit -v in the hostile set.
+export HOSTILE_MEMORY_KB=unlimited
 (cd "$dir" && ctest --output-on-failure -j"$jobs")
 tested=$(date +%s)
 

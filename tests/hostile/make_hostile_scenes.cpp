@@ -53,8 +53,13 @@ int main(int argc, char** argv) {
     b.outer.clear();
     for (int i = 0; i < 100000; ++i) b.outer.push_back({50 * std::cos(i * 2 * M_PI / 100000), 50 * std::sin(i * 2 * M_PI / 100000)});
     write(dir, "points_100k", scene_of(b));
-    // Within every limit, but stored facades of a 9 km block 1000 m tall need far more memory
-    // than a test machine has: the memory estimate must refuse it.
-    write(dir, "too_big_to_fit", scene_of(box(-4500, -4500, 4500, 4500, 1000)));
+    // Within every limit, but the stored facades of 100 blocks of 9 km, 1000 m tall, need
+    // about 2.4 TB, more than any test machine has: the memory estimate must refuse it.
+    Scene big = scene_of(box(-4500, -4500, 4500, 4500, 1000));
+    for (int i = 1; i < 100; ++i) {
+        big.buildings.push_back(box(-4500, -4500 + 10000.0 * i, 4500, 4500 + 10000.0 * i, 1000));
+        big.buildings.back().osm.id = 1 + i;
+    }
+    write(dir, "too_big_to_fit", big);
     return 0;
 }
