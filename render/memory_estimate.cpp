@@ -48,6 +48,35 @@ double read_number(const char* file) {  // -1 when absent or "max"
 
 }  // namespace
 
+double wall_triangle_estimate(const WallLayout& layout) {
+    // wall_triangle_count walks every cell, a million on an absurd wall: here the cells of each
+    // kind are counted and one cell of each kind is triangulated (a cell's rectangles depend
+    // only on its kind).
+    FacadeRect rects[kMaxCellRects];
+    double count = 2.0 * margin_rects(layout, rects);
+    if (layout.plain()) return count;
+    const double cells = static_cast<double>(layout.floors) * layout.slots;
+    double of_kind[3] = {0, 0, 0};
+    of_kind[static_cast<int>(CellKind::Shop)] = layout.shop ? layout.slots : 0;
+    if (layout.balconies && layout.floors >= 2)
+        of_kind[static_cast<int>(CellKind::Balcony)] =
+            static_cast<double>(layout.floors - 1) * ((layout.slots + layout.balcony_every - 1) / layout.balcony_every);
+    of_kind[static_cast<int>(CellKind::Window)] =
+        cells - of_kind[static_cast<int>(CellKind::Shop)] - of_kind[static_cast<int>(CellKind::Balcony)];
+    // Every kind present has a cell among these (windows: floor 0 without shops, else a
+    // floor above on a slot without a balcony).
+    const int candidates[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    bool counted[3] = {false, false, false};
+    for (const auto& c : candidates) {
+        if (c[0] >= layout.floors || c[1] >= layout.slots) continue;
+        const int kind = static_cast<int>(cell_kind(layout, c[0], c[1]));
+        if (counted[kind]) continue;
+        counted[kind] = true;
+        count += of_kind[kind] * 2.0 * cell_rects(layout, c[0], c[1], rects);
+    }
+    return count;
+}
+
 MemoryEstimate estimate_render_memory(const Scene& scene, const GeometryModes& modes, const FacadeOptions& facades,
                                       const RenderSettings& settings) {
     MemoryEstimate e;
@@ -55,8 +84,7 @@ MemoryEstimate estimate_render_memory(const Scene& scene, const GeometryModes& m
         for (const Building& b : scene.buildings) {
             if (b.outer.size() < 3 || !(b.height > b.min_height)) continue;
             for (size_t w = 0, n = building_wall_count(b); w < n; ++w)
-                e.stored_triangles += static_cast<double>(
-                    wall_triangle_count(make_wall_layout(facades, building_wall_input(b, w))));
+                e.stored_triangles += wall_triangle_estimate(make_wall_layout(facades, building_wall_input(b, w)));
             e.stored_triangles += 4 * ring_points(b);  // roof and underside, a bound
         }
     } else {

@@ -19,6 +19,9 @@ struct MemoryEstimate {
     double bytes = 0;                  // all of it, with Embree's BVH and build scratch
 };
 
+// The triangles facade_mesh.h makes of a wall (wall_triangle_count), in O(1) instead of O(cells).
+double wall_triangle_estimate(const WallLayout& layout);
+
 MemoryEstimate estimate_render_memory(const Scene& scene, const GeometryModes& modes, const FacadeOptions& facades,
                                       const RenderSettings& settings);
 

@@ -17,6 +17,7 @@
 #include "clean_footprint.h"
 #include "error.h"
 #include "facade.h"
+#include "facade_mesh.h"
 #include "image_output.h"
 #include "memory_estimate.h"
 #include "output_target.h"
@@ -301,4 +302,24 @@ TEST(Hardening, FixturesParseToTheGoldenBytes) {
         ++compared;
     }
     EXPECT_GE(compared, 10);
+}
+
+TEST(Hardening, WallTriangleEstimateIsExact) {
+    int walls = 0;
+    for (uint64_t seed = 0; seed < 40; ++seed)
+        for (double height : {2.0, 4.0, 9.0, 31.0, 120.0})
+            for (double length : {1.0, 3.0, 7.5, 26.0, 140.0}) {
+                FacadeOptions options;
+                options.seed = seed;
+                options.shop_probability = 0.5;
+                WallInput wall;
+                wall.building_key = seed * 7919;
+                wall.length = length;
+                wall.height = height;
+                const WallLayout layout = make_wall_layout(options, wall);
+                ASSERT_EQ(wall_triangle_estimate(layout), static_cast<double>(wall_triangle_count(layout)))
+                    << "seed " << seed << " height " << height << " length " << length;
+                walls += !layout.plain();
+            }
+    EXPECT_GT(walls, 300);
 }
