@@ -30,7 +30,8 @@ CameraPath parse_camera_path(const std::string& text, const std::string& name);
 
 // The view at `time` (clamped to the path's span): position and look-at on centripetal
 // Catmull-Rom splines through the keys (ends extended by reflection), fov linear between keys.
-// At a key's time it is that key exactly.
+// At a key's time it is that key exactly. The direction of travel is continuous across keys;
+// the speed within a segment follows the segment's duration.
 CameraKey camera_path_at(const CameraPath& path, double time);
 
 // One full turn in `seconds` around `centre` at the horizontal distance and height of `start`,
