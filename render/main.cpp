@@ -196,6 +196,7 @@ int run(const Options& o) {
         std::printf("load_seconds: %.3f\nbuild_seconds: %.3f\nwrite_seconds: %.3f\n", load_seconds, build_seconds,
                     write_seconds);
         std::printf("spp: %d\n", stats.spp);
+        if (o.denoise) std::printf("denoise_seconds: %.3f\n", stats.denoise_seconds);
         std::printf("render_seconds: %.3f\nrays: %llu\nrays_per_second: %.0f\n", stats.seconds,
                     static_cast<unsigned long long>(stats.rays), stats.rays / std::max(stats.seconds, 1e-9));
         // The view actually used (also the automatic one), so another renderer can match it.

@@ -33,6 +33,10 @@ Film crop(const Film& film, const PixelRegion& region) {
     copy(film.albedo, out.albedo, 3);
     copy(film.object_kind, out.object_kind, 1);
     copy(film.object_index, out.object_index, 1);
+    copy(film.guide_albedo, out.guide_albedo, 3);
+    copy(film.guide_normal, out.guide_normal, 3);
+    copy(film.guide_depth, out.guide_depth, 1);
+    copy(film.guide_variance, out.guide_variance, 1);
     return out;
 }
 
@@ -45,11 +49,14 @@ Film render_view(const PathContext& context, const Camera& camera, const RenderS
     const DenoiseSettings denoise_settings;
     const int margin = denoise_margin(denoise_settings);
     RenderSettings wider = settings;
-    wider.aovs = true;  // the filter's guides
+    wider.aovs = true;  // the object ids
+    wider.denoise_guides = true;
     wider.region = {std::max(0, region.x0 - margin), std::max(0, region.y0 - margin),
                     std::min(settings.width, region.x1 + margin), std::min(settings.height, region.y1 + margin)};
     Film film = render_image(context, camera, wider, stats);
+    const auto filter_start = std::chrono::steady_clock::now();
     citygen::denoise(film, exposure, denoise_settings);
+    if (stats) stats->denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();
     Film out = crop(film, region);
     if (!settings.aovs) {
         out.depth.clear();

@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "error.h"
+#include "bsdf.h"
 #include "progress.h"
 
 namespace citygen {
@@ -36,15 +37,43 @@ void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, s
     film.object_index[i] = static_cast<float>(hit.object);
 }
 
+// The denoiser's guides: albedo, normal and depth averaged over a 3x3 grid of positions inside
+// the pixel, so a window narrower than a pixel still shows (a fixed grid: noise-free, and it
+// takes nothing from the pixel's random stream).
+void fill_guides(const PathContext& context, const Camera& camera, int x, int y, size_t i, Film& film,
+                 uint64_t& rays) {
+    constexpr int kGrid = 3;
+    double albedo[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, depth = 0;
+    for (int sy = 0; sy < kGrid; ++sy)
+        for (int sx = 0; sx < kGrid; ++sx) {
+            const Ray ray = camera.generate_ray(x + (sx + 0.5) / kGrid, y + (sy + 0.5) / kGrid);
+            Hit hit;
+            ++rays;
+            if (!context.scene.intersect(ray, hit)) continue;
+            const Material& m = context.materials[hit.material];
+            const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
+            const Color a = m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy ? m.albedo : m.specular;
+            for (int c = 0; c < 3; ++c) albedo[c] += a[c], normal[c] += n[c];
+            depth += hit.t;
+        }
+    constexpr double inv = 1.0 / (kGrid * kGrid);
+    for (int c = 0; c < 3; ++c) {
+        film.guide_albedo[3 * i + c] = static_cast<float>(albedo[c] * inv);
+        film.guide_normal[3 * i + c] = static_cast<float>(normal[c] * inv);
+    }
+    film.guide_depth[i] = static_cast<float>(depth * inv);
+}
+
 // A pixel's own random stream and the sum of its samples so far: the same numbers whichever
 // thread renders it, and whether its samples come in one go or one pass at a time.
 struct PixelSamples {
     Rng rng;
     Color sum{0, 0, 0};
+    double luminance_squares = 0;  // sum of the samples' squared luminance (for the variance)
 };
 
 PixelSamples start_pixel(const RenderSettings& settings, int x, int y) {
-    return {Rng(hash_keys(settings.seed, static_cast<uint64_t>(x), static_cast<uint64_t>(y))), Color{0, 0, 0}};
+    return {Rng(hash_keys(settings.seed, static_cast<uint64_t>(x), static_cast<uint64_t>(y))), Color{0, 0, 0}, 0};
 }
 
 void add_samples(const PathContext& context, const Camera& camera, int x, int y, int count, PixelSamples& pixel,
@@ -53,13 +82,22 @@ void add_samples(const PathContext& context, const Camera& camera, int x, int y,
         const double jx = pixel.rng.next_double(), jy = pixel.rng.next_double();
         const Color L = trace_path(context, camera.generate_ray(x + jx, y + jy), pixel.rng, rays);
         // A lone non-finite sample would poison the pixel; count it as black.
-        if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) pixel.sum = pixel.sum + L;
+        if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {
+            pixel.sum = pixel.sum + L;
+            pixel.luminance_squares += luminance(L) * luminance(L);
+        }
     }
 }
 
 void store_pixel(const PixelSamples& pixel, int spp, size_t i, Film& film) {
     const double inv = 1.0 / std::max(1, spp);
     for (int c = 0; c < 3; ++c) film.rgb[3 * i + c] = static_cast<float>(pixel.sum[c] * inv);
+    if (!film.guide_variance.empty()) {
+        // Variance of the pixel's mean luminance: the sample variance over the sample count.
+        const double mean = luminance(pixel.sum) * inv;
+        const double sample_variance = std::max(0.0, pixel.luminance_squares * inv - mean * mean) * spp / std::max(1, spp - 1);
+        film.guide_variance[i] = static_cast<float>(sample_variance * inv);
+    }
 }
 
 // Calls visit(x, y, i) for every pixel of the film, tiles in parallel; `i` indexes the film.
@@ -102,6 +140,7 @@ Film render_image(const PathContext& context, const Camera& camera, const Render
     film.y0 = region.y0;
     const size_t pixels = static_cast<size_t>(film.width) * film.height;
     film.rgb.assign(3 * pixels, 0.f);
+    if (settings.denoise_guides) film.guide_variance.assign(pixels, 0.f);
     if (settings.aovs) {
         film.depth.assign(pixels, 0.f);
         film.normal.assign(3 * pixels, 0.f);
@@ -152,6 +191,14 @@ Film render_image(const PathContext& context, const Camera& camera, const Render
         for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
             fill_aovs(context, camera, x, y, i, film);
             ++rays;
+        });
+    }
+    if (settings.denoise_guides) {
+        film.guide_albedo.assign(3 * pixels, 0.f);
+        film.guide_normal.assign(3 * pixels, 0.f);
+        film.guide_depth.assign(pixels, 0.f);
+        for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
+            fill_guides(context, camera, x, y, i, film, rays);
         });
     }
     if (stats) {

@@ -29,6 +29,7 @@ struct RenderSettings {
     uint64_t seed = 1;
     IntegratorSettings integrator;
     bool aovs = false;   // fill depth, normal, albedo and id
+    bool denoise_guides = false;  // fill the guide_* buffers (for --denoise)
     bool quiet = false;  // no progress bar
 };
 
@@ -44,12 +45,17 @@ struct Film {
     std::vector<float> albedo;       // 3 per pixel
     std::vector<float> object_kind;  // ObjectKind as a number (0: sky)
     std::vector<float> object_index; // index of the object in the scene file's list of its kind
+    // Denoiser guides, present when RenderSettings::denoise_guides: albedo, normal and depth
+    // averaged over 3x3 positions in the pixel, so a window narrower than a pixel still shows.
+    std::vector<float> guide_albedo, guide_normal, guide_depth;
+    std::vector<float> guide_variance;  // of each pixel's mean luminance, from its samples
 };
 
 struct RenderStats {
     double seconds = 0;
     uint64_t rays = 0;
     int spp = 0;  // samples per pixel rendered (the passes reached under a time limit)
+    double denoise_seconds = 0;  // the --denoise filter alone
 };
 
 // The region actually rendered: settings.region, or the whole frame when it is empty.

@@ -13,28 +13,35 @@ using namespace citygen;
 
 namespace {
 
-// A 64x48 film of one flat wall (normal +z, depth 10, albedo 0.5, object 1) with the given colour.
+// A 64x48 film of one flat wall (normal +z, depth 10, albedo 0.5, building 1) with the given colour.
 Film flat_film(float r, float g, float b) {
     Film film;
     film.width = 64;
     film.height = 48;
     const size_t n = 64 * 48;
-    film.depth.assign(n, 10.f);
+    film.guide_depth.assign(n, 10.f);
+    film.guide_variance.assign(n, 0.f);
     film.object_kind.assign(n, 1.f);
     film.object_index.assign(n, 1.f);
-    film.normal.assign(3 * n, 0.f);
-    film.albedo.assign(3 * n, 0.5f);
+    film.guide_normal.assign(3 * n, 0.f);
+    film.guide_albedo.assign(3 * n, 0.5f);
     film.rgb.resize(3 * n);
     for (size_t i = 0; i < n; ++i) {
-        film.normal[3 * i + 2] = 1;
+        film.guide_normal[3 * i + 2] = 1;
         film.rgb[3 * i] = r, film.rgb[3 * i + 1] = g, film.rgb[3 * i + 2] = b;
     }
     return film;
 }
 
+// Uniform noise of +-amount/2 relative, and the variance of it that a renderer would report.
 void add_noise(Film& film, uint64_t seed, double amount) {
     Rng rng(seed);
-    for (float& v : film.rgb) v = static_cast<float>(v * (1 + amount * (rng.next_double() - 0.5)));
+    for (size_t i = 0; i < film.guide_variance.size(); ++i) {
+        const double value = film.rgb[3 * i];
+        for (int c = 0; c < 3; ++c)
+            film.rgb[3 * i + c] = static_cast<float>(film.rgb[3 * i + c] * (1 + amount * (rng.next_double() - 0.5)));
+        film.guide_variance[i] = static_cast<float>(value * value * amount * amount / 12);
+    }
 }
 
 double mean_abs_error(const Film& film, int x0, int x1, float r) {
@@ -51,7 +58,8 @@ TEST(Denoise, ConstantImageStaysExactlyConstant) {
     for (float value : {0.f, 0.123456f, 3.7f, 1234.5f}) {
         Film film = flat_film(value, value * 0.5f, value * 0.25f);
         // Guides that vary (depth ramp, two objects) must not matter for a constant colour.
-        for (int x = 0; x < film.width; ++x) film.depth[x] = 5.f + x;
+        for (int x = 0; x < film.width; ++x) film.guide_depth[x] = 5.f + x;
+        for (size_t i = 0; i < film.guide_variance.size(); ++i) film.guide_variance[i] = 0.01f * (i % 5);
         for (size_t i = 0; i < film.object_index.size(); i += 7) film.object_index[i] = 2;
         const std::vector<float> before = film.rgb;
         denoise(film, 1.0);
@@ -72,8 +80,8 @@ TEST(Denoise, NoLightCrossesAnObjectOrNormalEdge) {
                 const size_t i = y * 64 + x;
                 for (Film* f : {&film, &brighter}) {
                     if (normal_edge) {
-                        f->normal[3 * i + 0] = 1;
-                        f->normal[3 * i + 2] = 0;
+                        f->guide_normal[3 * i + 0] = 1;
+                        f->guide_normal[3 * i + 2] = 0;
                     } else {
                         f->object_index[i] = 2;
                     }
@@ -82,6 +90,8 @@ TEST(Denoise, NoLightCrossesAnObjectOrNormalEdge) {
                     film.rgb[3 * i + c] = 5.f;
                     brighter.rgb[3 * i + c] = 50.f;
                 }
+                film.guide_variance[i] = 1.f;
+                brighter.guide_variance[i] = 100.f;
             }
         denoise(film, 1.0);
         denoise(brighter, 1.0);
@@ -108,8 +118,19 @@ TEST(Denoise, ReducesNoiseOnAFlatWallAndIgnoresTheThreadCount) {
     EXPECT_LT(mean_abs_error(film, 0, 64, 0.4f), 0.25 * before);
 }
 
-TEST(Denoise, NeedsTheAovs) {
+TEST(Denoise, LeavesTheSkyAlone) {
+    // Sky pixels (object kind 0) have no path noise: stars must stay single sharp pixels.
+    Film film = flat_film(0.01f, 0.01f, 0.02f);
+    std::fill(film.object_kind.begin(), film.object_kind.end(), 0.f);
+    std::fill(film.guide_albedo.begin(), film.guide_albedo.end(), 0.f);
+    for (int c = 0; c < 3; ++c) film.rgb[3 * (20 * 64 + 30) + c] = 3.f;
+    const std::vector<float> before = film.rgb;
+    denoise(film, 1.0);
+    EXPECT_EQ(film.rgb, before);
+}
+
+TEST(Denoise, NeedsTheGuides) {
     Film film = flat_film(1, 1, 1);
-    film.depth.clear();
+    film.guide_depth.clear();
     EXPECT_THROW(denoise(film, 1.0), std::exception);
 }
