@@ -14,6 +14,8 @@ PACKAGES=(
   openimageio-tools
   # tests/bench/parse_bench.sh compares with `osmium fileinfo -e` and reads peak memory with GNU time.
   osmium-tool time
+  # The render farm's test starts a single-node Slurm (tests/farm); ffmpeg encodes farm videos.
+  slurm-wlm munge ffmpeg
 )
 
 missing=()
