@@ -15,6 +15,7 @@
 #include "build_render_scene.h"
 #include "camera.h"
 #include "error.h"
+#include "export_gltf.h"
 #include "export_ply.h"
 #include "image_output.h"
 #include "render_frames.h"
@@ -31,7 +32,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct Options {
-    std::string scene_path, output, export_ply_path;
+    std::string scene_path, output, export_ply_path, export_gltf_path;
     RenderSettings render;
     int threads = 0;
     std::string camera, look_at;
@@ -93,6 +94,15 @@ void check_output_path(const std::string& path) {
     if (::access(dir.c_str(), W_OK) != 0) throw Error(path + ": cannot write (directory missing or not writable)");
 }
 
+// An export file must have its extension and a writable directory, checked before the work.
+void check_export_path(const std::string& path, const std::string& extension) {
+    if (path.size() <= extension.size() || path.compare(path.size() - extension.size(), extension.size(), extension) != 0)
+        throw Error(path + ": expected a " + extension + " file name");
+    const size_t slash = path.find_last_of('/');
+    const std::string dir = slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+    if (::access(dir.c_str(), W_OK) != 0) throw Error(path + ": cannot write (directory missing or not writable)");
+}
+
 int run(const Options& o) {
     GeometryModes modes = GeometryModes::all(o.procedural ? GeometryMode::Procedural : GeometryMode::Stored);
     for (int c = 0; c < kGeometryClassCount; ++c)
@@ -133,7 +143,8 @@ int run(const Options& o) {
     const bool want_camera = !o.camera.empty() || !o.look_at.empty();
     if (want_camera && (o.camera.empty() || o.look_at.empty()))
         throw Error("--camera and --look-at go together");
-    if (o.output.empty() && o.export_ply_path.empty() && !o.print_scene_info && !o.print_memory_info &&
+    if (!o.export_gltf_path.empty()) check_export_path(o.export_gltf_path, ".glb");
+    if (o.output.empty() && o.export_ply_path.empty() && o.export_gltf_path.empty() && !o.print_scene_info && !o.print_memory_info &&
         !o.print_geometry_info)
         throw Error("need -o OUTPUT.png|jpg|exr (see --help)");
 
@@ -153,6 +164,7 @@ int run(const Options& o) {
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
     const MaterialTable materials = default_materials();
     if (!o.export_ply_path.empty()) export_ply(*render_scene, materials, o.export_ply_path);
+    if (!o.export_gltf_path.empty()) export_gltf(scene, *render_scene, materials, o.export_gltf_path);
     if (o.output.empty()) {
         if (o.print_memory_info) print_memory_info(*render_scene, stdout);
         return 0;
@@ -248,6 +260,9 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--aovs", o.aovs, "extra EXR channels: any of depth,normal,albedo,id");
     app.add_option("--export-ply", o.export_ply_path, "write the stored triangles as binary PLY (material per face)");
+    app.add_option("--export-gltf", o.export_gltf_path,
+                   "write the stored geometry as binary glTF (.glb): a node per building with its OSM id, PBR "
+                   "materials, y-up");
     app.add_flag("--print-scene-info", o.print_scene_info, "object counts and bounds");
     app.add_flag("--print-memory-info", o.print_memory_info, "Embree and buffer bytes, peak RSS");
     app.add_flag("--print-scene-geometry-info", o.print_geometry_info, "triangles or primitives per class");

@@ -39,8 +39,12 @@ stop() {
 skip() { echo "local_slurm: skipped: $*" >&2; exit 77; }
 
 free_port() {
-  # A port nobody listens on (the kernel's choice of an ephemeral one, then released).
-  python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1]); s.close()'
+  # A random port in 20000-59999 that nobody on 127.0.0.1 answers on.
+  local port
+  while :; do
+    port=$((20000 + (RANDOM * 32768 + RANDOM) % 40000))
+    if ! (exec 3<> "/dev/tcp/127.0.0.1/$port") 2> /dev/null; then echo "$port"; return; fi
+  done
 }
 
 # Runs "$@" in the background, records its PID in DIR/NAME.started.pid.
@@ -68,7 +72,7 @@ case "$command" in
   *) usage ;;
 esac
 
-for tool in munged mungekey slurmctld slurmd sbatch scontrol python3; do
+for tool in munged mungekey munge unmunge slurmctld slurmd sbatch scontrol sinfo; do
   command -v "$tool" > /dev/null || skip "$tool is not installed (scripts/install-deps.sh installs slurm-wlm and munge)"
 done
 [ "$(id -u)" -eq 0 ] || skip "a local slurmd must run as root"
