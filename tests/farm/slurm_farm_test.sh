@@ -53,6 +53,9 @@ done
 [ -f "$work/farm/orbit_004.png" ] && fail "frame 4 was not asked for"
 if command -v ffmpeg > /dev/null; then
   [ -s "$work/farm/orbit.mp4" ] || fail "ffmpeg is here but no video was encoded"
+  frames=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 \
+    "$work/farm/orbit.mp4")
+  [ "$frames" = 4 ] || fail "the video has $frames frames, not 4"
 fi
 pids=$(cat "$work"/slurm/*.started.pid)
 "$root/scripts/farm/local_slurm.sh" stop "$work/slurm"
