@@ -61,6 +61,10 @@ void write_image(const Film& film, const std::string& path, double exposure) {
         if (aovs)
             names.insert(names.end(), {"Z", "N.X", "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B", "id.kind",
                                        "id.index"});
+        // A denoised film keeps its unfiltered radiance as a layer of its own.
+        const bool raw = !film.raw_rgb.empty();
+        const int raw_channel = static_cast<int>(names.size());
+        if (raw) names.insert(names.end(), {"raw.R", "raw.G", "raw.B"});
         const int channels = static_cast<int>(names.size());
         spec = ImageSpec(film.width, film.height, channels, TypeDesc::FLOAT);
         spec.channelnames = names;
@@ -70,6 +74,8 @@ void write_image(const Film& film, const std::string& path, double exposure) {
         for (size_t i = 0; i < pixels; ++i) {
             float* p = &data[i * channels];
             for (int c = 0; c < 3; ++c) p[c] = static_cast<float>(film.rgb[3 * i + c] * exposure);
+            if (raw)
+                for (int c = 0; c < 3; ++c) p[raw_channel + c] = static_cast<float>(film.raw_rgb[3 * i + c] * exposure);
             if (!aovs) continue;
             p[3] = film.depth[i];
             for (int c = 0; c < 3; ++c) p[4 + c] = film.normal[3 * i + c];

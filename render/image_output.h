@@ -18,7 +18,7 @@ float tone_map(float linear, double exposure);
 
 // Writes to a temporary name beside `path` (same extension), then renames it over `path`.
 // EXR gets R,G,B (radiance times exposure, linear) plus, when the film has them, the AOV
-// channels Z, N.X/N.Y/N.Z, albedo.R/G/B, id.kind, id.index.
+// channels Z, N.X/N.Y/N.Z, albedo.R/G/B, id.kind, id.index, and raw.R/G/B when the film was denoised.
 void write_image(const Film& film, const std::string& path, double exposure);
 
 }  // namespace citygen

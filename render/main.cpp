@@ -1,6 +1,7 @@
 // render: a citygen scene in, a path-traced image out. The pipeline, top to bottom:
 // load scene -> build Embree scene (per-class geometry mode) -> camera and sky -> render -> write.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <sstream>
@@ -15,10 +16,12 @@
 #include "camera.h"
 #include "cli_values.h"
 #include "error.h"
+#include "export_gltf.h"
 #include "export_ply.h"
 #include "image_output.h"
 #include "memory_estimate.h"
 #include "output_target.h"
+#include "render_frames.h"
 #include "render_image.h"
 #include "render_report.h"
 #include "scene_io.h"
@@ -32,7 +35,7 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 struct Options {
-    std::string scene_path, output, export_ply_path;
+    std::string scene_path, output, export_ply_path, export_gltf_path;
     RenderSettings render;
     int threads = 0;
     std::string camera, look_at;
@@ -43,7 +46,28 @@ struct Options {
     double shop_probability = FacadeOptions{}.shop_probability;
     std::string aovs;
     bool print_scene_info = false, print_memory_info = false, print_geometry_info = false, stats = false;
+    // Production: tiles, animation, time budgets, denoising (see render_frames.h).
+    std::string region, camera_path, frames;
+    bool orbit = false, denoise = false, spp_given = false;
+    double orbit_seconds = 12, fps = 24, time_limit = 0;
 };
+
+std::string format_number(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
+PixelRegion parse_region(const std::string& text) {
+    std::stringstream in(text);
+    PixelRegion r;
+    char c1 = 0, c2 = 0, c3 = 0;
+    in >> r.x0 >> c1 >> r.y0 >> c2 >> r.x1 >> c3 >> r.y1;
+    if (in.fail() || c1 != ',' || c2 != ',' || c3 != ',' || !(in >> std::ws).eof())
+        throw Error("--region: expected X0,Y0,X1,Y1 in pixels, got '" + text + "'");
+    if (r.empty()) throw Error("--region " + text + ": must be a non-empty rectangle (X0 < X1, Y0 < Y1)");
+    return r;
+}
 
 bool parse_aovs(const std::string& text) {
     if (text.empty()) return false;
@@ -60,6 +84,13 @@ void check_output_path(const std::string& path, const std::string& scene_path) {
     check_output_target(path, {scene_path});
 }
 
+// An export file must have its extension and be a safe target, checked before the work.
+void check_export_path(const std::string& path, const std::string& extension, const std::vector<std::string>& inputs) {
+    if (path.size() <= extension.size() || path.compare(path.size() - extension.size(), extension.size(), extension) != 0)
+        throw Error(path + ": expected a " + extension + " file name");
+    check_output_target(path, inputs);
+}
+
 int run(const Options& o) {
     GeometryModes modes = GeometryModes::all(o.procedural ? GeometryMode::Procedural : GeometryMode::Stored);
     for (int c = 0; c < kGeometryClassCount; ++c)
@@ -69,7 +100,32 @@ int run(const Options& o) {
     const TimeOfDay time = parse_time_of_day(o.time);
     RenderSettings settings = o.render;
     settings.aovs = parse_aovs(o.aovs);
-    if (!o.output.empty()) check_output_path(o.output, o.scene_path);
+    if (!o.region.empty()) {
+        settings.region = parse_region(o.region);
+        render_region(settings);  // inside the frame, or fail now
+    }
+    settings.time_limit_seconds = o.time_limit;
+    if (o.time_limit > 0 && !o.spp_given) settings.spp = 1 << 20;  // the time decides
+    const bool animate = !o.camera_path.empty() || o.orbit;
+    if (!o.camera_path.empty() && o.orbit) throw Error("--camera-path and --orbit exclude each other");
+    if (animate && (!o.camera.empty() || !o.look_at.empty()))
+        throw Error("--camera/--look-at and an animation (--camera-path, --orbit) exclude each other");
+    if (!animate && !o.frames.empty()) throw Error("--frames needs --camera-path or --orbit");
+    if (animate && o.output.empty()) throw Error("an animation needs -o PATTERN, e.g. -o out_%04d.png");
+    const CameraPath camera_path = o.camera_path.empty() ? CameraPath{} : read_camera_path(o.camera_path);
+    FrameRange frames;
+    if (animate) {
+        // An orbit's last frame is the one before it comes round to the first again.
+        const FrameRange available =
+            o.orbit ? FrameRange{0, static_cast<int>(std::ceil(o.orbit_seconds * o.fps - 1e-9)) - 1}
+                    : frames_within(camera_path.keys.front().time, camera_path.keys.back().time, o.fps);
+        frames = o.frames.empty() ? available : parse_frame_range(o.frames);
+        if (frames.first < available.first || frames.last > available.last)
+            throw Error("--frames " + o.frames + ": the " + (o.orbit ? "orbit" : "camera path") + " has frames " +
+                        std::to_string(available.first) + "-" + std::to_string(available.last) + " at " +
+                        format_number(o.fps) + " fps");
+        check_output_path(frame_file_name(o.output, frames.first), o.scene_path);
+    } else if (!o.output.empty()) check_output_path(o.output, o.scene_path);
     if (!o.export_ply_path.empty()) check_output_target(o.export_ply_path, {o.scene_path, o.output});
     if (settings.aovs && !o.output.empty() && image_format_for(o.output) != ImageFormat::Exr)
         throw Error("--aovs needs an .exr output");
@@ -77,7 +133,8 @@ int run(const Options& o) {
     if (want_camera && (o.camera.empty() || o.look_at.empty()))
         throw Error("--camera and --look-at go together");
     if (want_camera) check_view(parse_point(o.camera, "--camera"), parse_point(o.look_at, "--look-at"));
-    if (o.output.empty() && o.export_ply_path.empty() && !o.print_scene_info && !o.print_memory_info &&
+    if (!o.export_gltf_path.empty()) check_export_path(o.export_gltf_path, ".glb", {o.scene_path, o.output, o.export_ply_path});
+    if (o.output.empty() && o.export_ply_path.empty() && o.export_gltf_path.empty() && !o.print_scene_info && !o.print_memory_info &&
         !o.print_geometry_info)
         throw Error("need -o OUTPUT.png|jpg|exr (see --help)");
 
@@ -98,6 +155,7 @@ int run(const Options& o) {
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
     const MaterialTable materials = default_materials();
     if (!o.export_ply_path.empty()) export_ply(*render_scene, materials, o.export_ply_path);
+    if (!o.export_gltf_path.empty()) export_gltf(scene, *render_scene, materials, o.export_gltf_path);
     if (o.output.empty()) {
         if (o.print_memory_info) print_memory_info(*render_scene, stdout);
         return 0;
@@ -110,7 +168,27 @@ int run(const Options& o) {
     const Sky sky = Sky::daylight(time);
     const PathContext context{*render_scene, materials, sky, settings.integrator};
     RenderStats stats;
-    const Film film = render_image(context, camera, settings, &stats);
+    if (animate) {
+        Animation animation;
+        animation.frames = frames;
+        animation.fps = o.fps;
+        animation.output_pattern = o.output;
+        if (o.orbit) {
+            // Round the automatic view's centre: where its line of sight meets the ground.
+            const Vec3 start = camera.position(), forward = camera.forward();
+            const double along = forward.z < -1e-6 ? (scene.ground.z - start.z) / forward.z : 100.0;
+            const Vec3 centre = start + forward * along;
+            animation.view = [=](double t) { return orbit_at(start, centre, o.fov, o.orbit_seconds, t); };
+        } else {
+            animation.view = [&](double t) { return camera_path_at(camera_path, t); };
+        }
+        render_animation(context, animation, settings, o.denoise, sky.exposure());
+        return 0;
+    }
+    const Film film = render_view(context, camera, settings, o.denoise, sky.exposure(), &stats);
+    if (o.time_limit > 0 && !settings.quiet)
+        std::fprintf(stderr, "render: time limit %gs: %d passes (%d spp) in %.2fs\n", o.time_limit, stats.spp, stats.spp,
+                     stats.seconds);
     const Clock::time_point write_start = Clock::now();
     write_image(film, o.output, sky.exposure());
     const double write_seconds = seconds_since(write_start);
@@ -120,6 +198,8 @@ int run(const Options& o) {
         // Phases besides the tracing: loading the file, building geometry and BVH, writing.
         std::printf("load_seconds: %.3f\nbuild_seconds: %.3f\nwrite_seconds: %.3f\n", load_seconds, build_seconds,
                     write_seconds);
+        std::printf("spp: %d\n", stats.spp);
+        if (o.denoise) std::printf("denoise_seconds: %.3f\n", stats.denoise_seconds);
         std::printf("render_seconds: %.3f\nrays: %llu\nrays_per_second: %.0f\n", stats.seconds,
                     static_cast<unsigned long long>(stats.rays), stats.rays / std::max(stats.seconds, 1e-9));
         // The view actually used (also the automatic one), so another renderer can match it.
@@ -171,14 +251,35 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--aovs", o.aovs, "extra EXR channels: any of depth,normal,albedo,id");
     app.add_option("--export-ply", o.export_ply_path, "write the stored triangles as binary PLY (material per face)");
+    app.add_option("--export-gltf", o.export_gltf_path,
+                   "write the stored geometry as binary glTF (.glb): a node per building with its OSM id, PBR "
+                   "materials, y-up");
     app.add_flag("--print-scene-info", o.print_scene_info, "object counts and bounds");
     app.add_flag("--print-memory-info", o.print_memory_info, "Embree and buffer bytes, peak RSS");
     app.add_flag("--print-scene-geometry-info", o.print_geometry_info, "triangles or primitives per class");
     app.add_flag("--stats", o.stats, "print render_seconds:, rays_per_second: and the camera used");
     app.add_flag("-q,--quiet", r.quiet, "no progress bar");
+    app.add_option("--region", o.region,
+                   "render only pixels X0,Y0,X1,Y1 (x in [X0,X1), y in [Y0,Y1)) of the full frame; they equal the "
+                   "same pixels of the full render");
+    app.add_option("--camera-path", o.camera_path,
+                   "animate along keyframes (CSV: time,x,y,z,look_x,look_y,look_z,fov per line); -o is a pattern "
+                   "like out_%04d.png");
+    app.add_flag("--orbit", o.orbit, "animate one turn around the automatic view's centre (see --orbit-seconds)");
+    app.add_option("--orbit-seconds", o.orbit_seconds, "duration of the --orbit turn")
+        ->check(CLI::Range(0.01, 1e6))->capture_default_str();
+    app.add_option("--frames", o.frames, "frames A-B (or N) of the animation; default: all");
+    app.add_option("--fps", o.fps, "frames per second of the animation (frame n shows time n / fps)")
+        ->check(CLI::Range(0.01, 1000.0))->capture_default_str();
+    app.add_option("--time-limit", o.time_limit,
+                   "render whole passes (1 spp each) while the next fits in SECONDS; --spp, if given, caps them")
+        ->check(CLI::Range(0.0, 1e9));
+    app.add_flag("--denoise", o.denoise,
+                 "edge-avoiding a-trous filter guided by normal, depth, albedo and id (EXR keeps raw.R/G/B)");
 
     try {
         app.parse(argc, argv);
+        o.spp_given = app.count("--spp") > 0;
     } catch (const CLI::Success& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {

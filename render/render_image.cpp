@@ -3,10 +3,15 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "error.h"
+#include "bsdf.h"
 #include "progress.h"
 
 namespace citygen {
@@ -15,8 +20,8 @@ namespace {
 
 constexpr int kTileSize = 16;
 
-void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, Film& film) {
-    const size_t i = static_cast<size_t>(y) * film.width + x;
+// `x`, `y` in the full frame; `i` indexes the film.
+void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, size_t i, Film& film) {
     const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
     Hit hit;
     if (!context.scene.intersect(ray, hit)) return;  // AOVs stay zero for the sky
@@ -32,15 +37,110 @@ void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, F
     film.object_index[i] = static_cast<float>(hit.object);
 }
 
+// The denoiser's guides: albedo, normal and depth averaged over a 3x3 grid of positions inside
+// the pixel, so a window narrower than a pixel still shows (a fixed grid: noise-free, and it
+// takes nothing from the pixel's random stream).
+void fill_guides(const PathContext& context, const Camera& camera, int x, int y, size_t i, Film& film,
+                 uint64_t& rays) {
+    constexpr int kGrid = 3;
+    double albedo[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, depth = 0;
+    for (int sy = 0; sy < kGrid; ++sy)
+        for (int sx = 0; sx < kGrid; ++sx) {
+            const Ray ray = camera.generate_ray(x + (sx + 0.5) / kGrid, y + (sy + 0.5) / kGrid);
+            Hit hit;
+            ++rays;
+            if (!context.scene.intersect(ray, hit)) continue;
+            const Material& m = context.materials[hit.material];
+            const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
+            const Color a = m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy ? m.albedo : m.specular;
+            for (int c = 0; c < 3; ++c) albedo[c] += a[c], normal[c] += n[c];
+            depth += hit.t;
+        }
+    constexpr double inv = 1.0 / (kGrid * kGrid);
+    for (int c = 0; c < 3; ++c) {
+        film.guide_albedo[3 * i + c] = static_cast<float>(albedo[c] * inv);
+        film.guide_normal[3 * i + c] = static_cast<float>(normal[c] * inv);
+    }
+    film.guide_depth[i] = static_cast<float>(depth * inv);
+}
+
+// A pixel's own random stream and the sum of its samples so far: the same numbers whichever
+// thread renders it, and whether its samples come in one go or one pass at a time.
+struct PixelSamples {
+    Rng rng;
+    Color sum{0, 0, 0};
+    double luminance_squares = 0;  // sum of the samples' squared luminance (for the variance)
+};
+
+PixelSamples start_pixel(const RenderSettings& settings, int x, int y) {
+    return {Rng(hash_keys(settings.seed, static_cast<uint64_t>(x), static_cast<uint64_t>(y))), Color{0, 0, 0}, 0};
+}
+
+void add_samples(const PathContext& context, const Camera& camera, int x, int y, int count, PixelSamples& pixel,
+                 uint64_t& rays) {
+    for (int s = 0; s < count; ++s) {
+        const double jx = pixel.rng.next_double(), jy = pixel.rng.next_double();
+        const Color L = trace_path(context, camera.generate_ray(x + jx, y + jy), pixel.rng, rays);
+        // A lone non-finite sample would poison the pixel; count it as black.
+        if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {
+            pixel.sum = pixel.sum + L;
+            pixel.luminance_squares += luminance(L) * luminance(L);
+        }
+    }
+}
+
+void store_pixel(const PixelSamples& pixel, int spp, size_t i, Film& film) {
+    const double inv = 1.0 / std::max(1, spp);
+    for (int c = 0; c < 3; ++c) film.rgb[3 * i + c] = static_cast<float>(pixel.sum[c] * inv);
+    if (!film.guide_variance.empty()) {
+        // Variance of the pixel's mean luminance: the sample variance over the sample count.
+        const double mean = luminance(pixel.sum) * inv;
+        const double sample_variance = std::max(0.0, pixel.luminance_squares * inv - mean * mean) * spp / std::max(1, spp - 1);
+        film.guide_variance[i] = static_cast<float>(sample_variance * inv);
+    }
+}
+
+// Calls visit(x, y, i) for every pixel of the film, tiles in parallel; `i` indexes the film.
+template <class Visit>
+void for_each_tile(const Film& film, Progress* progress, std::atomic<uint64_t>& total_rays, Visit visit) {
+    const int tiles_x = (film.width + kTileSize - 1) / kTileSize;
+    const int tiles_y = (film.height + kTileSize - 1) / kTileSize;
+    tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1), [&](const tbb::blocked_range<int>& range) {
+        for (int tile = range.begin(); tile != range.end(); ++tile) {
+            uint64_t rays = 0;
+            const int fx0 = (tile % tiles_x) * kTileSize, fy0 = (tile / tiles_x) * kTileSize;
+            for (int fy = fy0; fy < std::min(fy0 + kTileSize, film.height); ++fy)
+                for (int fx = fx0; fx < std::min(fx0 + kTileSize, film.width); ++fx)
+                    visit(film.x0 + fx, film.y0 + fy, static_cast<size_t>(fy) * film.width + fx, rays);
+            total_rays += rays;
+            if (progress) progress->advance();
+        }
+    });
+}
+
 }  // namespace
+
+PixelRegion render_region(const RenderSettings& settings) {
+    const PixelRegion& r = settings.region;
+    if (r.empty() && r.x0 == 0 && r.y0 == 0 && r.x1 == 0 && r.y1 == 0) return {0, 0, settings.width, settings.height};
+    if (r.x0 < 0 || r.y0 < 0 || r.x1 > settings.width || r.y1 > settings.height || r.empty())
+        throw Error("--region " + std::to_string(r.x0) + "," + std::to_string(r.y0) + "," + std::to_string(r.x1) + "," +
+                    std::to_string(r.y1) + ": must be a non-empty rectangle inside the " +
+                    std::to_string(settings.width) + "x" + std::to_string(settings.height) + " frame");
+    return r;
+}
 
 Film render_image(const PathContext& context, const Camera& camera, const RenderSettings& settings,
                   RenderStats* stats) {
+    const PixelRegion region = render_region(settings);
     Film film;
-    film.width = settings.width;
-    film.height = settings.height;
+    film.width = region.width();
+    film.height = region.height();
+    film.x0 = region.x0;
+    film.y0 = region.y0;
     const size_t pixels = static_cast<size_t>(film.width) * film.height;
     film.rgb.assign(3 * pixels, 0.f);
+    if (settings.denoise_guides) film.guide_variance.assign(pixels, 0.f);
     if (settings.aovs) {
         film.depth.assign(pixels, 0.f);
         film.normal.assign(3 * pixels, 0.f);
@@ -48,45 +148,63 @@ Film render_image(const PathContext& context, const Camera& camera, const Render
         film.object_kind.assign(pixels, 0.f);
         film.object_index.assign(pixels, 0.f);
     }
-    const int tiles_x = (film.width + kTileSize - 1) / kTileSize;
-    const int tiles_y = (film.height + kTileSize - 1) / kTileSize;
-    const int tile_count = tiles_x * tiles_y;
+    const int tile_count = ((film.width + kTileSize - 1) / kTileSize) * ((film.height + kTileSize - 1) / kTileSize);
     std::atomic<uint64_t> total_rays{0};
-    Progress progress("render", static_cast<uint64_t>(tile_count), settings.quiet);
     const auto start = std::chrono::steady_clock::now();
+    auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+    int spp = settings.spp;
 
-    tbb::parallel_for(tbb::blocked_range<int>(0, tile_count, 1), [&](const tbb::blocked_range<int>& range) {
-        for (int tile = range.begin(); tile != range.end(); ++tile) {
-            uint64_t rays = 0;
-            const int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
-            for (int y = y0; y < std::min(y0 + kTileSize, film.height); ++y) {
-                for (int x = x0; x < std::min(x0 + kTileSize, film.width); ++x) {
-                    // The pixel's own stream: the same numbers whichever thread renders it.
-                    Rng rng(hash_keys(settings.seed, static_cast<uint64_t>(x), static_cast<uint64_t>(y)));
-                    Color sum{0, 0, 0};
-                    for (int s = 0; s < settings.spp; ++s) {
-                        const double jx = rng.next_double(), jy = rng.next_double();
-                        const Color L = trace_path(context, camera.generate_ray(x + jx, y + jy), rng, rays);
-                        // A lone non-finite sample would poison the pixel; count it as black.
-                        if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) sum = sum + L;
-                    }
-                    const size_t i = static_cast<size_t>(y) * film.width + x;
-                    const double inv = 1.0 / std::max(1, settings.spp);
-                    for (int c = 0; c < 3; ++c) film.rgb[3 * i + c] = static_cast<float>(sum[c] * inv);
-                    if (settings.aovs) {
-                        fill_aovs(context, camera, x, y, film);
-                        ++rays;
-                    }
-                }
-            }
-            total_rays += rays;
-            progress.advance();
+    if (settings.time_limit_seconds <= 0) {
+        Progress progress("render", static_cast<uint64_t>(tile_count), settings.quiet);
+        for_each_tile(film, &progress, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
+            PixelSamples pixel = start_pixel(settings, x, y);
+            add_samples(context, camera, x, y, settings.spp, pixel, rays);
+            store_pixel(pixel, settings.spp, i, film);
+        });
+        progress.finish();
+    } else {
+        // Passes of one sample per pixel; every pixel keeps its stream and sum between passes, so
+        // n passes add exactly the samples, in the same order, of a fixed n-spp render.
+        std::vector<PixelSamples> state;
+        state.reserve(pixels);
+        for (int fy = 0; fy < film.height; ++fy)
+            for (int fx = 0; fx < film.width; ++fx) state.push_back(start_pixel(settings, film.x0 + fx, film.y0 + fy));
+        const uint64_t limit_ms = static_cast<uint64_t>(settings.time_limit_seconds * 1000);
+        Progress progress("render (time limit)", limit_ms, settings.quiet);
+        uint64_t shown_ms = 0;
+        spp = 0;
+        double last_pass = 0;
+        while (spp < settings.spp && (spp == 0 || seconds() + last_pass <= settings.time_limit_seconds)) {
+            const double pass_start = seconds();
+            for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
+                add_samples(context, camera, x, y, 1, state[i], rays);
+            });
+            ++spp;
+            last_pass = seconds() - pass_start;
+            const uint64_t now_ms = std::min(limit_ms, static_cast<uint64_t>(seconds() * 1000));
+            if (now_ms > shown_ms) progress.advance(now_ms - shown_ms), shown_ms = now_ms;
         }
-    });
-    progress.finish();
+        progress.finish();
+        for (size_t i = 0; i < pixels; ++i) store_pixel(state[i], spp, i, film);
+    }
+    if (settings.aovs) {
+        for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
+            fill_aovs(context, camera, x, y, i, film);
+            ++rays;
+        });
+    }
+    if (settings.denoise_guides) {
+        film.guide_albedo.assign(3 * pixels, 0.f);
+        film.guide_normal.assign(3 * pixels, 0.f);
+        film.guide_depth.assign(pixels, 0.f);
+        for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
+            fill_guides(context, camera, x, y, i, film, rays);
+        });
+    }
     if (stats) {
-        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats->seconds = seconds();
         stats->rays = total_rays.load();
+        stats->spp = spp;
     }
     return film;
 }

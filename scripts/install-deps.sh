@@ -10,6 +10,8 @@ PACKAGES=(
   libflatbuffers-dev flatbuffers-compiler libcli11-dev
   libgtest-dev libgmock-dev libtbb-dev
   libembree-dev libopenimageio-dev
+  # render --export-gltf (Debian ships tinygltf as a shared library).
+  libtinygltf-dev
   # OpenImageIO's CMake config refers to its command-line tools; without them find_package fails.
   openimageio-tools
   # tests/bench/parse_bench.sh compares with `osmium fileinfo -e` and reads peak memory with GNU time.
@@ -17,6 +19,10 @@ PACKAGES=(
   # scripts/check-sanitizers.sh: clang with ASan, UBSan and libFuzzer (the runtimes are in
   # libclang-rt-14-dev).
   clang libclang-rt-14-dev
+  # The render farm's test starts a single-node Slurm (tests/farm); ffmpeg encodes farm videos.
+  slurm-wlm munge ffmpeg
+  # The glTF export's test imports it with Blender; its glTF importer needs numpy.
+  blender python3-numpy
 )
 
 missing=()

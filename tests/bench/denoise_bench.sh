@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Denoiser benchmark (run by hand): the bundled example at 640x360, a day and a night view,
+# against a 1024-spp reference rendered with another seed (the same seed would share its first
+# samples with every test image and flatter them). PSNR on the 8-bit tone-mapped PNGs (idiff),
+# for raw renders at 16..256 spp and --denoise at 16 and 64 spp; the equal-quality factor is the
+# raw spp (log-interpolated) that matches denoised 16 spp, over 16. Filter seconds: median of
+# RUNS (default 3) denoise_seconds from --stats (the filter alone, 2 threads here).
+#   tests/bench/denoise_bench.sh
+#   REF_SPP=256 WIDTH=320 HEIGHT=180 tests/bench/denoise_bench.sh   # a quicker look
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+RUNS=${RUNS:-3}
+WIDTH=${WIDTH:-640} HEIGHT=${HEIGHT:-360} REF_SPP=${REF_SPP:-1024}
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
+cmake --build build -j2 --target osmparse render > /dev/null
+
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+build/bin/osmparse examples/neukolln.osm.bz2 -o "$work/city.scene" -q
+render() { build/bin/render "$work/city.scene" --width "$WIDTH" --height "$HEIGHT" -q "$@"; }
+psnr() { { idiff "$1" "$2" || true; } | awk '/Peak SNR/ { print $4 }'; }
+median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+echo "| view | raw 16 | raw 32 | raw 64 | raw 128 | raw 256 | denoised 16 | denoised 64 | equal-quality spp of denoised 16 | factor | filter seconds |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
+for view in day night; do
+  render --time "$view" --spp "$REF_SPP" --seed 1000 -o "$work/ref_$view.png"
+  declare -A raw=()
+  for spp in 16 32 64 128 256; do
+    render --time "$view" --spp "$spp" -o "$work/raw.png"
+    raw[$spp]=$(psnr "$work/ref_$view.png" "$work/raw.png")
+  done
+  seconds=$(for run in $(seq "$RUNS"); do
+    render --time "$view" --spp 16 --denoise --stats -o "$work/dn16.png" | awk '/denoise_seconds/ { print $2 }'
+  done | median)
+  dn16=$(psnr "$work/ref_$view.png" "$work/dn16.png")
+  render --time "$view" --spp 64 --denoise -o "$work/dn64.png"
+  dn64=$(psnr "$work/ref_$view.png" "$work/dn64.png")
+  # The raw spp whose PSNR equals denoised 16's: linear in log2(spp) between measured points.
+  equal=$(printf '%s\n' 16:${raw[16]} 32:${raw[32]} 64:${raw[64]} 128:${raw[128]} 256:${raw[256]} | awk -F: -v target="$dn16" '
+    { spp[NR] = $1; p[NR] = $2 }
+    END {
+      if (target <= p[1]) { print "<16"; exit }
+      for (i = 2; i <= NR; ++i)
+        if (target <= p[i]) { f = (target - p[i-1]) / (p[i] - p[i-1]); printf "%.0f\n", 2 ^ (log(spp[i-1]) / log(2) + f); exit }
+      print ">256" }')
+  factor=$(awk -v e="$equal" 'BEGIN { if (e ~ /^[0-9.]+$/) printf "%.1f", e / 16; else print "-" }')
+  echo "| $view | ${raw[16]} | ${raw[32]} | ${raw[64]} | ${raw[128]} | ${raw[256]} | $dn16 | $dn64 | $equal | $factor | $seconds |"
+done
+echo "(PSNR in dB against ${REF_SPP} spp, ${WIDTH}x${HEIGHT}; night is the --time night of this branch)"
