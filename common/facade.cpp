@@ -294,7 +294,7 @@ WallInput building_wall_input(const Building& building, size_t index) {
     wall.wall_index = static_cast<uint32_t>(index);
     wall.length = length(b - a);
     wall.bottom_z = building.min_height;
-    wall.height = building.height - building.min_height;
+    wall.height = building.eaves_height() - building.min_height;  // gables above are roof faces
     wall.levels = building.levels;
     if (a != before) wall.start_angle = interior_angle(before, a, b);
     if (b != after) wall.end_angle = interior_angle(a, b, after);

@@ -6,6 +6,9 @@
 #include "build_buildings.h"
 #include "build_road_graph.h"
 #include "build_road_polygons.h"
+#include "build_roofs.h"
+#include "building_tags.h"
+#include "infer_heights.h"
 #include "build_sidewalks.h"
 #include "narrow_roads.h"
 #include "place_lamps.h"
@@ -75,6 +78,15 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     scene.header = make_header(job, projection);
     scene.buildings = timed(report, "buildings", [&] {
         return build_buildings(osm, projection, job.params.buildings, report);
+    });
+    timed(report, "building heights", [&] {
+        infer_heights(scene.buildings, job.params.buildings, report);
+        return 0;
+    });
+    const BuildingTagIndex building_tags(osm);
+    timed(report, "roofs", [&] {
+        build_roofs(scene.buildings, building_tags, job.params.buildings, report);
+        return 0;
     });
     const RoadGraph road_graph = timed(report, "road graph", [&] {
         return build_road_graph(osm, projection, job.params.roads, report);

@@ -1,0 +1,51 @@
+// The one translation unit of osmparse that includes CGAL (its headers compile slowly).
+#include "roof_skeleton.h"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_with_holes_2.h>
+#include <CGAL/create_straight_skeleton_from_polygon_with_holes_2.h>
+
+namespace citygen {
+
+namespace {
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Polygon = CGAL::Polygon_2<Kernel>;
+using PolygonWithHoles = CGAL::Polygon_with_holes_2<Kernel>;
+
+Polygon to_cgal(const Ring& ring) {
+    Polygon p;
+    for (Vec2 v : ring) p.push_back(Kernel::Point_2(v.x, v.y));
+    return p;
+}
+}  // namespace
+
+bool straight_skeleton_faces(const Ring& outer, const std::vector<Ring>& holes, std::vector<SkeletonFace>* faces) {
+    faces->clear();
+    try {
+        PolygonWithHoles polygon(to_cgal(outer));
+        for (const Ring& hole : holes) polygon.add_hole(to_cgal(hole));
+        if (!polygon.outer_boundary().is_simple() || !polygon.outer_boundary().is_counterclockwise_oriented())
+            return false;
+        const auto skeleton = CGAL::create_interior_straight_skeleton_2(polygon, Kernel());
+        if (!skeleton) return false;
+        for (auto face = skeleton->faces_begin(); face != skeleton->faces_end(); ++face) {
+            SkeletonFace out;
+            auto h = face->halfedge();
+            const auto first = h;
+            do {
+                const auto& p = h->vertex()->point();
+                out.points.push_back({CGAL::to_double(p.x()), CGAL::to_double(p.y())});
+                out.times.push_back(CGAL::to_double(h->vertex()->time()));
+                h = h->next();
+                if (out.points.size() > 100000) return false;  // a broken structure, not a face
+            } while (h != first);
+            faces->push_back(std::move(out));
+        }
+    } catch (const std::exception&) {
+        faces->clear();
+        return false;
+    }
+    return !faces->empty();
+}
+
+}  // namespace citygen
