@@ -91,17 +91,17 @@ double height_by_type_and_area(const std::string& type, double area, bool* sure)
     *sure = false;
     if (is_one_of(type, {"church", "cathedral"})) return 18;
     if (type == "chapel") return 8;
-    if (is_one_of(type, {"apartments", "dormitory"})) return 15;
+    if (is_one_of(type, {"apartments", "dormitory"})) return area < 800 ? 15 : 24;
     if (is_one_of(type, {"office", "hotel", "hospital"})) return 18;
     if (is_one_of(type, {"commercial", "civic", "public", "government"})) return 12;
     if (is_one_of(type, {"school", "university", "college", "kindergarten"})) return type == "kindergarten" ? 5 : 10;
-    if (is_one_of(type, {"retail", "supermarket"})) return 6;
+    if (is_one_of(type, {"retail", "supermarket"})) return 4;
     if (is_one_of(type, {"industrial", "warehouse", "manufacture", "hangar"})) return 8;
     if (is_one_of(type, {"yes", "residential", "building"})) {
         if (area < 80) return 4;
         if (area < 200) return 7;
         if (area < 600) return 10;
-        return 13;
+        return area < 1500 ? 15 : 21;  // large footprints in towns are blocks of flats or offices
     }
     return 0;
 }

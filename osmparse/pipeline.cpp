@@ -1,12 +1,14 @@
 // osmparse from top to bottom: each stage is a function from data to data.
 #include "pipeline.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "build_buildings.h"
 #include "build_road_graph.h"
 #include "build_road_polygons.h"
 #include "build_roofs.h"
+#include "building_colours.h"
 #include "building_tags.h"
 #include "infer_heights.h"
 #include "build_sidewalks.h"
@@ -14,6 +16,7 @@
 #include "place_lamps.h"
 #include "projection.h"
 #include "read_osm.h"
+#include "rng.h"
 
 namespace citygen {
 
@@ -68,10 +71,32 @@ void set_bounds_and_ground(Scene& scene) {
     scene.ground.z = 0;
 }
 
+// For the height benchmark (tests/bench/height_bench.sh): forget every height-like tag of a
+// seeded `fraction` of the buildings, so the rules for untagged buildings can be compared with
+// the truth.
+void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
+    static const char* const keys[] = {"height", "building:levels", "min_height", "building:min_level",
+                                       "roof:height", "roof:levels", "est_height", "building:height"};
+    for (OsmArea& area : osm.building_areas) {
+        const uint64_t key = hash_keys(seed, 0x4849444548ull, static_cast<uint64_t>(area.ref.type),
+                                       static_cast<uint64_t>(area.ref.id));
+        if (hash_to_unit(key) >= fraction) continue;
+        auto& entries = area.tags.entries;
+        entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                     [](const auto& kv) {
+                                         for (const char* k : keys)
+                                             if (kv.first == k) return true;
+                                         return false;
+                                     }),
+                      entries.end());
+    }
+}
+
 }  // namespace
 
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
-    const OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
+    OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
+    if (job.hide_height_tags > 0) hide_height_tags(osm, job.hide_height_tags, job.params.seed);
     const Projection projection = projection_for(osm);
 
     Scene scene;
@@ -86,6 +111,10 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     const BuildingTagIndex building_tags(osm);
     timed(report, "roofs", [&] {
         build_roofs(scene.buildings, building_tags, job.params.buildings, report);
+        return 0;
+    });
+    timed(report, "colours", [&] {
+        choose_colours_and_materials(scene.buildings, building_tags, job.params.buildings, report);
         return 0;
     });
     const RoadGraph road_graph = timed(report, "road graph", [&] {
