@@ -48,7 +48,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
             }
             break;
         }
-        const Material& material = context.materials[hit.material];
+        const Material material = surface_material(context.materials, context.building_looks, hit);
         const Vec3 wo = -ray.direction;
         const bool front = dot(hit.geometric_normal, wo) > 0;
         if (front) radiance = radiance + throughput * material.emission;

@@ -115,7 +115,8 @@ int run(const Options& o) {
                                       settings.width, settings.height)
                     : framing_camera(scene, o.fov, settings.width, settings.height);
     const Sky sky = Sky::daylight(time);
-    const PathContext context{*render_scene, materials, sky, settings.integrator};
+    const BuildingLooks building_looks(scene);
+    const PathContext context{*render_scene, materials, sky, settings.integrator, &building_looks};
     RenderStats stats;
     const Film film = render_image(context, camera, settings, &stats);
     const Clock::time_point write_start = Clock::now();

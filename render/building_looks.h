@@ -1,0 +1,47 @@
+// Each building's own colours and materials (scene format 1.1), and the procedural tile
+// patterns on its walls and roof: brick courses, plaster grain, concrete panels, stone blocks,
+// wooden boards, corrugated metal; roof tiles, slates, metal seams. Patterns are functions of
+// the hit position in wall or roof coordinates (u along the wall or eaves, v up the wall or
+// slope), so both geometry modes show the same thing without any stored texture coordinates.
+#pragma once
+
+#include <vector>
+
+#include "hit.h"
+#include "materials.h"
+#include "scene.h"
+
+namespace citygen {
+
+class BuildingLooks {
+public:
+    BuildingLooks() = default;
+    explicit BuildingLooks(const Scene& scene);
+
+    // The material a hit is shaded with: the stock one, except on a building's walls (kFacade)
+    // and roof (kRoof), which get that building's colour (linear), modulated by its pattern.
+    Material material_for(const MaterialTable& table, const Hit& hit) const;
+
+private:
+    struct Look {
+        Color wall, roof;  // linear albedo
+        WallMaterial wall_material;
+        RoofMaterial roof_material;
+        bool has_wall, has_roof;
+    };
+    std::vector<Look> looks_;
+};
+
+// The material a hit is shaded with (looks may be null: stock materials only).
+inline Material surface_material(const MaterialTable& table, const BuildingLooks* looks, const Hit& hit) {
+    return looks ? looks->material_for(table, hit) : table[hit.material];
+}
+
+// sRGB 0xRRGGBB -> linear albedo, scaled so white paint reflects about 80%.
+Color albedo_from_srgb(uint32_t rgb);
+
+// The pattern factors (about 1) at a point, exposed for tests.
+double wall_pattern(WallMaterial material, double u, double v);
+double roof_pattern(RoofMaterial material, double u, double v);
+
+}  // namespace citygen
