@@ -54,6 +54,7 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     layout.length = wall.length;
     layout.height = wall.height;
     if (!(wall.length > 0) || !(wall.height > 0)) return layout;
+    if (wall.style == FacadeStyle::Plain) return layout;
 
     const double bottom_margin = 0.3 + 0.3 * building_unit(kBottomMargin);
     const double top_margin = 0.4 + 0.6 * building_unit(kTopMargin);
@@ -97,8 +98,15 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     const double window_height = std::min(1.3 + 0.4 * building_unit(kWindowHeight), floor_height - 0.35 - sill);
     layout.window = {0.5 * (slot_width - window_width), 0.5 * (slot_width + window_width), sill, sill + window_height};
 
+    // Curtain wall: glass from floor to floor, slim mullions, no balconies.
+    const bool curtain = wall.style == FacadeStyle::CurtainWall;
+    if (curtain) {
+        layout.window = {0.06, slot_width - 0.06, 0.08, floor_height - 0.08};
+        layout.recess = 0.06;
+    }
+
     // Balconies: per building, and then only on some of its walls, never on one-floor walls.
-    if (floors >= 2 && building_unit(kHasBalconies) < 0.4 && wall_unit(kWallBalconies) < 0.7) {
+    if (!curtain && floors >= 2 && building_unit(kHasBalconies) < 0.4 && wall_unit(kWallBalconies) < 0.7) {
         layout.balconies = true;
         layout.balcony_every = building_unit(kBalconyEvery) < 0.5 ? 1 : 2;
         layout.balcony_depth = 1.0 + 0.4 * building_unit(kBalconyDepth);
@@ -112,7 +120,10 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     }
 
     // Shop front: a row of large panes on the ground floor of buildings that stand on the ground.
-    if (wall.bottom_z < 0.5 && floor_height >= 2.8 && building_unit(kShop) < options.shop_probability) {
+    const double shop_probability = wall.style == FacadeStyle::Shops   ? 1.0
+                                    : wall.style == FacadeStyle::House ? 0.0
+                                                                       : options.shop_probability;
+    if (wall.bottom_z < 0.5 && floor_height >= 2.8 && building_unit(kShop) < shop_probability) {
         layout.shop = true;
         layout.shop_window = {0.25, slot_width - 0.25, 0.4, floor_height - 0.5};
     }
@@ -298,7 +309,25 @@ WallInput building_wall_input(const Building& building, size_t index) {
     wall.levels = building.levels;
     if (a != before) wall.start_angle = interior_angle(before, a, b);
     if (b != after) wall.end_angle = interior_angle(a, b, after);
+    wall.style = facade_style(building);
     return wall;
+}
+
+FacadeStyle facade_style(const Building& b) {
+    auto is = [&](std::initializer_list<const char*> types) {
+        for (const char* t : types)
+            if (b.type == t) return true;
+        return false;
+    };
+    if (is({"garage", "garages", "shed", "carport", "industrial", "warehouse", "hangar", "barn", "farm_auxiliary",
+            "storage_tank", "silo", "transformer_tower", "service"}))
+        return FacadeStyle::Plain;
+    if (b.wall_material == WallMaterial::Glass || (is({"office", "commercial"}) && b.height > 30))
+        return FacadeStyle::CurtainWall;
+    if (is({"house", "detached", "semidetached_house", "terrace", "bungalow", "villa", "farm"}))
+        return FacadeStyle::House;
+    if (is({"retail", "supermarket", "kiosk"})) return FacadeStyle::Shops;
+    return FacadeStyle::Normal;
 }
 
 }  // namespace citygen

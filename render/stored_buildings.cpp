@@ -74,8 +74,12 @@ void add_planar_face(const std::vector<Vec3>& points, uint32_t object, uint16_t 
     Ring flat;
     for (Vec3 p : points) flat.push_back({p[au], p[av]});
     const PolygonTriangulation tri = triangulate_polygon(flat);
-    // Points of the triangulation back in 3D: on the face's plane.
-    const double offset = dot(n, points[0]);
+    // Points of the triangulation back in 3D: on the face's plane, the same plane the procedural
+    // mode intersects (unit Newell normal through the mean of the points).
+    n = normalize(n);
+    double offset = 0;
+    for (Vec3 p : points) offset += dot(n, p);
+    offset /= static_cast<double>(points.size());
     const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
     for (Vec2 q : tri.points) {
         double c[3] = {0, 0, 0};
