@@ -10,6 +10,9 @@ namespace citygen {
 namespace {
 
 constexpr double kPi = 3.141592653589793;
+// A footprint filling at least this share of its minimum-area rectangle takes ridge roofs over
+// that rectangle; a more bent one is built hipped from its straight skeleton.
+constexpr double kNearRectangle = 0.85;
 
 // A height above the eaves that varies linearly over the plane: f(p) = a x + b y + c.
 struct Plane {
@@ -37,16 +40,61 @@ Plane along_plane(const RoofFrame& f, double sa, double ha, double sb, double hb
     return p;
 }
 
-// The part of `ring` where g(p) <= 0 (Sutherland-Hodgman; exact for convex rings).
-Ring clip(const Ring& ring, const Plane& g) {
-    Ring out;
-    for (size_t i = 0, n = ring.size(); i < n; ++i) {
-        const Vec2 p = ring[i], q = ring[(i + 1) % n];
-        const double gp = g.at(p), gq = g.at(q);
-        if (gp <= 0) out.push_back(p);
-        if ((gp < 0 && gq > 0) || (gp > 0 && gq < 0)) out.push_back(p + (q - p) * (gp / (gp - gq)));
+// The parts of a simple counter-clockwise ring where g(p) <= 0. A non-convex ring may fall
+// apart into several pieces: its inside chains are joined along the line g = 0, from each
+// crossing where the ring leaves the half-plane to the next crossing along the line (walking
+// the line with the inside on the left). False when the crossings do not pair up (degenerate).
+bool clip_pieces(const Ring& ring, const Plane& g, std::vector<Ring>* pieces) {
+    pieces->clear();
+    const size_t n = ring.size();
+    std::vector<double> value(n);
+    bool any_in = false, any_out = false;
+    for (size_t i = 0; i < n; ++i) {
+        value[i] = g.at(ring[i]);
+        (value[i] <= 0 ? any_in : any_out) = true;
     }
-    return out;
+    if (!any_out) {
+        pieces->push_back(ring);
+        return true;
+    }
+    if (!any_in) return true;
+    struct Node {
+        Vec2 p;
+        int crossing;  // -1 for a ring vertex, else +1 leaving the half-plane, 0 entering it
+    };
+    std::vector<Node> nodes;
+    std::vector<size_t> crossings;
+    for (size_t i = 0; i < n; ++i) {
+        const size_t j = (i + 1) % n;
+        const bool in_i = value[i] <= 0, in_j = value[j] <= 0;
+        if (in_i) nodes.push_back({ring[i], -1});
+        if (in_i != in_j) {
+            const double t = value[i] / (value[i] - value[j]);
+            crossings.push_back(nodes.size());
+            nodes.push_back({ring[i] + (ring[j] - ring[i]) * t, in_i ? 1 : 0});
+        }
+    }
+    const Vec2 along{-g.b, g.a};  // the inside (g < 0) is on its left
+    std::sort(crossings.begin(), crossings.end(),
+              [&](size_t x, size_t y) { return dot(nodes[x].p, along) < dot(nodes[y].p, along); });
+    std::vector<size_t> next(nodes.size());
+    for (size_t k = 0; k < nodes.size(); ++k) next[k] = (k + 1) % nodes.size();
+    for (size_t k = 0; k < crossings.size(); ++k) {
+        if (nodes[crossings[k]].crossing != 1) continue;
+        if (k + 1 >= crossings.size() || nodes[crossings[k + 1]].crossing != 0) return false;
+        next[crossings[k]] = crossings[k + 1];
+    }
+    std::vector<bool> used(nodes.size(), false);
+    for (size_t start = 0; start < nodes.size(); ++start) {
+        if (used[start]) continue;
+        Ring piece;
+        for (size_t k = start; !used[k]; k = next[k]) {
+            used[k] = true;
+            piece.push_back(nodes[k].p);
+        }
+        pieces->push_back(std::move(piece));
+    }
+    return true;
 }
 
 Ring without_repeats(const Ring& ring) {
@@ -65,20 +113,30 @@ RoofFace lift(const Ring& ring, const Plane& plane, double eaves_z) {
 
 // The roof surface min over `planes` on a convex footprint: each plane's face is the footprint
 // where that plane is the lowest.
-std::vector<RoofFace> lower_envelope(const Ring& outer, const std::vector<Plane>& planes, double eaves_z) {
-    std::vector<RoofFace> faces;
+// The roof surface min over `planes` on a footprint without holes: each plane's faces are the
+// parts of the footprint where that plane is the lowest. False when a clip is degenerate.
+bool lower_envelope(const Ring& outer, const std::vector<Plane>& planes, double eaves_z,
+                    std::vector<RoofFace>* faces) {
+    std::vector<Ring> pieces, clipped, next;
     for (size_t i = 0; i < planes.size(); ++i) {
-        Ring piece = outer;
-        for (size_t j = 0; j < planes.size() && piece.size() >= 3; ++j) {
+        pieces = {outer};
+        for (size_t j = 0; j < planes.size() && !pieces.empty(); ++j) {
             if (j == i) continue;
             const Plane diff{planes[i].a - planes[j].a, planes[i].b - planes[j].b, planes[i].c - planes[j].c};
-            piece = clip(piece, diff);
+            next.clear();
+            for (const Ring& piece : pieces) {
+                if (!clip_pieces(piece, diff, &clipped)) return false;
+                next.insert(next.end(), clipped.begin(), clipped.end());
+            }
+            pieces.swap(next);
         }
-        piece = without_repeats(piece);
-        if (piece.size() < 3 || signed_area(piece) < 1e-4) continue;
-        faces.push_back(lift(piece, planes[i], eaves_z));
+        for (const Ring& piece : pieces) {
+            const Ring clean = without_repeats(piece);
+            if (clean.size() < 3 || signed_area(clean) < 1e-4) continue;
+            faces->push_back(lift(clean, planes[i], eaves_z));
+        }
     }
-    return faces;
+    return true;
 }
 
 // A concave profile across the frame, given as (t fraction in [0, 1], height fraction) points
@@ -141,8 +199,72 @@ std::vector<RoofFace> revolution(const Ring& outer, double eaves_z, double heigh
     return faces;
 }
 
+// Gables on a skeleton roof (what Streets GL does): each end face that is a triangle (a footprint
+// edge a-b rising to one skeleton node P shared with only the two neighbouring faces) is folded
+// up into a vertical gable: P slides along the ridge the two neighbours' planes meet in, until
+// it stands over a-b. The neighbours stay planar (P stays on both planes) and now cover the
+// triangle; gable_walls() later builds the wall under the new roof edge. Returns the count.
+int fold_gables(std::vector<SkeletonFace>& skeleton) {
+    auto contour_edge = [](const SkeletonFace& f, Vec2* u, Vec2* v) {
+        for (size_t i = 0, n = f.points.size(); i < n; ++i)
+            if (f.times[i] == 0 && f.times[(i + 1) % n] == 0) {
+                *u = f.points[i];
+                *v = f.points[(i + 1) % n];
+                return true;
+            }
+        return false;
+    };
+    auto distance_to_line = [](Vec2 p, Vec2 u, Vec2 v) { return std::fabs(cross(v - u, p - u)) / length(v - u); };
+    int folded = 0;
+    for (size_t k = 0; k < skeleton.size(); ++k) {
+        SkeletonFace& end = skeleton[k];
+        if (end.points.size() != 3) continue;
+        size_t apex = 3;
+        for (size_t i = 0; i < 3; ++i)
+            if (end.times[i] > 0) apex = apex == 3 ? i : 4;
+        if (apex >= 3) continue;
+        const Vec2 node = end.points[apex];
+        const Vec2 a = end.points[(apex + 1) % 3], b = end.points[(apex + 2) % 3];
+        // The faces sharing the node: exactly the two neighbours beside a and b.
+        std::vector<size_t> sharing;
+        for (size_t j = 0; j < skeleton.size(); ++j)
+            if (j != k)
+                for (Vec2 p : skeleton[j].points)
+                    if (p == node) sharing.push_back(j);
+        if (sharing.size() != 2) continue;
+        Vec2 au, av, bu, bv;
+        int at_a = -1, at_b = -1;
+        for (size_t j : sharing) {
+            Vec2 u, v;
+            if (!contour_edge(skeleton[j], &u, &v)) continue;
+            if (u == a || v == a) at_a = static_cast<int>(j), au = u, av = v;
+            if (u == b || v == b) at_b = static_cast<int>(j), bu = u, bv = v;
+        }
+        if (at_a < 0 || at_b < 0 || at_a == at_b) continue;
+        // On a-b, the point as far from the neighbour's edge at a as from the one at b.
+        const double da = distance_to_line(b, au, av), db = distance_to_line(a, bu, bv);
+        if (!(da + db > 0)) continue;
+        const double lambda = db / (da + db);
+        const Vec2 moved = a + (b - a) * lambda;
+        const double time = distance_to_line(moved, au, av);
+        if (!(time > 0)) continue;
+        for (size_t j : sharing)
+            for (size_t i = 0; i < skeleton[j].points.size(); ++i)
+                if (skeleton[j].points[i] == node) {
+                    skeleton[j].points[i] = moved;
+                    skeleton[j].times[i] = time;
+                }
+        end.points.clear();  // now the gable wall, built with the walls
+        end.times.clear();
+        ++folded;
+    }
+    return folded;
+}
+
+// Hipped roof from the straight skeleton (height = offset time x slope), optionally with its
+// end triangles folded into gables; `folded` (optional) receives how many were.
 bool hipped(const Ring& outer, const std::vector<Ring>& holes, double eaves_z, double height,
-            std::vector<RoofFace>* faces, std::string* why) {
+            std::vector<RoofFace>* faces, std::string* why, bool gables = false, int* folded = nullptr) {
     std::vector<SkeletonFace> skeleton;
     if (!straight_skeleton_faces(outer, holes, &skeleton)) {
         *why = "straight skeleton failed";
@@ -156,7 +278,10 @@ bool hipped(const Ring& outer, const std::vector<Ring>& holes, double eaves_z, d
         return false;
     }
     const double slope = height / last;
+    const int gable_count = gables ? fold_gables(skeleton) : 0;
+    if (folded) *folded = gable_count;
     for (const SkeletonFace& f : skeleton) {
+        if (f.points.size() < 3) continue;
         RoofFace face;
         for (size_t i = 0; i < f.points.size(); ++i)
             face.points.push_back({f.points[i].x, f.points[i].y, eaves_z + slope * f.times[i]});
@@ -221,15 +346,25 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
     const double z = spec.eaves_z, h = spec.height;
     const bool convex = holes.empty() && ring_is_convex(outer);
     const RoofFrame f = roof_frame(outer, spec);
+    // Ridge roofs over the bounding rectangle suit footprints that nearly fill it.
+    const bool near_rectangle =
+        holes.empty() && std::fabs(signed_area(outer)) >= kNearRectangle * f.width() * f.length();
     if (!(f.width() > 0.1) || !(f.length() > 0.1)) {
         *why = "degenerate footprint";
         return false;
     }
+    // Gables, ridges and curves across a bent or holed footprint: the skeleton's hipped roof
+    // (what a courtyard block's wings look like anyway).
+    auto as_hipped = [&] {
+        faces->clear();
+        *built = RoofShape::Hipped;
+        return hipped(outer, holes, z, h, faces, why);
+    };
     switch (spec.shape) {
         case RoofShape::Flat: return true;
         case RoofShape::Hipped: return hipped(outer, holes, z, h, faces, why);
         case RoofShape::Skillion: {
-            if (!holes.empty()) break;
+            if (!holes.empty()) return as_hipped();
             // With a direction the frame's across axis points uphill (roof_frame), so the top is
             // at t1; without one, the long side at t0 is the high one.
             const Plane plane = spec.has_direction ? across_plane(f, f.t0, 0, f.t1, h)
@@ -238,12 +373,12 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
             return true;
         }
         case RoofShape::Pyramidal:
-            if (!convex) break;
+            if (!convex) return as_hipped();
             *faces = pyramid(outer, z, h);
             return true;
         case RoofShape::Dome:
         case RoofShape::Onion: {
-            if (!convex) break;
+            if (!convex) return as_hipped();
             std::vector<std::pair<double, double>> profile;
             if (spec.shape == RoofShape::Dome) {
                 for (int k = 0; k <= 6; ++k) {
@@ -259,12 +394,13 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
         }
         default: break;
     }
-    if (!convex) {
-        // Gables, ridges and curves across a bent or holed footprint: the skeleton's hipped roof
-        // (what a courtyard block's wings look like anyway).
-        *built = RoofShape::Hipped;
-        return hipped(outer, holes, z, h, faces, why);
+    if (!near_rectangle && spec.shape == RoofShape::Gabled) {
+        int folded = 0;
+        if (!hipped(outer, holes, z, h, faces, why, true, &folded)) return false;
+        if (folded == 0) *built = RoofShape::Hipped;  // nothing to fold (a courtyard's ring of wings)
+        return true;
     }
+    if (!near_rectangle) return as_hipped();
     std::vector<Plane> planes;
     switch (spec.shape) {
         case RoofShape::Gabled: planes = profile_planes(f, {{0, 0}, {0.5, 1}, {1, 0}}, h); break;
@@ -304,11 +440,15 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
         }
         default: *why = "unknown shape"; return false;
     }
-    *faces = lower_envelope(outer, planes, z);
-    if (faces->empty()) {
-        *why = "no face left";
-        return false;
+    if (!lower_envelope(outer, planes, z, faces) || faces->empty()) return as_hipped();
+    // The faces must tile the footprint; if a clip went wrong, no roof rather than a hole in it.
+    double covered = 0;
+    for (const RoofFace& face : *faces) {
+        Ring flat;
+        for (Vec3 p : face.points) flat.push_back({p.x, p.y});
+        covered += signed_area(flat);
     }
+    if (std::fabs(covered - signed_area(outer)) > 1e-3 * std::fabs(signed_area(outer))) return as_hipped();
     return true;
 }
 

@@ -21,9 +21,10 @@ struct RoofSpec {
 };
 
 // The roof faces (kind Roof) over `outer` (CCW) with `holes` (CW), without gable walls.
-// Shapes with a ridge or a centre (gabled, half-hipped, gambrel, mansard, round, pyramidal,
-// dome, onion) need a convex footprint without holes (skillion: no holes); on any other
-// footprint they are built hipped from the straight skeleton, and `built` says so.
+// Ridge shapes (gabled, half-hipped, gambrel, mansard, round) need a footprint without holes
+// that fills at least 85% of its minimum-area rectangle; centred ones (pyramidal, dome, onion)
+// a convex footprint; a skillion no holes. On any other footprint they are built hipped from
+// the straight skeleton, and `built` says so.
 // Returns false, with `why` set, when no roof can be built on this footprint.
 bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const RoofSpec& spec,
                      std::vector<RoofFace>* faces, RoofShape* built, std::string* why);

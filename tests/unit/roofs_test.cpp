@@ -70,7 +70,9 @@ TEST(Roofs, EveryFaceIsPlanarUnderTheTopAndOverTheFootprint) {
                 EXPECT_GE(p.z, b.eaves_height() - 1e-3) << to_string(b.osm);
                 EXPECT_TRUE(over_footprint({p.x, p.y}, b, 2e-3)) << to_string(b.osm) << " outside the footprint";
             }
-            if (f.kind == RoofFaceKind::Gable) EXPECT_NEAR(n.z, 0.0, 1e-6) << "gable walls stand upright";
+            if (f.kind == RoofFaceKind::Gable) {
+                EXPECT_NEAR(n.z, 0.0, 1e-6) << "gable walls stand upright";
+            }
         }
     }
     EXPECT_GE(with_faces, 40);
@@ -118,7 +120,17 @@ TEST(Roofs, ShapesThatNeedAConvexFootprintFallBackToHipped) {
     for (const Building& b : scene.buildings)
         if (!b.holes.empty() && !b.roof_faces.empty()) hipped_courtyards += b.roof_shape == RoofShape::Hipped;
     EXPECT_EQ(hipped_courtyards, 10);  // every shape but flat, on the courtyard
-    EXPECT_EQ(report.note_count("roofs", "gabled on a bent or holed footprint: built hipped"), 3);
+    // Gabled on the L and the U: the skeleton's end triangles folded into gable walls.
+    EXPECT_EQ(report.note_count("roofs", "gabled on a bent or holed footprint: built hipped"), 1);
+    int folded = 0;
+    for (const Building& b : scene.buildings) {
+        if (b.roof_shape != RoofShape::Gabled || b.outer.size() <= 4) continue;
+        int gables = 0;
+        for (const RoofFace& f : b.roof_faces) gables += f.kind == RoofFaceKind::Gable;
+        EXPECT_EQ(gables, 2) << to_string(b.osm);  // the two ends of the L, of the U
+        ++folded;
+    }
+    EXPECT_EQ(folded, 2);
 }
 
 TEST(Roofs, BadTagsFallBackAndAreCounted) {
@@ -204,4 +216,36 @@ TEST(Roofs, CompassDirections) {
     EXPECT_TRUE(parse_roof_shape("half-hipped", &s));
     EXPECT_EQ(s, RoofShape::HalfHipped);
     EXPECT_FALSE(parse_roof_shape("pancake", &s));
+}
+
+TEST(Roofs, RidgeRoofsOnANotchedNearRectangle) {
+    // Not convex (a notch in the long side and one at a corner) but nearly filling its
+    // rectangle: every ridge shape is built as tagged, its faces tiling the footprint even where
+    // a slope's clip falls apart into several pieces.
+    const Ring notched{{0, 0}, {6, 0}, {6, 1}, {8, 1}, {8, 0}, {14, 0}, {14, 8}, {1, 8}, {1, 7}, {0, 7}};
+    // A narrow slot from the north side to beyond the ridge: the north slope falls apart in two.
+    const Ring slotted{{0, 0}, {20, 0}, {20, 8}, {10, 8}, {10, 2}, {9.5, 2}, {9.5, 8}, {0, 8}};
+    for (const Ring& ring : {notched, slotted})
+    for (RoofShape shape : {RoofShape::Gabled, RoofShape::HalfHipped, RoofShape::Gambrel, RoofShape::Mansard,
+                            RoofShape::Round}) {
+        RoofSpec spec;
+        spec.shape = shape;
+        spec.eaves_z = 6;
+        spec.height = 3;
+        std::vector<RoofFace> faces;
+        RoofShape built;
+        std::string why;
+        ASSERT_TRUE(make_roof_faces(ring, {}, spec, &faces, &built, &why)) << why;
+        EXPECT_EQ(built, shape) << to_string(shape);
+        double sum = 0;
+        for (const RoofFace& f : faces) {
+            sum += projected_signed_area(f);
+            for (Vec3 p : f.points) {
+                EXPECT_TRUE(point_in_ring({p.x, p.y}, ring) || distance_to_boundary({p.x, p.y}, ring) < 1e-6);
+                EXPECT_LE(p.z, 9 + 1e-9);
+                EXPECT_GE(p.z, 6 - 1e-9);
+            }
+        }
+        EXPECT_NEAR(sum, signed_area(ring), 1e-6) << to_string(shape);
+    }
 }
