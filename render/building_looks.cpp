@@ -105,28 +105,71 @@ BuildingLooks::BuildingLooks(const Scene& scene) {
     }
 }
 
+namespace {
+
+// Wall or roof coordinates at a hit: u, v in metres and the world directions they grow along.
+struct SurfaceFrame {
+    double u, v;
+    Vec3 du, dv;
+};
+SurfaceFrame surface_frame(const Hit& hit, bool wall) {
+    const Vec3 n = hit.geometric_normal, p = hit.position;
+    SurfaceFrame f;
+    if (wall) {
+        const Vec2 along = std::fabs(n.z) < 0.9 ? normalize(Vec2{-n.y, n.x}) : Vec2{1, 0};
+        f.du = {along.x, along.y, 0};
+        f.dv = std::fabs(n.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{0, 1, 0};
+    } else {
+        Vec3 eaves = cross(Vec3{0, 0, 1}, n);
+        if (length(eaves) < 1e-6) eaves = {1, 0, 0};
+        f.du = normalize(eaves);
+        f.dv = normalize(cross(n, f.du));
+    }
+    f.u = dot(p, f.du);
+    f.v = dot(p, f.dv);
+    return f;
+}
+
+// How deep the relief of a pattern is per unit of pattern factor (mortar and joints are recessed
+// whether they are lighter or darker than the face).
+double relief(WallMaterial m) { return m == WallMaterial::Brick || m == WallMaterial::Stone ? -0.004 : 0.004; }
+constexpr double kRoofRelief = 0.006;
+
+}  // namespace
+
+void BuildingLooks::bump(Hit& hit) const {
+    if (hit.kind != ObjectKind::Building || hit.object >= looks_.size()) return;
+    const Look& look = looks_[hit.object];
+    const bool wall = hit.material == kFacade && look.has_wall && look.wall_material != WallMaterial::Glass;
+    const bool roof = hit.material == kRoof && look.has_roof;
+    if (!wall && !roof) return;
+    const SurfaceFrame f = surface_frame(hit, wall);
+    // Height field h = relief x pattern; its slope by central differences over 3 mm.
+    const double e = 0.003;
+    auto h = [&](double u, double v) {
+        return wall ? relief(look.wall_material) * wall_pattern(look.wall_material, u, v)
+                    : kRoofRelief * roof_pattern(look.roof_material, u, v);
+    };
+    const double dhdu = (h(f.u + e, f.v) - h(f.u - e, f.v)) / (2 * e);
+    const double dhdv = (h(f.u, f.v + e) - h(f.u, f.v - e)) / (2 * e);
+    hit.shading_normal = normalize(hit.geometric_normal - f.du * dhdu - f.dv * dhdv);
+}
+
 Material BuildingLooks::material_for(const MaterialTable& table, const Hit& hit) const {
     Material m = table[hit.material];
     if (hit.kind != ObjectKind::Building || hit.object >= looks_.size()) return m;
     const Look& look = looks_[hit.object];
-    const Vec3 n = hit.geometric_normal, p = hit.position;
     if (hit.material == kFacade && look.has_wall) {
-        // Wall coordinates: u along the wall, v up (an underside is patterned in plan).
-        const Vec2 along = std::fabs(n.z) < 0.9 ? normalize(Vec2{-n.y, n.x}) : Vec2{1, 0};
-        const double u = p.x * along.x + p.y * along.y, v = std::fabs(n.z) < 0.9 ? p.z : p.y;
-        m.albedo = look.wall * wall_pattern(look.wall_material, u, v);
+        const SurfaceFrame f = surface_frame(hit, true);
+        m.albedo = look.wall * wall_pattern(look.wall_material, f.u, f.v);
         if (look.wall_material == WallMaterial::Glass) {
             m.type = MaterialType::Glossy;
             m.specular = {0.25, 0.25, 0.25};
             m.exponent = 400;
         }
     } else if (hit.material == kRoof && look.has_roof) {
-        // Roof coordinates: u along the eaves (horizontal), v up the slope (north on a flat roof).
-        Vec3 eaves = cross(Vec3{0, 0, 1}, n);
-        if (length(eaves) < 1e-6) eaves = {1, 0, 0};
-        eaves = normalize(eaves);
-        const Vec3 up_slope = normalize(cross(n, eaves));
-        m.albedo = look.roof * roof_pattern(look.roof_material, dot(p, eaves), dot(p, up_slope));
+        const SurfaceFrame f = surface_frame(hit, false);
+        m.albedo = look.roof * roof_pattern(look.roof_material, f.u, f.v);
         if (look.roof_material == RoofMaterial::Metal || look.roof_material == RoofMaterial::Copper ||
             look.roof_material == RoofMaterial::Glass)
             m.specular = {0.08, 0.08, 0.08};

@@ -21,6 +21,8 @@ public:
     // The material a hit is shaded with: the stock one, except on a building's walls (kFacade)
     // and roof (kRoof), which get that building's colour (linear), modulated by its pattern.
     Material material_for(const MaterialTable& table, const Hit& hit) const;
+    // Tilts hit.shading_normal by the relief of the pattern under the hit (same coordinates).
+    void bump(Hit& hit) const;
 
 private:
     struct Look {
@@ -32,9 +34,13 @@ private:
     std::vector<Look> looks_;
 };
 
-// The material a hit is shaded with (looks may be null: stock materials only).
-inline Material surface_material(const MaterialTable& table, const BuildingLooks* looks, const Hit& hit) {
-    return looks ? looks->material_for(table, hit) : table[hit.material];
+// The material a hit is shaded with (looks may be null: stock materials only); on a building's
+// patterned walls and roof also tilts hit.shading_normal by the pattern's relief (bump mapping:
+// mortar joints, tile rows and plaster grain catch the grazing sun).
+inline Material surface_material(const MaterialTable& table, const BuildingLooks* looks, Hit& hit) {
+    if (!looks) return table[hit.material];
+    looks->bump(hit);
+    return looks->material_for(table, hit);
 }
 
 // sRGB 0xRRGGBB -> linear albedo, scaled so white paint reflects about 80%.
