@@ -5,6 +5,9 @@
 #include <cstring>
 #include <string>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "osm_units.h"
 #include "rng.h"
 #include "roof_geometry.h"
@@ -47,15 +50,6 @@ double height_from_pitch(RoofShape shape, double pitch_deg, const RoofFrame& fra
         case RoofShape::Round: return half;
         default: return rise * half;
     }
-}
-
-Vec3 newell_normal(const std::vector<Vec3>& p) {
-    Vec3 n{0, 0, 0};
-    for (size_t i = 0; i < p.size(); ++i) {
-        const Vec3 a = p[i] - p[0], b = p[(i + 1) % p.size()] - p[0];
-        n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
-    }
-    return normalize(n);
 }
 
 }  // namespace
@@ -120,13 +114,9 @@ RoofShape default_roof(const Building& b, double area, uint64_t seed, double* pi
 
 bool roof_face_is_valid(const RoofFace& face, const Building& b, double z_min, double z_max) {
     const double tol = 1e-2;
-    if (face.points.size() < 3) return false;
-    const Vec3 n = newell_normal(face.points);
-    if (length(n) < 0.5) return false;  // no area
-    const double d = dot(n, face.points[0]);
+    if (!face_is_planar(face, tol)) return false;
     for (Vec3 p : face.points) {
         if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
-        if (std::fabs(dot(n, p) - d) > tol) return false;
         if (p.z < z_min - tol || p.z > z_max + tol) return false;
         const Vec2 q{p.x, p.y};
         if (!point_in_ring(q, b.outer) && distance_to_boundary(q, b.outer) > tol) return false;
@@ -136,112 +126,127 @@ bool roof_face_is_valid(const RoofFace& face, const Building& b, double z_min, d
     return true;
 }
 
+namespace {
+
+// One building's roof; what the report should count goes to `notes`.
+void build_roof(Building& b, const BuildingTagIndex& index, const BuildingParams& params,
+                std::vector<std::string>& notes) {
+    b.roof_faces.clear();
+    b.roof_height = 0;
+    b.roof_shape = RoofShape::Flat;
+    if (b.outer.size() < 3 || !(b.height > b.min_height)) return;
+    const OsmTags& tags = index.find(b.osm);
+    const double area = std::fabs(signed_area(b.outer));
+
+    // Shape.
+    RoofShape shape = RoofShape::Flat;
+    double pitch = 0;
+    b.roof_inferred = false;
+    if (const char* text = tags.get("roof:shape")) {
+        if (!parse_roof_shape(text, &shape)) {
+            notes.push_back("unknown roof:shape: flat");
+            shape = RoofShape::Flat;
+        }
+        pitch = default_pitch(shape);
+    } else {
+        shape = default_roof(b, area, params.seed, &pitch);
+        b.roof_inferred = true;
+    }
+    if (const char* text = tags.get("roof:angle")) {
+        char* end = nullptr;
+        const double angle = std::strtod(text, &end);
+        if (end != text && *end == '\0' && angle > 0 && angle <= 85) pitch = angle;
+        else notes.push_back("bad roof:angle ignored");
+    }
+    if (shape == RoofShape::Flat) {
+        notes.push_back(b.roof_inferred ? "flat (default)" : "flat (tagged)");
+        return;
+    }
+
+    RoofSpec spec;
+    spec.shape = shape;
+    if (const char* text = tags.get("roof:direction")) {
+        double degrees = 0;
+        if (parse_compass_direction(text, &degrees)) {
+            spec.has_direction = true;
+            spec.direction = {std::sin(degrees * kPi / 180), std::cos(degrees * kPi / 180)};
+        } else {
+            notes.push_back("bad roof:direction ignored");
+        }
+    }
+    spec.across = tags.has("roof:orientation", "across");
+
+    // Height.
+    const double budget = b.height - b.min_height;
+    double height = 0;
+    bool derived = false;
+    const char* height_text = tags.get("roof:height");
+    std::optional<double> tagged = height_text ? parse_osm_length(height_text) : std::nullopt;
+    if (height_text && (!tagged || *tagged < 0)) {
+        notes.push_back("bad roof:height ignored");
+        tagged.reset();
+    }
+    const char* levels_text = tags.get("roof:levels");
+    std::optional<double> levels = levels_text ? parse_osm_count(levels_text) : std::nullopt;
+    if (tagged) {
+        height = *tagged;
+    } else if (levels && *levels > 0 && *levels < 100) {
+        height = *levels * params.level_height;
+    } else {
+        height = height_from_pitch(shape, pitch, roof_frame(b.outer, spec));
+        derived = true;
+    }
+    if (b.height_source == HeightSource::Levels) {
+        b.height += height;  // building:levels counts the storeys under the roof
+    } else if (derived) {
+        height = std::min(height, 0.75 * budget);
+    } else if (height > budget) {
+        notes.push_back("roof:height above the building: clamped");
+        height = budget;
+    }
+    if (height < kMinRoofHeight) {
+        notes.push_back("roof too low: flat");
+        return;
+    }
+
+    spec.eaves_z = b.height - height;
+    spec.height = height;
+    std::vector<RoofFace> faces;
+    RoofShape built = shape;
+    std::string why;
+    if (!make_roof_faces(b.outer, b.holes, spec, &faces, &built, &why)) {
+        notes.push_back("could not build (" + why + "): flat");
+        if (b.height_source == HeightSource::Levels) b.height -= height;
+        return;
+    }
+    for (RoofFace& wall : gable_walls(b.outer, b.holes, faces, spec.eaves_z)) faces.push_back(std::move(wall));
+    bool valid = true;
+    for (const RoofFace& face : faces) valid = valid && roof_face_is_valid(face, b, spec.eaves_z, b.height);
+    if (!valid) {
+        notes.push_back(std::string("faces failed the checks (") + to_string(shape) + "): flat");
+        if (b.height_source == HeightSource::Levels) b.height -= height;
+        return;
+    }
+    if (built != shape)
+        notes.push_back(std::string(to_string(shape)) + " on a bent or holed footprint: built hipped");
+    b.roof_shape = built;
+    b.roof_height = height;
+    b.roof_faces = std::move(faces);
+    notes.push_back(std::string(to_string(built)) + (b.roof_inferred ? " (default)" : " (tagged)"));
+}
+
+}  // namespace
+
 void build_roofs(std::vector<Building>& buildings, const BuildingTagIndex& index, const BuildingParams& params,
                  ParseReport& report) {
-    for (Building& b : buildings) {
-        b.roof_faces.clear();
-        b.roof_height = 0;
-        b.roof_shape = RoofShape::Flat;
-        if (b.outer.size() < 3 || !(b.height > b.min_height)) continue;
-        const OsmTags& tags = index.find(b.osm);
-        const double area = std::fabs(signed_area(b.outer));
-
-        // Shape.
-        RoofShape shape = RoofShape::Flat;
-        double pitch = 0;
-        b.roof_inferred = false;
-        if (const char* text = tags.get("roof:shape")) {
-            if (!parse_roof_shape(text, &shape)) {
-                report.note(kRoofs, "unknown roof:shape: flat");
-                shape = RoofShape::Flat;
-            }
-            pitch = default_pitch(shape);
-        } else {
-            shape = default_roof(b, area, params.seed, &pitch);
-            b.roof_inferred = true;
-        }
-        if (const char* text = tags.get("roof:angle")) {
-            char* end = nullptr;
-            const double angle = std::strtod(text, &end);
-            if (end != text && *end == '\0' && angle > 0 && angle <= 85) pitch = angle;
-            else report.note(kRoofs, "bad roof:angle ignored");
-        }
-        if (shape == RoofShape::Flat) {
-            report.note(kRoofs, b.roof_inferred ? "flat (default)" : "flat (tagged)");
-            continue;
-        }
-
-        RoofSpec spec;
-        spec.shape = shape;
-        if (const char* text = tags.get("roof:direction")) {
-            double degrees = 0;
-            if (parse_compass_direction(text, &degrees)) {
-                spec.has_direction = true;
-                spec.direction = {std::sin(degrees * kPi / 180), std::cos(degrees * kPi / 180)};
-            } else {
-                report.note(kRoofs, "bad roof:direction ignored");
-            }
-        }
-        spec.across = tags.has("roof:orientation", "across");
-
-        // Height.
-        const double budget = b.height - b.min_height;
-        double height = 0;
-        bool derived = false;
-        const char* height_text = tags.get("roof:height");
-        std::optional<double> tagged = height_text ? parse_osm_length(height_text) : std::nullopt;
-        if (height_text && (!tagged || *tagged < 0)) {
-            report.note(kRoofs, "bad roof:height ignored");
-            tagged.reset();
-        }
-        const char* levels_text = tags.get("roof:levels");
-        std::optional<double> levels = levels_text ? parse_osm_count(levels_text) : std::nullopt;
-        if (tagged) {
-            height = *tagged;
-        } else if (levels && *levels > 0 && *levels < 100) {
-            height = *levels * params.level_height;
-        } else {
-            height = height_from_pitch(shape, pitch, roof_frame(b.outer, spec));
-            derived = true;
-        }
-        if (b.height_source == HeightSource::Levels) {
-            b.height += height;  // building:levels counts the storeys under the roof
-        } else if (derived) {
-            height = std::min(height, 0.75 * budget);
-        } else if (height > budget) {
-            report.note(kRoofs, "roof:height above the building: clamped");
-            height = budget;
-        }
-        if (height < kMinRoofHeight) {
-            report.note(kRoofs, "roof too low: flat");
-            continue;
-        }
-
-        spec.eaves_z = b.height - height;
-        spec.height = height;
-        std::vector<RoofFace> faces;
-        RoofShape built = shape;
-        std::string why;
-        if (!make_roof_faces(b.outer, b.holes, spec, &faces, &built, &why)) {
-            report.note(kRoofs, "could not build (" + why + "): flat");
-            if (b.height_source == HeightSource::Levels) b.height -= height;
-            continue;
-        }
-        for (RoofFace& wall : gable_walls(b.outer, b.holes, faces, spec.eaves_z)) faces.push_back(std::move(wall));
-        bool valid = true;
-        for (const RoofFace& face : faces) valid = valid && roof_face_is_valid(face, b, spec.eaves_z, b.height);
-        if (!valid) {
-            report.note(kRoofs, std::string("faces failed the checks (") + to_string(shape) + "): flat");
-            if (b.height_source == HeightSource::Levels) b.height -= height;
-            continue;
-        }
-        if (built != shape)
-            report.note(kRoofs, std::string(to_string(shape)) + " on a bent or holed footprint: built hipped");
-        b.roof_shape = built;
-        b.roof_height = height;
-        b.roof_faces = std::move(faces);
-        report.note(kRoofs, std::string(to_string(built)) + (b.roof_inferred ? " (default)" : " (tagged)"));
-    }
+    // Buildings are independent (the straight skeleton is most of the stage's time): in parallel,
+    // with the notes counted afterwards in building order, so the report does not depend on threads.
+    std::vector<std::vector<std::string>> notes(buildings.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, buildings.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) build_roof(buildings[i], index, params, notes[i]);
+    });
+    for (const auto& list : notes)
+        for (const std::string& note : list) report.note(kRoofs, note);
 }
 
 }  // namespace citygen

@@ -204,6 +204,39 @@ std::vector<RoofFace> revolution(const Ring& outer, double eaves_z, double heigh
 // up into a vertical gable: P slides along the ridge the two neighbours' planes meet in, until
 // it stands over a-b. The neighbours stay planar (P stays on both planes) and now cover the
 // triangle; gable_walls() later builds the wall under the new roof edge. Returns the count.
+// The straight skeleton's faces. On a convex footprint without holes the skeleton roof is the
+// lower envelope of the planes rising from each edge at one slope, which the half-plane clipper
+// builds several times faster than CGAL (whose exact predicates dominate the parse otherwise).
+bool skeleton_faces(const Ring& outer, const std::vector<Ring>& holes, std::vector<SkeletonFace>* skeleton) {
+    skeleton->clear();
+    if (holes.empty() && ring_is_convex(outer)) {
+        std::vector<Plane> planes;
+        for (size_t i = 0, n = outer.size(); i < n; ++i) {
+            const Vec2 a = outer[i], d = outer[(i + 1) % n] - a;
+            const double len = length(d);
+            if (!(len > 0)) continue;
+            planes.push_back({-d.y / len, d.x / len, (d.y * a.x - d.x * a.y) / len});  // distance inside the edge
+        }
+        std::vector<RoofFace> faces;
+        if (lower_envelope(outer, planes, 0, &faces) && !faces.empty()) {
+            for (const RoofFace& f : faces) {
+                SkeletonFace face;
+                for (Vec3 p : f.points) {
+                    face.points.push_back({p.x, p.y});
+                    face.times.push_back(p.z < 1e-7 ? 0.0 : p.z);  // on the footprint
+                }
+                skeleton->push_back(std::move(face));
+            }
+            return true;
+        }
+        skeleton->clear();
+    }
+    return straight_skeleton_faces(outer, holes, skeleton);
+}
+
+// Skeleton nodes shared by faces: CGAL gives them bit-identical, the convex envelope nearly.
+bool same_point(Vec2 p, Vec2 q) { return std::fabs(p.x - q.x) < 1e-6 && std::fabs(p.y - q.y) < 1e-6; }
+
 int fold_gables(std::vector<SkeletonFace>& skeleton) {
     auto contour_edge = [](const SkeletonFace& f, Vec2* u, Vec2* v) {
         for (size_t i = 0, n = f.points.size(); i < n; ++i)
@@ -214,7 +247,8 @@ int fold_gables(std::vector<SkeletonFace>& skeleton) {
             }
         return false;
     };
-    auto distance_to_line = [](Vec2 p, Vec2 u, Vec2 v) { return std::fabs(cross(v - u, p - u)) / length(v - u); };
+    // Distance inside a face's contour edge u->v (the face lies on its left).
+    auto distance_to_line = [](Vec2 p, Vec2 u, Vec2 v) { return cross(v - u, p - u) / length(v - u); };
     int folded = 0;
     for (size_t k = 0; k < skeleton.size(); ++k) {
         SkeletonFace& end = skeleton[k];
@@ -230,27 +264,30 @@ int fold_gables(std::vector<SkeletonFace>& skeleton) {
         for (size_t j = 0; j < skeleton.size(); ++j)
             if (j != k)
                 for (Vec2 p : skeleton[j].points)
-                    if (p == node) sharing.push_back(j);
+                    if (same_point(p, node)) {
+                        sharing.push_back(j);
+                        break;
+                    }
         if (sharing.size() != 2) continue;
         Vec2 au, av, bu, bv;
         int at_a = -1, at_b = -1;
         for (size_t j : sharing) {
             Vec2 u, v;
             if (!contour_edge(skeleton[j], &u, &v)) continue;
-            if (u == a || v == a) at_a = static_cast<int>(j), au = u, av = v;
-            if (u == b || v == b) at_b = static_cast<int>(j), bu = u, bv = v;
+            if (same_point(u, a) || same_point(v, a)) at_a = static_cast<int>(j), au = u, av = v;
+            if (same_point(u, b) || same_point(v, b)) at_b = static_cast<int>(j), bu = u, bv = v;
         }
         if (at_a < 0 || at_b < 0 || at_a == at_b) continue;
         // On a-b, the point as far from the neighbour's edge at a as from the one at b.
         const double da = distance_to_line(b, au, av), db = distance_to_line(a, bu, bv);
-        if (!(da + db > 0)) continue;
+        if (!(da > 0) || !(db > 0)) continue;  // a neighbour's edge line crosses a-b: no simple gable
         const double lambda = db / (da + db);
         const Vec2 moved = a + (b - a) * lambda;
         const double time = distance_to_line(moved, au, av);
         if (!(time > 0)) continue;
         for (size_t j : sharing)
             for (size_t i = 0; i < skeleton[j].points.size(); ++i)
-                if (skeleton[j].points[i] == node) {
+                if (same_point(skeleton[j].points[i], node)) {
                     skeleton[j].points[i] = moved;
                     skeleton[j].times[i] = time;
                 }
@@ -266,7 +303,7 @@ int fold_gables(std::vector<SkeletonFace>& skeleton) {
 bool hipped(const Ring& outer, const std::vector<Ring>& holes, double eaves_z, double height,
             std::vector<RoofFace>* faces, std::string* why, bool gables = false, int* folded = nullptr) {
     std::vector<SkeletonFace> skeleton;
-    if (!straight_skeleton_faces(outer, holes, &skeleton)) {
+    if (!skeleton_faces(outer, holes, &skeleton)) {
         *why = "straight skeleton failed";
         return false;
     }
@@ -277,9 +314,11 @@ bool hipped(const Ring& outer, const std::vector<Ring>& holes, double eaves_z, d
         *why = "straight skeleton failed";
         return false;
     }
-    const double slope = height / last;
     const int gable_count = gables ? fold_gables(skeleton) : 0;
     if (folded) *folded = gable_count;
+    for (const SkeletonFace& f : skeleton)  // a folded ridge may rise above the last node
+        for (double t : f.times) last = std::max(last, t);
+    const double slope = height / last;
     for (const SkeletonFace& f : skeleton) {
         if (f.points.size() < 3) continue;
         RoofFace face;
@@ -295,6 +334,21 @@ bool hipped(const Ring& outer, const std::vector<Ring>& holes, double eaves_z, d
 }
 
 }  // namespace
+
+bool face_is_planar(const RoofFace& face, double tolerance) {
+    const std::vector<Vec3>& p = face.points;
+    if (p.size() < 3) return false;
+    Vec3 n{0, 0, 0};
+    for (size_t i = 0; i < p.size(); ++i) {
+        const Vec3 a = p[i] - p[0], b = p[(i + 1) % p.size()] - p[0];
+        n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+    }
+    if (!(length(n) > 0)) return false;
+    n = normalize(n);
+    for (Vec3 q : p)
+        if (!(std::fabs(dot(n, q - p[0])) <= tolerance)) return false;
+    return true;
+}
 
 RoofFrame roof_frame(const Ring& outer, const RoofSpec& spec) {
     RoofFrame f;
@@ -397,6 +451,9 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
     if (!near_rectangle && spec.shape == RoofShape::Gabled) {
         int folded = 0;
         if (!hipped(outer, holes, z, h, faces, why, true, &folded)) return false;
+        bool planar = true;
+        for (const RoofFace& face : *faces) planar = planar && face_is_planar(face, 1e-3);
+        if (!planar) return as_hipped();  // a fold that tilted a face: keep the hips
         if (folded == 0) *built = RoofShape::Hipped;  // nothing to fold (a courtyard's ring of wings)
         return true;
     }

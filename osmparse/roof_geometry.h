@@ -34,6 +34,9 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
 std::vector<RoofFace> gable_walls(const Ring& outer, const std::vector<Ring>& holes,
                                   const std::vector<RoofFace>& roof, double eaves_z);
 
+// Whether every point of the face lies within `tolerance` of its (Newell) plane, and it has area.
+bool face_is_planar(const RoofFace& face, double tolerance);
+
 // Dimensions the roof rules use: the footprint's extent along and across its ridge axis.
 struct RoofFrame {
     Vec2 centre, along, across;  // unit axes; across = perp_left(along)
