@@ -140,8 +140,9 @@ constexpr double kRoofRelief = 0.006;
 void BuildingLooks::bump(Hit& hit) const {
     if (hit.kind != ObjectKind::Building || hit.object >= looks_.size()) return;
     const Look& look = looks_[hit.object];
-    const bool wall = hit.material == kFacade && look.has_wall && look.wall_material != WallMaterial::Glass;
-    const bool roof = hit.material == kRoof && look.has_roof;
+    const bool wall = hit.material == kFacade && look.has_wall && look.wall_material != WallMaterial::Glass &&
+                      !(textures_ && textures_->has(look.wall_material));
+    const bool roof = hit.material == kRoof && look.has_roof && !(textures_ && textures_->has(look.roof_material));
     if (!wall && !roof) return;
     const SurfaceFrame f = surface_frame(hit, wall);
     // Height field h = relief x pattern; its slope by central differences over 3 mm.
@@ -161,7 +162,9 @@ Material BuildingLooks::material_for(const MaterialTable& table, const Hit& hit)
     const Look& look = looks_[hit.object];
     if (hit.material == kFacade && look.has_wall) {
         const SurfaceFrame f = surface_frame(hit, true);
-        m.albedo = look.wall * wall_pattern(look.wall_material, f.u, f.v);
+        m.albedo = textures_ && textures_->has(look.wall_material)
+                       ? look.wall * textures_->factor(look.wall_material, f.u, f.v, hit.t)
+                       : look.wall * wall_pattern(look.wall_material, f.u, f.v);
         if (look.wall_material == WallMaterial::Glass) {
             m.type = MaterialType::Glossy;
             m.specular = {0.25, 0.25, 0.25};
@@ -169,7 +172,9 @@ Material BuildingLooks::material_for(const MaterialTable& table, const Hit& hit)
         }
     } else if (hit.material == kRoof && look.has_roof) {
         const SurfaceFrame f = surface_frame(hit, false);
-        m.albedo = look.roof * roof_pattern(look.roof_material, f.u, f.v);
+        m.albedo = textures_ && textures_->has(look.roof_material)
+                       ? look.roof * textures_->factor(look.roof_material, f.u, f.v, hit.t)
+                       : look.roof * roof_pattern(look.roof_material, f.u, f.v);
         if (look.roof_material == RoofMaterial::Metal || look.roof_material == RoofMaterial::Copper ||
             look.roof_material == RoofMaterial::Glass)
             m.specular = {0.08, 0.08, 0.08};

@@ -7,6 +7,7 @@
 
 #include <vector>
 
+#include "building_textures.h"
 #include "hit.h"
 #include "materials.h"
 #include "scene.h"
@@ -23,6 +24,8 @@ public:
     Material material_for(const MaterialTable& table, const Hit& hit) const;
     // Tilts hit.shading_normal by the relief of the pattern under the hit (same coordinates).
     void bump(Hit& hit) const;
+    // User tile textures (--texture-dir) that replace the patterns of their materials; null: none.
+    void use_textures(const BuildingTextures* textures) { textures_ = textures; }
 
 private:
     struct Look {
@@ -32,6 +35,7 @@ private:
         bool has_wall, has_roof;
     };
     std::vector<Look> looks_;
+    const BuildingTextures* textures_ = nullptr;
 };
 
 // The material a hit is shaded with (looks may be null: stock materials only); on a building's

@@ -166,3 +166,42 @@ TEST(ProceduralRender, SameRoofsAndColoursOnTheBundledExample) {
     EXPECT_GT(building_albedos[building_albedos.size() * 9 / 10] - building_albedos[building_albedos.size() / 10],
               0.05f);
 }
+
+TEST(ProceduralRender, UserTexturesReplacePatternsInBothModes) {
+    TempDir dir;
+    // A 64x64 checker as every wall material's texture: the albedo on walls takes two values.
+    OIIO::ImageBuf checker(OIIO::ImageSpec(64, 64, 3, OIIO::TypeDesc::UINT8));
+    const float dark[3] = {0.2f, 0.2f, 0.2f}, light[3] = {0.9f, 0.9f, 0.9f};
+    OIIO::ImageBufAlgo::checker(checker, 8, 8, 1, dark, light);
+    const std::string textures = dir.file("textures");
+    std::filesystem::create_directory(textures);
+    for (const char* name : {"plaster", "brick", "concrete", "stone", "wood", "metal"})
+        ASSERT_TRUE(checker.write(textures + "/" + name + ".png"));
+    const std::string scene = dir.file("roofs.scene");
+    ASSERT_EQ(run_command(osmparse_binary() + " --quiet " + quoted(source_path("tests/data/roofs.osm")) + " -o " +
+                          quoted(scene))
+                  .exit_code,
+              0);
+    const std::string view = "--camera=-1,-70,7 --look-at=-4,-60,8";
+    const Exr plain = render(dir, scene, "plain", "", 2, view);
+    const Exr stored = render(dir, scene, "stored", "--texture-dir " + quoted(textures), 2, view);
+    const Exr procedural = render(dir, scene, "procedural", "--procedural --texture-dir " + quoted(textures), 2, view);
+    ASSERT_GT(stored.width, 0);
+    const int albedo = stored.channel("albedo.G"), kind = stored.channel("id.kind");
+    int walls = 0, differs_from_plain = 0, same_modes = 0;
+    for (int p = 0; p < stored.width * stored.height; ++p) {
+        if (stored.at(p, kind) != 1.0f) continue;
+        ++walls;
+        differs_from_plain += std::abs(stored.at(p, albedo) - plain.at(p, albedo)) > 0.05f;
+        same_modes += std::abs(stored.at(p, albedo) - procedural.at(p, albedo)) <= 1e-3f;
+    }
+    EXPECT_GT(walls, 1000);
+    EXPECT_GT(differs_from_plain, walls / 4) << "the checker shows";
+    EXPECT_GE(same_modes, walls * 99 / 100);
+
+    const CommandResult bad = run_command(render_binary() + " " + quoted(scene) + " -o " + quoted(dir.file("x.png")) +
+                                          " --quiet --texture-dir " + quoted(dir.file("missing")));
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("x.png")));
+}
