@@ -60,7 +60,11 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     const double top_margin = 0.4 + 0.6 * building_unit(kTopMargin);
     const double edge_margin = 0.4 + 0.6 * building_unit(kEdgeMargin);
 
-    double floor_target = 2.9 + 0.5 * building_unit(kFloorHeight);
+    // Storeys: houses low, offices and shops tall, the rest in between (tagged levels win).
+    const bool offices = wall.style == FacadeStyle::Office || wall.style == FacadeStyle::CurtainWall;
+    double floor_target = wall.style == FacadeStyle::House ? 2.7 + 0.3 * building_unit(kFloorHeight)
+                          : offices                        ? 3.4 + 0.5 * building_unit(kFloorHeight)
+                                                           : 2.9 + 0.5 * building_unit(kFloorHeight);
     if (wall.levels > 0) {
         double tagged = wall.height / wall.levels;
         if (tagged >= kMinFloorHeight && tagged <= 5.0) floor_target = tagged;
@@ -68,7 +72,10 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     const double usable_height = wall.height - bottom_margin - top_margin;
     const double usable_length = wall.length - 2 * edge_margin;
     const int floors = static_cast<int>(std::floor(usable_height / floor_target));
-    const double slot_target = 2.4 + 1.4 * building_unit(kSlotWidth);
+    // Window rhythm: offices in narrow, even bays (ribbon windows), houses in wide ones.
+    const double slot_target = wall.style == FacadeStyle::Office  ? 1.8 + 0.4 * building_unit(kSlotWidth)
+                               : wall.style == FacadeStyle::House ? 2.8 + 1.2 * building_unit(kSlotWidth)
+                                                                  : 2.4 + 1.4 * building_unit(kSlotWidth);
     const int slots = static_cast<int>(std::floor(usable_length / slot_target));
     if (floors < 1 || slots < 1) return layout;  // too short or too narrow: plain wall
     const double floor_height = usable_height / floors;
@@ -97,6 +104,10 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     const double sill = std::min(0.8 + 0.2 * building_unit(kSill), floor_height - 1.2);
     const double window_height = std::min(1.3 + 0.4 * building_unit(kWindowHeight), floor_height - 0.35 - sill);
     layout.window = {0.5 * (slot_width - window_width), 0.5 * (slot_width + window_width), sill, sill + window_height};
+    if (wall.style == FacadeStyle::Office) {  // ribbon windows: nearly the whole bay, a band of wall between
+        const double ribbon = std::min(1.6 + 0.3 * building_unit(kWindowHeight), floor_height - 1.2);
+        layout.window = {0.08, slot_width - 0.08, 0.9, 0.9 + ribbon};
+    }
 
     // Curtain wall: glass from floor to floor, slim mullions, no balconies.
     const bool curtain = wall.style == FacadeStyle::CurtainWall;
@@ -106,7 +117,8 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     }
 
     // Balconies: per building, and then only on some of its walls, never on one-floor walls.
-    if (!curtain && floors >= 2 && building_unit(kHasBalconies) < 0.4 && wall_unit(kWallBalconies) < 0.7) {
+    const bool no_balconies = curtain || wall.style == FacadeStyle::Office;
+    if (!no_balconies && floors >= 2 && building_unit(kHasBalconies) < 0.4 && wall_unit(kWallBalconies) < 0.7) {
         layout.balconies = true;
         layout.balcony_every = building_unit(kBalconyEvery) < 0.5 ? 1 : 2;
         layout.balcony_depth = 1.0 + 0.4 * building_unit(kBalconyDepth);
@@ -327,6 +339,7 @@ FacadeStyle facade_style(const Building& b) {
     if (is({"house", "detached", "semidetached_house", "terrace", "bungalow", "villa", "farm"}))
         return FacadeStyle::House;
     if (is({"retail", "supermarket", "kiosk"})) return FacadeStyle::Shops;
+    if (is({"office", "commercial", "government", "bank"})) return FacadeStyle::Office;
     return FacadeStyle::Normal;
 }
 

@@ -40,8 +40,9 @@ struct FacadeOptions {
 
 // The kind of facade a building gets, from its type, wall material and height (facade_style):
 // plain walls for garages, sheds and industry; curtain-wall glass for glass walls and tall
-// offices; shop fronts always for shops, never for houses.
-enum class FacadeStyle : uint8_t { Normal = 0, Plain, CurtainWall, House, Shops };
+// offices; ribbon windows in narrow bays and tall storeys, no balconies, for other offices;
+// low storeys, wide bays and never a shop front for houses; shop fronts always for shops.
+enum class FacadeStyle : uint8_t { Normal = 0, Plain, CurtainWall, House, Shops, Office };
 FacadeStyle facade_style(const Building& building);
 
 // What a wall is, as far as the rules care. Walls are numbered over the outer ring's edges
