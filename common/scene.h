@@ -68,12 +68,13 @@ struct Building {
     RoofShape roof_shape = RoofShape::Flat;
     double roof_height = 0;           // eaves (top of the walls) = height - roof_height
     bool roof_inferred = false;
-    std::vector<RoofFace> roof_faces; // empty: a flat roof at `height`
+    std::vector<RoofFace> roof_faces{};  // empty: a flat roof at `height`
     HeightRule height_rule = HeightRule::Tagged;
     uint32_t wall_colour = 0, roof_colour = 0;  // sRGB 0xFFRRGGBB, 0 = none (stock colour)
     uint8_t colour_inferred = 0;      // kWallColourInferred | kRoofColourInferred
     WallMaterial wall_material = WallMaterial::Plaster;
     RoofMaterial roof_material = RoofMaterial::RoofTiles;
+    bool generated = false;           // --fill-empty-blocks: not in the map
 
     double eaves_height() const { return height - roof_height; }
 };

@@ -149,6 +149,7 @@ void decode_building_look(const fb::Building* x, const Checker& check, Building&
     bld.wall_material = static_cast<WallMaterial>(x->wall_material());
     if (x->roof_material() > fb::RoofMaterial::MAX) check.fail("invalid roof material");
     bld.roof_material = static_cast<RoofMaterial>(x->roof_material());
+    bld.generated = x->generated();
 }
 
 }  // namespace
@@ -180,7 +181,7 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
             static_cast<fb::RoofShape>(x.roof_shape), static_cast<float>(x.roof_height), x.roof_inferred,
             roof_faces, static_cast<fb::HeightRule>(x.height_rule), x.wall_colour, x.roof_colour,
             x.colour_inferred, static_cast<fb::WallMaterial>(x.wall_material),
-            static_cast<fb::RoofMaterial>(x.roof_material)));
+            static_cast<fb::RoofMaterial>(x.roof_material), x.generated));
     }
 
     std::vector<flatbuffers::Offset<fb::RoadEdge>> roads;

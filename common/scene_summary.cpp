@@ -65,14 +65,16 @@ void diff_kind(const char* kind, const std::map<std::string, const T*>& a,
 // Format 1.1: roof shapes (and how many were inferred), height rules, wall materials.
 static void print_building_looks(const Scene& s, std::FILE* out) {
     std::map<std::string, size_t> roofs, rules, walls;
-    size_t inferred = 0, faces = 0;
+    size_t inferred = 0, faces = 0, generated = 0;
     for (const Building& b : s.buildings) {
         ++roofs[to_string(b.roof_shape)];
         ++rules[to_string(b.height_rule)];
         ++walls[to_string(b.wall_material)];
         inferred += b.roof_inferred;
         faces += b.roof_faces.size();
+        generated += b.generated;
     }
+    std::fprintf(out, "generated_buildings: %zu\n", generated);
     auto list = [&](const char* name, const std::map<std::string, size_t>& m) {
         std::fprintf(out, "%s:", name);
         for (const auto& [k, v] : m) std::fprintf(out, " %s %zu,", k.c_str(), v);
@@ -176,6 +178,7 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
                   if (x.wall_material != y.wall_material || x.roof_material != y.roof_material)
                       return "material differs";
                   if (x.height_rule != y.height_rule) return "height rule differs";
+                  if (x.generated != y.generated) return "generated differs";
                   return "";
               },
               out);

@@ -10,6 +10,7 @@
 #include "build_roofs.h"
 #include "building_colours.h"
 #include "building_tags.h"
+#include "fill_empty_blocks.h"
 #include "infer_heights.h"
 #include "build_sidewalks.h"
 #include "narrow_roads.h"
@@ -74,9 +75,10 @@ void set_bounds_and_ground(Scene& scene) {
 // For the height benchmark (tests/bench/height_bench.sh): forget every height-like tag of a
 // seeded `fraction` of the buildings, so the rules for untagged buildings can be compared with
 // the truth.
+const char* const kHeightKeys[] = {"height", "building:levels", "min_height", "building:min_level",
+                                   "roof:height", "roof:levels", "est_height", "building:height"};
+
 void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
-    static const char* const keys[] = {"height", "building:levels", "min_height", "building:min_level",
-                                       "roof:height", "roof:levels", "est_height", "building:height"};
     for (OsmArea& area : osm.building_areas) {
         const uint64_t key = hash_keys(seed, 0x4849444548ull, static_cast<uint64_t>(area.ref.type),
                                        static_cast<uint64_t>(area.ref.id));
@@ -84,7 +86,7 @@ void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
         auto& entries = area.tags.entries;
         entries.erase(std::remove_if(entries.begin(), entries.end(),
                                      [](const auto& kv) {
-                                         for (const char* k : keys)
+                                         for (const char* k : kHeightKeys)
                                              if (kv.first == k) return true;
                                          return false;
                                      }),
@@ -132,6 +134,12 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
         return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
                                job.params.roads.miter_limit, report);
     });
+    if (job.params.blocks.enabled) {
+        std::vector<Building> generated = timed(report, "empty blocks", [&] {
+            return fill_empty_blocks(scene, job.params.buildings, job.params.blocks, job.params.sidewalks.width, report);
+        });
+        scene.buildings.insert(scene.buildings.end(), generated.begin(), generated.end());
+    }
     scene.lamps = timed(report, "street lamps", [&] {
         return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
     });

@@ -335,6 +335,10 @@ bool hipped(const Ring& outer, const std::vector<Ring>& holes, double eaves_z, d
 
 }  // namespace
 
+bool split_off(const Ring& ring, Vec2 normal, double offset, std::vector<Ring>* pieces) {
+    return clip_pieces(ring, Plane{normal.x, normal.y, -offset}, pieces);
+}
+
 bool face_is_planar(const RoofFace& face, double tolerance) {
     const std::vector<Vec3>& p = face.points;
     if (p.size() < 3) return false;

@@ -34,6 +34,10 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
 std::vector<RoofFace> gable_walls(const Ring& outer, const std::vector<Ring>& holes,
                                   const std::vector<RoofFace>& roof, double eaves_z);
 
+// The parts of a simple counter-clockwise ring where dot(normal, p) <= offset (several when a
+// non-convex ring falls apart). False when the cut is degenerate.
+bool split_off(const Ring& ring, Vec2 normal, double offset, std::vector<Ring>* pieces);
+
 // Whether every point of the face lies within `tolerance` of its (Newell) plane, and it has area.
 bool face_is_planar(const RoofFace& face, double tolerance);
 

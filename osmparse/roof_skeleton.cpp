@@ -1,8 +1,11 @@
 // The one translation unit of osmparse that includes CGAL (its headers compile slowly).
 #include "roof_skeleton.h"
 
+#include <algorithm>
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_with_holes_2.h>
+#include <CGAL/create_offset_polygons_2.h>
 #include <CGAL/create_straight_skeleton_from_polygon_with_holes_2.h>
 
 namespace citygen {
@@ -49,6 +52,27 @@ bool straight_skeleton_faces(const Ring& outer, const std::vector<Ring>& holes, 
         return false;
     }
     return !faces->empty();
+}
+
+bool inset_polygon(const Ring& outer, double distance, std::vector<Ring>* out) {
+    out->clear();
+    try {
+        const Vec2 origin = outer.empty() ? Vec2{0, 0} : outer[0];
+        const Polygon polygon = to_cgal(outer, origin);
+        if (!polygon.is_simple() || !polygon.is_counterclockwise_oriented()) return false;
+        for (const auto& piece : CGAL::create_interior_skeleton_and_offset_polygons_2(distance, polygon)) {
+            if (!piece) continue;
+            Ring ring;
+            for (auto v = piece->vertices_begin(); v != piece->vertices_end(); ++v)
+                ring.push_back({CGAL::to_double(v->x()) + origin.x, CGAL::to_double(v->y()) + origin.y});
+            if (signed_area(ring) < 0) std::reverse(ring.begin(), ring.end());
+            out->push_back(std::move(ring));
+        }
+    } catch (const std::exception&) {
+        out->clear();
+        return false;
+    }
+    return true;
 }
 
 }  // namespace citygen

@@ -1,4 +1,5 @@
-// The interior straight skeleton of a footprint (CGAL), as the faces of a hipped roof.
+// The interior straight skeleton of a footprint (CGAL), as the faces of a hipped roof, and the
+// inward offset it gives (for blocks and lots).
 #pragma once
 
 #include <vector>
@@ -17,5 +18,9 @@ struct SkeletonFace {
 // Faces of the interior straight skeleton of `outer` (CCW) with `holes` (CW). False when CGAL
 // cannot build it (degenerate input); `faces` is then left empty.
 bool straight_skeleton_faces(const Ring& outer, const std::vector<Ring>& holes, std::vector<SkeletonFace>* faces);
+
+// The polygons `distance` inside `outer` (CCW; several when it pinches apart, none when it
+// vanishes), counter-clockwise. False when CGAL cannot build it.
+bool inset_polygon(const Ring& outer, double distance, std::vector<Ring>* out);
 
 }  // namespace citygen

@@ -85,7 +85,8 @@ std::string building_look_properties(const Building& b) {
            ",\"wall_colour\":" + (b.wall_colour ? str(wall) : "null") +
            ",\"roof_colour\":" + (b.roof_colour ? str(roof) : "null") +
            ",\"wall_material\":" + str(to_string(b.wall_material)) +
-           ",\"roof_material\":" + str(to_string(b.roof_material));
+           ",\"roof_material\":" + str(to_string(b.roof_material)) +
+           ",\"generated\":" + (b.generated ? "true" : "false");
 }
 
 }  // namespace
