@@ -160,6 +160,14 @@ TEST(ProceduralRender, SameRoofsAndColoursOnTheBundledExample) {
     }
     EXPECT_GT(buildings, pixels / 5);
     EXPECT_GE(same, std::ceil(0.995 * pixels)) << pixels - same << " pixels differ";
+    double squared = 0;  // beauty, as displayed (see SamePictureAsStoredOnARealExtract)
+    for (int p = 0; p < pixels; ++p)
+        for (int c = 0; c < 3; ++c) {
+            const double a = citygen::tone_map(stored.at(p, c), 1), b = citygen::tone_map(procedural.at(p, c), 1);
+            squared += (a - b) * (a - b);
+        }
+    const double mse = squared / (3.0 * pixels);
+    EXPECT_GE(mse == 0 ? 1e9 : 10 * std::log10(1 / mse), 40.0) << "PSNR in dB";
     // Colours vary: the albedo AOV on buildings is not one value.
     std::sort(building_albedos.begin(), building_albedos.end());
     ASSERT_FALSE(building_albedos.empty());
