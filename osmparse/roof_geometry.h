@@ -43,7 +43,7 @@ bool face_is_planar(const RoofFace& face, double tolerance);
 
 // Dimensions the roof rules use: the footprint's extent along and across its ridge axis.
 struct RoofFrame {
-    Vec2 centre, along, across;  // unit axes; across = perp_left(along)
+    Vec2 centre, along, across;  // origin of s and t (a footprint vertex); unit axes, across = perp_left(along)
     double s0 = 0, s1 = 0, t0 = 0, t1 = 0;  // extents of the footprint along / across
     double width() const { return t1 - t0; }
     double length() const { return s1 - s0; }
