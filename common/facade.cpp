@@ -54,12 +54,17 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     layout.length = wall.length;
     layout.height = wall.height;
     if (!(wall.length > 0) || !(wall.height > 0)) return layout;
+    if (wall.style == FacadeStyle::Plain) return layout;
 
     const double bottom_margin = 0.3 + 0.3 * building_unit(kBottomMargin);
     const double top_margin = 0.4 + 0.6 * building_unit(kTopMargin);
     const double edge_margin = 0.4 + 0.6 * building_unit(kEdgeMargin);
 
-    double floor_target = 2.9 + 0.5 * building_unit(kFloorHeight);
+    // Storeys: houses low, offices and shops tall, the rest in between (tagged levels win).
+    const bool offices = wall.style == FacadeStyle::Office || wall.style == FacadeStyle::CurtainWall;
+    double floor_target = wall.style == FacadeStyle::House ? 2.7 + 0.3 * building_unit(kFloorHeight)
+                          : offices                        ? 3.4 + 0.5 * building_unit(kFloorHeight)
+                                                           : 2.9 + 0.5 * building_unit(kFloorHeight);
     if (wall.levels > 0) {
         double tagged = wall.height / wall.levels;
         if (tagged >= kMinFloorHeight && tagged <= 5.0) floor_target = tagged;
@@ -70,7 +75,10 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     // walls far below this anyway, see scene_limits.h).
     constexpr double kMaxCells = 1e6;
     const int floors = static_cast<int>(std::clamp(std::floor(usable_height / floor_target), 0.0, kMaxCells));
-    const double slot_target = 2.4 + 1.4 * building_unit(kSlotWidth);
+    // Window rhythm: offices in narrow, even bays (ribbon windows), houses in wide ones.
+    const double slot_target = wall.style == FacadeStyle::Office  ? 1.8 + 0.4 * building_unit(kSlotWidth)
+                               : wall.style == FacadeStyle::House ? 2.8 + 1.2 * building_unit(kSlotWidth)
+                                                                  : 2.4 + 1.4 * building_unit(kSlotWidth);
     const int slots = static_cast<int>(std::clamp(std::floor(usable_length / slot_target), 0.0, kMaxCells));
     if (floors < 1 || slots < 1) return layout;  // too short or too narrow: plain wall
     const double floor_height = usable_height / floors;
@@ -99,9 +107,21 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     const double sill = std::min(0.8 + 0.2 * building_unit(kSill), floor_height - 1.2);
     const double window_height = std::min(1.3 + 0.4 * building_unit(kWindowHeight), floor_height - 0.35 - sill);
     layout.window = {0.5 * (slot_width - window_width), 0.5 * (slot_width + window_width), sill, sill + window_height};
+    if (wall.style == FacadeStyle::Office) {  // ribbon windows: nearly the whole bay, a band of wall between
+        const double ribbon = std::min(1.6 + 0.3 * building_unit(kWindowHeight), floor_height - 1.2);
+        layout.window = {0.08, slot_width - 0.08, 0.9, 0.9 + ribbon};
+    }
+
+    // Curtain wall: glass from floor to floor, slim mullions, no balconies.
+    const bool curtain = wall.style == FacadeStyle::CurtainWall;
+    if (curtain) {
+        layout.window = {0.06, slot_width - 0.06, 0.08, floor_height - 0.08};
+        layout.recess = 0.06;
+    }
 
     // Balconies: per building, and then only on some of its walls, never on one-floor walls.
-    if (floors >= 2 && building_unit(kHasBalconies) < 0.4 && wall_unit(kWallBalconies) < 0.7) {
+    const bool no_balconies = curtain || wall.style == FacadeStyle::Office;
+    if (!no_balconies && floors >= 2 && building_unit(kHasBalconies) < 0.4 && wall_unit(kWallBalconies) < 0.7) {
         layout.balconies = true;
         layout.balcony_every = building_unit(kBalconyEvery) < 0.5 ? 1 : 2;
         layout.balcony_depth = 1.0 + 0.4 * building_unit(kBalconyDepth);
@@ -115,7 +135,10 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     }
 
     // Shop front: a row of large panes on the ground floor of buildings that stand on the ground.
-    if (wall.bottom_z < 0.5 && floor_height >= 2.8 && building_unit(kShop) < options.shop_probability) {
+    const double shop_probability = wall.style == FacadeStyle::Shops   ? 1.0
+                                    : wall.style == FacadeStyle::House ? 0.0
+                                                                       : options.shop_probability;
+    if (wall.bottom_z < 0.5 && floor_height >= 2.8 && building_unit(kShop) < shop_probability) {
         layout.shop = true;
         layout.shop_window = {0.25, slot_width - 0.25, 0.4, floor_height - 0.5};
     }
@@ -320,11 +343,30 @@ WallInput building_wall_input(const Building& building, size_t index) {
     wall.wall_index = static_cast<uint32_t>(index);
     wall.length = length(b - a);
     wall.bottom_z = building.min_height;
-    wall.height = building.height - building.min_height;
+    wall.height = building.eaves_height() - building.min_height;  // gables above are roof faces
     wall.levels = building.levels;
     if (a != before) wall.start_angle = interior_angle(before, a, b);
     if (b != after) wall.end_angle = interior_angle(a, b, after);
+    wall.style = facade_style(building);
     return wall;
+}
+
+FacadeStyle facade_style(const Building& b) {
+    auto is = [&](std::initializer_list<const char*> types) {
+        for (const char* t : types)
+            if (b.type == t) return true;
+        return false;
+    };
+    if (is({"garage", "garages", "shed", "carport", "industrial", "warehouse", "hangar", "barn", "farm_auxiliary",
+            "storage_tank", "silo", "transformer_tower", "service"}))
+        return FacadeStyle::Plain;
+    if (b.wall_material == WallMaterial::Glass || (is({"office", "commercial"}) && b.height > 30))
+        return FacadeStyle::CurtainWall;
+    if (is({"house", "detached", "semidetached_house", "terrace", "bungalow", "villa", "farm"}))
+        return FacadeStyle::House;
+    if (is({"retail", "supermarket", "kiosk"})) return FacadeStyle::Shops;
+    if (is({"office", "commercial", "government", "bank"})) return FacadeStyle::Office;
+    return FacadeStyle::Normal;
 }
 
 }  // namespace citygen

@@ -38,6 +38,13 @@ struct FacadeOptions {
     double shop_probability = 0.3;  // chance that a building has a ground floor of shop windows
 };
 
+// The kind of facade a building gets, from its type, wall material and height (facade_style):
+// plain walls for garages, sheds and industry; curtain-wall glass for glass walls and tall
+// offices; ribbon windows in narrow bays and tall storeys, no balconies, for other offices;
+// low storeys, wide bays and never a shop front for houses; shop fronts always for shops.
+enum class FacadeStyle : uint8_t { Normal = 0, Plain, CurtainWall, House, Shops, Office };
+FacadeStyle facade_style(const Building& building);
+
 // What a wall is, as far as the rules care. Walls are numbered over the outer ring's edges
 // first, then each hole's edges in order (see building_wall_count / building_wall).
 struct WallInput {
@@ -50,6 +57,7 @@ struct WallInput {
     // Interior angles (radians) of the footprint at the wall's two ends; below a right angle
     // the neighbouring wall cuts in behind this one, so room boxes must be shallower.
     double start_angle = 3.141592653589793, end_angle = 3.141592653589793;
+    FacadeStyle style = FacadeStyle::Normal;
 };
 
 // An opening (or any rectangle) in cell-relative (u, v): [u0, u1] x [v0, v1].

@@ -12,7 +12,7 @@
 namespace citygen {
 
 constexpr uint16_t kSceneFormatMajor = 1;
-constexpr uint16_t kSceneFormatMinor = 0;
+constexpr uint16_t kSceneFormatMinor = 1;
 
 enum class OsmType : uint8_t { Node = 0, Way = 1, Relation = 2 };
 
@@ -27,6 +27,33 @@ std::string to_string(OsmRef ref);  // "w123", "r45", "n6"
 
 enum class HeightSource : uint8_t { Tagged = 0, Levels = 1, Random = 2 };
 
+// Format 1.1: roof shapes, height rules, colours and materials (schema/scene.fbs).
+enum class RoofShape : uint8_t {
+    Flat = 0, Skillion, Gabled, Hipped, HalfHipped, Pyramidal, Gambrel, Mansard, Dome, Onion, Round
+};
+constexpr int kRoofShapeCount = 11;
+const char* to_string(RoofShape shape);  // the roof:shape value, e.g. "half-hipped"
+
+enum class RoofFaceKind : uint8_t { Roof = 0, Gable = 1 };
+
+// A planar face, counter-clockwise seen from its front (outside).
+struct RoofFace {
+    std::vector<Vec3> points;
+    RoofFaceKind kind = RoofFaceKind::Roof;
+};
+
+enum class HeightRule : uint8_t { Tagged = 0, Levels, Neighbours, TypeAndArea, Random };
+const char* to_string(HeightRule rule);
+
+enum class WallMaterial : uint8_t { Plaster = 0, Brick, Concrete, Stone, Glass, Wood, Metal };
+constexpr int kWallMaterialCount = 7;
+enum class RoofMaterial : uint8_t { RoofTiles = 0, Slate, Metal, Copper, Concrete, TarPaper, Thatch, Glass, Grass };
+constexpr int kRoofMaterialCount = 9;
+const char* to_string(WallMaterial material);
+const char* to_string(RoofMaterial material);
+
+constexpr uint8_t kWallColourInferred = 1, kRoofColourInferred = 2;
+
 struct Building {
     OsmRef osm;
     Ring outer;               // CCW
@@ -37,6 +64,19 @@ struct Building {
     HeightSource height_source = HeightSource::Random;
     std::string type;
     bool is_part = false;
+    // Format 1.1.
+    RoofShape roof_shape = RoofShape::Flat;
+    double roof_height = 0;           // eaves (top of the walls) = height - roof_height
+    bool roof_inferred = false;
+    std::vector<RoofFace> roof_faces{};  // empty: a flat roof at `height`
+    HeightRule height_rule = HeightRule::Tagged;
+    uint32_t wall_colour = 0, roof_colour = 0;  // sRGB 0xFFRRGGBB, 0 = none (stock colour)
+    uint8_t colour_inferred = 0;      // kWallColourInferred | kRoofColourInferred
+    WallMaterial wall_material = WallMaterial::Plaster;
+    RoofMaterial roof_material = RoofMaterial::RoofTiles;
+    bool generated = false;           // --fill-empty-blocks: not in the map
+
+    double eaves_height() const { return height - roof_height; }
 };
 
 enum class RoadClass : uint8_t {

@@ -21,6 +21,34 @@ std::string to_string(OsmRef ref) {
     return prefix + std::to_string(ref.id);
 }
 
+const char* to_string(RoofShape shape) {
+    static const char* const names[kRoofShapeCount] = {"flat", "skillion", "gabled", "hipped",
+                                                       "half-hipped", "pyramidal", "gambrel", "mansard",
+                                                       "dome", "onion", "round"};
+    const int i = static_cast<int>(shape);
+    return i < kRoofShapeCount ? names[i] : "unknown";
+}
+
+const char* to_string(HeightRule rule) {
+    static const char* const names[] = {"tagged", "levels", "neighbours", "type and area", "random"};
+    const int i = static_cast<int>(rule);
+    return i <= static_cast<int>(HeightRule::Random) ? names[i] : "unknown";
+}
+
+const char* to_string(WallMaterial material) {
+    static const char* const names[kWallMaterialCount] = {"plaster", "brick", "concrete", "stone",
+                                                          "glass", "wood", "metal"};
+    const int i = static_cast<int>(material);
+    return i < kWallMaterialCount ? names[i] : "unknown";
+}
+
+const char* to_string(RoofMaterial material) {
+    static const char* const names[kRoofMaterialCount] = {"roof_tiles", "slate", "metal", "copper", "concrete",
+                                                          "tar_paper", "thatch", "glass", "grass"};
+    const int i = static_cast<int>(material);
+    return i < kRoofMaterialCount ? names[i] : "unknown";
+}
+
 namespace {
 
 namespace fb = citygen::fb;
@@ -116,6 +144,49 @@ struct Checker {
 
 std::string str(const flatbuffers::String* s) { return s ? s->str() : std::string(); }
 
+flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<fb::RoofFace>>> encode_roof_faces(
+    Builder& b, const std::vector<RoofFace>& faces) {
+    std::vector<flatbuffers::Offset<fb::RoofFace>> out;
+    for (const RoofFace& face : faces) {
+        std::vector<fb::Vec3> pts;
+        for (Vec3 p : face.points) pts.push_back(to_fb(p));
+        out.push_back(fb::CreateRoofFace(b, b.CreateVectorOfStructs(pts), static_cast<fb::RoofFaceKind>(face.kind)));
+    }
+    return b.CreateVector(out);
+}
+
+// Format 1.1 building fields (absent in 1.0 files, where they read as their defaults).
+void decode_building_look(const fb::Building* x, const Checker& check, Building& bld) {
+    if (x->roof_shape() > fb::RoofShape::MAX) check.fail("invalid roof shape");
+    bld.roof_shape = static_cast<RoofShape>(x->roof_shape());
+    bld.roof_height = check.finite(x->roof_height(), "roof height");
+    if (bld.roof_height < 0 || bld.roof_height > bld.height - bld.min_height + 1e-3)
+        check.fail("roof height outside the building");
+    bld.roof_inferred = x->roof_inferred();
+    if (x->roof_faces())
+        for (const fb::RoofFace* f : *x->roof_faces()) {
+            RoofFace face;
+            if (f->kind() > fb::RoofFaceKind::MAX) check.fail("invalid roof face kind");
+            face.kind = static_cast<RoofFaceKind>(f->kind());
+            if (!f->points() || f->points()->size() < 3) check.fail("roof face with fewer than 3 points");
+            if (f->points()->size() > kMaxRingPoints) check.fail("roof face with too many points");
+            for (const fb::Vec3* p : *f->points())
+                face.points.push_back({check.coordinate(p->x(), "roof face"), check.coordinate(p->y(), "roof face"),
+                                       check.height(p->z(), "roof face height")});
+            bld.roof_faces.push_back(std::move(face));
+        }
+    if (x->height_rule() > fb::HeightRule::MAX) check.fail("invalid height rule");
+    bld.height_rule = static_cast<HeightRule>(x->height_rule());
+    bld.wall_colour = x->wall_colour();
+    bld.roof_colour = x->roof_colour();
+    bld.colour_inferred = x->colour_inferred();
+    if (x->wall_material() > fb::WallMaterial::MAX) check.fail("invalid wall material");
+    bld.wall_material = static_cast<WallMaterial>(x->wall_material());
+    if (x->roof_material() > fb::RoofMaterial::MAX) check.fail("invalid roof material");
+    bld.roof_material = static_cast<RoofMaterial>(x->roof_material());
+    bld.generated = x->generated();
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_scene(const Scene& scene) {
@@ -151,10 +222,15 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
         const auto type = b.CreateString(x.type);
         const auto hole_vector = b.CreateVector(holes);
         const auto outer = ring(b, x.outer);
+        const auto roof_faces = encode_roof_faces(b, x.roof_faces);
         buildings.push_back(fb::CreateBuilding(
             b, &osm, outer, hole_vector, static_cast<float>(x.min_height),
             static_cast<float>(x.height), static_cast<int16_t>(x.levels),
-            static_cast<fb::HeightSource>(x.height_source), type, x.is_part));
+            static_cast<fb::HeightSource>(x.height_source), type, x.is_part,
+            static_cast<fb::RoofShape>(x.roof_shape), static_cast<float>(x.roof_height), x.roof_inferred,
+            roof_faces, static_cast<fb::HeightRule>(x.height_rule), x.wall_colour, x.roof_colour,
+            x.colour_inferred, static_cast<fb::WallMaterial>(x.wall_material),
+            static_cast<fb::RoofMaterial>(x.roof_material), x.generated));
     }
 
     std::vector<flatbuffers::Offset<fb::RoadEdge>> roads;
@@ -260,6 +336,7 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             bld.height_source = static_cast<HeightSource>(x->height_source());
             bld.type = str(x->type());
             bld.is_part = x->is_part();
+            decode_building_look(x, check, bld);
             s.buildings.push_back(std::move(bld));
         }
 

@@ -62,6 +62,30 @@ void diff_kind(const char* kind, const std::map<std::string, const T*>& a,
 
 }  // namespace
 
+// Format 1.1: roof shapes (and how many were inferred), height rules, wall materials.
+static void print_building_looks(const Scene& s, std::FILE* out) {
+    std::map<std::string, size_t> roofs, rules, walls;
+    size_t inferred = 0, faces = 0, generated = 0;
+    for (const Building& b : s.buildings) {
+        ++roofs[to_string(b.roof_shape)];
+        ++rules[to_string(b.height_rule)];
+        ++walls[to_string(b.wall_material)];
+        inferred += b.roof_inferred;
+        faces += b.roof_faces.size();
+        generated += b.generated;
+    }
+    std::fprintf(out, "generated_buildings: %zu\n", generated);
+    auto list = [&](const char* name, const std::map<std::string, size_t>& m) {
+        std::fprintf(out, "%s:", name);
+        for (const auto& [k, v] : m) std::fprintf(out, " %s %zu,", k.c_str(), v);
+        std::fprintf(out, "\n");
+    };
+    list("roof_shapes", roofs);
+    std::fprintf(out, "roof_faces: %zu (%zu roofs by the default rules)\n", faces, inferred);
+    list("height_rules", rules);
+    list("wall_materials", walls);
+}
+
 void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
     const SceneHeader& h = s.header;
     std::fprintf(out, "scene: %s\n", name.c_str());
@@ -100,6 +124,7 @@ void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
                      heights.front(), heights.back(), heights[heights.size() / 2], from_tag, from_levels,
                      s.buildings.size() - from_tag - from_levels);
         std::fprintf(out, "building_vertices: %zu\n", vertices);
+        print_building_looks(s, out);
     }
     std::fprintf(out, "roads: %zu\n", s.roads.size());
     std::map<std::string, size_t> per_class;
@@ -137,6 +162,23 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
                   if (std::fabs(x.height - y.height) > tol || std::fabs(x.min_height - y.min_height) > tol)
                       return "height changed by " + metres(std::max(std::fabs(x.height - y.height),
                                                                     std::fabs(x.min_height - y.min_height)));
+                  if (x.roof_shape != y.roof_shape)
+                      return std::string("roof ") + to_string(x.roof_shape) + " -> " + to_string(y.roof_shape);
+                  if (std::fabs(x.roof_height - y.roof_height) > tol)
+                      return "roof height changed by " + metres(std::fabs(x.roof_height - y.roof_height));
+                  if (x.roof_faces.size() != y.roof_faces.size()) return "number of roof faces differs";
+                  for (size_t i = 0; i < x.roof_faces.size(); ++i) {
+                      const auto& p = x.roof_faces[i].points;
+                      const auto& q = y.roof_faces[i].points;
+                      if (p.size() != q.size() || x.roof_faces[i].kind != y.roof_faces[i].kind) return "roof face differs";
+                      for (size_t j = 0; j < p.size(); ++j)
+                          if ((d = length(p[j] - q[j])) > tol) return "roof face moved " + metres(d);
+                  }
+                  if (x.wall_colour != y.wall_colour || x.roof_colour != y.roof_colour) return "colour differs";
+                  if (x.wall_material != y.wall_material || x.roof_material != y.roof_material)
+                      return "material differs";
+                  if (x.height_rule != y.height_rule) return "height rule differs";
+                  if (x.generated != y.generated) return "generated differs";
                   return "";
               },
               out);

@@ -84,6 +84,12 @@ int main(int argc, char** argv) {
     app.add_option("--lamp-spacing", p.lamps.spacing, "distance between generated street lamps (m)")
         ->check(CLI::Range(1.0, 10000.0))->capture_default_str();
     app.add_option("--geojson", geojson, "also write the scene as GeoJSON in WGS84");
+    app.add_flag("--fill-empty-blocks", p.blocks.enabled,
+                 "generate buildings in built-up road-graph blocks the map left empty (marked generated)");
+    app.add_option("--hide-height-tags", job.hide_height_tags,
+                   "benchmark aid: ignore height, building:levels, min_height, roof:height, ... on this "
+                   "fraction of buildings (seeded; 1 = all)")
+        ->check(CLI::Range(0.0, 1.0));
     app.add_flag("-q,--quiet", job.quiet, "no progress and no report on stderr");
 
     try {

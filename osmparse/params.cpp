@@ -38,6 +38,7 @@ std::vector<std::pair<std::string, std::string>> ParseParams::to_key_values() co
         {"lamp-min-distance", number(lamps.min_distance_to_tagged)},
         {"lamp-height", number(lamps.height)},
     };
+    if (blocks.enabled) kv.push_back({"fill-empty-blocks", "true"});  // only when on: older headers unchanged
     std::sort(kv.begin(), kv.end());
     return kv;
 }

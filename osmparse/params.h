@@ -45,11 +45,24 @@ struct LampParams {
     double height = 6;
 };
 
+// --fill-empty-blocks: buildings generated in road-graph blocks the map left empty.
+struct BlockParams {
+    bool enabled = false;
+    double max_lot_area = 600;     // lots are split until they are at most this big (m2)
+    double min_footprint_area = 40;
+    double setback = 1.0;          // metres from the sidewalk to the building, and between lots
+    double min_block_area = 300;   // after leaving the sidewalk
+    double max_block_area = 20000; // bigger empty blocks are parks, fields or yards
+    int min_buildings_near = 5;    // mapped buildings within near_distance: the block is built-up
+    double near_distance = 60;
+};
+
 struct ParseParams {
     BuildingParams buildings;
     RoadParams roads;
     SidewalkParams sidewalks;
     LampParams lamps;
+    BlockParams blocks;
     uint64_t seed = 1;
 
     // Every parameter as text, sorted by key, for the scene header and --info.

@@ -7,11 +7,17 @@
 #include "build_buildings.h"
 #include "build_road_graph.h"
 #include "build_road_polygons.h"
+#include "build_roofs.h"
+#include "building_colours.h"
+#include "building_tags.h"
+#include "fill_empty_blocks.h"
+#include "infer_heights.h"
 #include "build_sidewalks.h"
 #include "narrow_roads.h"
 #include "place_lamps.h"
 #include "projection.h"
 #include "read_osm.h"
+#include "rng.h"
 
 namespace citygen {
 
@@ -93,16 +99,52 @@ void set_bounds_and_ground(Scene& scene) {
     scene.ground.z = 0;
 }
 
+// For the height benchmark (tests/bench/height_bench.sh): forget every height-like tag of a
+// seeded `fraction` of the buildings, so the rules for untagged buildings can be compared with
+// the truth.
+const char* const kHeightKeys[] = {"height", "building:levels", "min_height", "building:min_level",
+                                   "roof:height", "roof:levels", "est_height", "building:height"};
+
+void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
+    for (OsmArea& area : osm.building_areas) {
+        const uint64_t key = hash_keys(seed, 0x4849444548ull, static_cast<uint64_t>(area.ref.type),
+                                       static_cast<uint64_t>(area.ref.id));
+        if (hash_to_unit(key) >= fraction) continue;
+        auto& entries = area.tags.entries;
+        entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                     [](const auto& kv) {
+                                         for (const char* k : kHeightKeys)
+                                             if (kv.first == k) return true;
+                                         return false;
+                                     }),
+                      entries.end());
+    }
+}
+
 }  // namespace
 
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
-    const OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
+    OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
+    if (job.hide_height_tags > 0) hide_height_tags(osm, job.hide_height_tags, job.params.seed);
     const Projection projection = projection_for(osm);
 
     Scene scene;
     scene.header = make_header(job, projection);
     scene.buildings = timed(report, "buildings", [&] {
         return build_buildings(osm, projection, job.params.buildings, report);
+    });
+    timed(report, "building heights", [&] {
+        infer_heights(scene.buildings, job.params.buildings, report);
+        return 0;
+    });
+    const BuildingTagIndex building_tags(osm);
+    timed(report, "roofs", [&] {
+        build_roofs(scene.buildings, building_tags, job.params.buildings, report);
+        return 0;
+    });
+    timed(report, "colours", [&] {
+        choose_colours_and_materials(scene.buildings, building_tags, job.params.buildings, report);
+        return 0;
     });
     const RoadGraph road_graph = timed(report, "road graph", [&] {
         return build_road_graph(osm, projection, job.params.roads, report);
@@ -119,6 +161,12 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
         return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
                                job.params.roads.miter_limit, report);
     });
+    if (job.params.blocks.enabled) {
+        std::vector<Building> generated = timed(report, "empty blocks", [&] {
+            return fill_empty_blocks(scene, job.params.buildings, job.params.blocks, job.params.sidewalks.width, report);
+        });
+        scene.buildings.insert(scene.buildings.end(), generated.begin(), generated.end());
+    }
     scene.lamps = timed(report, "street lamps", [&] {
         return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
     });

@@ -13,6 +13,7 @@ struct ParseJob {
     std::string input;
     ParseParams params;
     bool quiet = false;
+    double hide_height_tags = 0;  // benchmark aid: this fraction of buildings loses its height tags
 };
 
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report);

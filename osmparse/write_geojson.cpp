@@ -74,6 +74,21 @@ std::string str(const std::string& s) {
     return out + "\"";
 }
 
+// Format 1.1 properties: the height rule, the roof and the colours and materials.
+std::string building_look_properties(const Building& b) {
+    char wall[16], roof[16];
+    std::snprintf(wall, sizeof wall, "#%06x", b.wall_colour & 0xffffffu);
+    std::snprintf(roof, sizeof roof, "#%06x", b.roof_colour & 0xffffffu);
+    return std::string(",\"type\":") + str(b.type) + ",\"height_rule\":" + str(to_string(b.height_rule)) + ",\"roof_shape\":" +
+           str(to_string(b.roof_shape)) + ",\"roof_height\":" + num(b.roof_height) +
+           ",\"roof_inferred\":" + (b.roof_inferred ? "true" : "false") +
+           ",\"wall_colour\":" + (b.wall_colour ? str(wall) : "null") +
+           ",\"roof_colour\":" + (b.roof_colour ? str(roof) : "null") +
+           ",\"wall_material\":" + str(to_string(b.wall_material)) +
+           ",\"roof_material\":" + str(to_string(b.roof_material)) +
+           ",\"generated\":" + (b.generated ? "true" : "false");
+}
+
 }  // namespace
 
 std::string scene_to_geojson(const Scene& scene) {
@@ -86,7 +101,7 @@ std::string scene_to_geojson(const Scene& scene) {
         w.polygon(rings, "\"kind\":\"building\",\"osm\":" + str(to_string(b.osm)) + ",\"height\":" + num(b.height) +
                              ",\"min_height\":" + num(b.min_height) + ",\"levels\":" + std::to_string(b.levels) +
                              ",\"height_source\":\"" + height_sources[static_cast<int>(b.height_source)] +
-                             "\",\"part\":" + (b.is_part ? "true" : "false"));
+                             "\",\"part\":" + (b.is_part ? "true" : "false") + building_look_properties(b));
     }
     for (const RoadEdge& r : scene.roads)
         w.polygon({&r.quad}, "\"kind\":\"road\",\"osm\":" + str(to_string(r.osm)) + ",\"from_node\":" +

@@ -48,7 +48,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
             }
             break;
         }
-        const Material& material = context.materials[hit.material];
+        const Material material = surface_material(context.materials, context.building_looks, hit);
         const Vec3 wo = -ray.direction;
         const bool front = dot(hit.geometric_normal, wo) > 0;
         if (front) radiance = radiance + throughput * material.emission;
@@ -56,19 +56,20 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
 
         // Normal on the side the ray came from; glass wants the true outward normal.
         const Vec3 n = front ? hit.geometric_normal : -hit.geometric_normal;
+        const Vec3 ns = front ? hit.shading_normal : -hit.shading_normal;  // bumped patterns; else n
         const bool delta = is_delta(material);
 
         if (!delta && sky.has_sun() && settings.sample_sun) {
             const Vec3 wi = sample_cone(sky.sun_direction(), sky.sun_cos_radius(), rng.next_double(),
                                         rng.next_double());
-            const double cos_i = dot(n, wi);
-            if (cos_i > 0) {
-                const Color f = bsdf_eval(material, n, wo, wi);
+            const double cos_i = dot(ns, wi);
+            if (cos_i > 0 && dot(n, wi) > 0) {
+                const Color f = bsdf_eval(material, ns, wo, wi);
                 if (f.x + f.y + f.z > 0) {
                     Ray shadow{offset_origin(hit.position, n), wi, 0, 1e30};
                     ++rays;
                     if (!context.scene.occluded(shadow)) {
-                        const double w = power_heuristic(sun_pdf, bsdf_pdf(material, n, wo, wi));
+                        const double w = power_heuristic(sun_pdf, bsdf_pdf(material, ns, wo, wi));
                         radiance = radiance + throughput * f * sky.sun_radiance() * (cos_i * w / sun_pdf);
                     }
                 }
@@ -81,8 +82,9 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
 
         BsdfSample sample;
         const double u1 = rng.next_double(), u2 = rng.next_double(), u3 = rng.next_double();
-        const Vec3 scatter_normal = material.type == MaterialType::Glass ? hit.geometric_normal : n;
+        const Vec3 scatter_normal = material.type == MaterialType::Glass ? hit.geometric_normal : ns;
         if (!bsdf_sample(material, scatter_normal, wo, u1, u2, u3, sample)) break;
+        if (material.type != MaterialType::Glass && dot(sample.wi, n) <= 0) break;  // bumped below the surface
         throughput = throughput * sample.weight;
         if (!finite(throughput) || throughput.x + throughput.y + throughput.z <= 0) break;
         previous_delta = sample.delta;

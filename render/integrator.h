@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "building_looks.h"
 #include "materials.h"
 #include "render_scene.h"
 #include "rng.h"
@@ -24,6 +25,7 @@ struct PathContext {
     const MaterialTable& materials;
     const Sky& sky;
     IntegratorSettings settings;
+    const BuildingLooks* building_looks = nullptr;  // buildings' own colours and patterns (none: stock)
 };
 
 // Survival probability of a Russian roulette step: the path's largest throughput component,

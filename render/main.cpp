@@ -45,6 +45,7 @@ struct Options {
     std::string geometry[kGeometryClassCount];
     double shop_probability = FacadeOptions{}.shop_probability;
     std::string aovs;
+    std::string texture_dir;
     bool print_scene_info = false, print_memory_info = false, print_geometry_info = false, stats = false;
     // Production: tiles, animation, time budgets, denoising (see render_frames.h).
     std::string region, camera_path, frames;
@@ -145,6 +146,12 @@ int run(const Options& o) {
 
     // Facades follow the scene's seed (not --seed, which drives the pixel streams), so every
     // render of a scene shows the same buildings.
+    // User textures are read before the long geometry build, so a bad --texture-dir fails fast.
+    std::unique_ptr<BuildingTextures> textures;
+    if (!o.texture_dir.empty()) {
+        const double pixel_angle = 2 * std::tan(0.5 * o.fov * 3.141592653589793 / 180) / settings.height;
+        textures = std::make_unique<BuildingTextures>(o.texture_dir, pixel_angle);
+    }
     FacadeOptions facades;
     facades.seed = scene.header.seed;
     facades.shop_probability = o.shop_probability;
@@ -166,7 +173,9 @@ int run(const Options& o) {
                                       settings.width, settings.height)
                     : framing_camera(scene, o.fov, settings.width, settings.height);
     const Sky sky = Sky::daylight(time);
-    const PathContext context{*render_scene, materials, sky, settings.integrator};
+    BuildingLooks building_looks(scene);
+    building_looks.use_textures(textures.get());
+    const PathContext context{*render_scene, materials, sky, settings.integrator, &building_looks};
     RenderStats stats;
     if (animate) {
         Animation animation;
@@ -250,6 +259,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
     app.add_option("--aovs", o.aovs, "extra EXR channels: any of depth,normal,albedo,id");
+    app.add_option("--texture-dir", o.texture_dir,
+                   "tile textures replacing the wall/roof patterns: DIR/<material>.png (brick, plaster, ...) "
+                   "and DIR/roof_<material>.png (roof_tiles, slate, ...), one repeat per 2 m");
     app.add_option("--export-ply", o.export_ply_path, "write the stored triangles as binary PLY (material per face)");
     app.add_option("--export-gltf", o.export_gltf_path,
                    "write the stored geometry as binary glTF (.glb): a node per building with its OSM id, PBR "

@@ -31,10 +31,13 @@ std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scen
         for (size_t w = 0, n = building_wall_count(b); w < n; ++w) {
             Vec2 p, q;
             building_wall(b, w, &p, &q);
-            if (p == q) continue;
-            geometry->add_wall(index, make_wall_layout(facades, building_wall_input(b, w)), wall_frame(p, q, bottom));
+            const WallInput input = building_wall_input(b, w);
+            if (p == q || !(input.height > 0)) continue;  // no wall under a roof that starts at the bottom
+            geometry->add_wall(index, make_wall_layout(facades, input), wall_frame(p, q, bottom));
         }
-        geometry->add_polygon(index, b.outer, b.holes, top, kRoof, +1);
+        if (b.roof_faces.empty()) geometry->add_polygon(index, b.outer, b.holes, top, kRoof, +1);
+        for (const RoofFace& face : b.roof_faces)
+            geometry->add_face(index, lifted_face(face, ground), roof_face_material(face));
         if (b.min_height > 0) geometry->add_polygon(index, b.outer, b.holes, bottom, kFacade, -1);
     }
     return geometry;

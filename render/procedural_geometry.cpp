@@ -35,8 +35,41 @@ void ProceduralGeometry::add_polygon(uint32_t object, const Ring& outer, const s
     polygons_.push_back(polygon);
 }
 
+void ProceduralGeometry::add_face(uint32_t object, const std::vector<Vec3>& points, uint16_t material) {
+    if (points.size() < 3) return;
+    // Newell's normal: robust for any planar polygon, its sign gives the front (CCW) side.
+    Vec3 n{0, 0, 0};
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Vec3 a = points[i] - points[0], b = points[(i + 1) % points.size()] - points[0];
+        n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+    }
+    if (!(length(n) > 0)) return;
+    Face face;
+    face.normal = normalize(n);
+    const Vec3 m{std::fabs(face.normal.x), std::fabs(face.normal.y), std::fabs(face.normal.z)};
+    const int drop = m.z >= m.x && m.z >= m.y ? 2 : (m.y >= m.x ? 1 : 0);
+    face.axis_u = static_cast<uint8_t>(drop == 0 ? 1 : 0);
+    face.axis_v = static_cast<uint8_t>(drop == 2 ? 1 : 2);
+    face.offset = 0;
+    for (Vec3 p : points) face.offset += dot(face.normal, p);
+    face.offset /= static_cast<double>(points.size());
+    face.lo = {1e300, 1e300, 1e300};
+    face.hi = {-1e300, -1e300, -1e300};
+    face.first_point = static_cast<uint32_t>(face_points_.size());
+    face.point_count = static_cast<uint32_t>(points.size());
+    for (Vec3 p : points) {
+        face.lo = {std::min(face.lo.x, p.x), std::min(face.lo.y, p.y), std::min(face.lo.z, p.z)};
+        face.hi = {std::max(face.hi.x, p.x), std::max(face.hi.y, p.y), std::max(face.hi.z, p.z)};
+        face_points_.push_back({p[face.axis_u], p[face.axis_v]});
+    }
+    face.object = object;
+    face.material = material;
+    faces_.push_back(face);
+}
+
 size_t ProceduralGeometry::buffer_bytes() const {
     return walls_.capacity() * sizeof(Wall) + plain_walls_.capacity() * sizeof(PlainWall) +
+           faces_.capacity() * sizeof(Face) + face_points_.capacity() * sizeof(Vec2) +
            polygons_.capacity() * sizeof(Polygon) +
            points_.capacity() * sizeof(Vec2) + ring_ends_.capacity() * sizeof(uint32_t);
 }
@@ -68,6 +101,19 @@ bool ProceduralGeometry::inside_polygon(const Polygon& polygon, Vec2 p) const {
         const bool inside = point_in_span(p, points_.data() + begin, ring_ends_[ring] - begin);
         if (inside != (r == 0)) return false;  // outside the outer ring, or inside a hole
     }
+    return true;
+}
+
+bool ProceduralGeometry::intersect_face(const Face& face, Vec3 origin, Vec3 direction, double tmin, double tmax,
+                                        double* t) const {
+    const double denom = dot(face.normal, direction);
+    if (denom == 0) return false;
+    const double hit_t = (face.offset - dot(face.normal, origin)) / denom;
+    if (!(hit_t >= tmin && hit_t <= tmax)) return false;
+    const Vec3 p = origin + direction * hit_t;
+    if (!point_in_span({p[face.axis_u], p[face.axis_v]}, face_points_.data() + face.first_point, face.point_count))
+        return false;
+    *t = hit_t;
     return true;
 }
 
@@ -112,7 +158,18 @@ bool ProceduralGeometry::intersect(unsigned prim_id, Vec3 origin, Vec3 direction
         hit->cell = 0;
         return true;
     }
-    const Polygon& polygon = polygons_[prim_id - walls_.size() - plain_walls_.size()];
+    const size_t polygon_index = prim_id - walls_.size() - plain_walls_.size();
+    if (polygon_index >= polygons_.size()) {
+        const Face& face = faces_[polygon_index - polygons_.size()];
+        double t;
+        if (!intersect_face(face, origin, direction, tmin, tmax, &t)) return false;
+        hit->t = t;
+        hit->normal = face.normal;
+        hit->material = face.material;
+        hit->cell = 0;
+        return true;
+    }
+    const Polygon& polygon = polygons_[polygon_index];
     if (direction.z == 0) return false;
     const double t = (polygon.z - origin.z) / direction.z;
     if (!(t >= tmin && t <= tmax)) return false;
@@ -149,6 +206,11 @@ void ProceduralGeometry::bounds_callback(const RTCBoundsFunctionArguments* args)
         for (double u : {0.0, layout.length})
             for (double v : {0.0, layout.height})
                 for (double w : {layout.w_min(), layout.w_max()}) extend(frame.to_world(u, v, w));
+    } else if (args->primID >= self->walls_.size() + self->plain_walls_.size() + self->polygons_.size()) {
+        const Face& face =
+            self->faces_[args->primID - self->walls_.size() - self->plain_walls_.size() - self->polygons_.size()];
+        extend(face.lo);
+        extend(face.hi);
     } else {
         const Polygon& polygon = self->polygons_[args->primID - self->walls_.size() - self->plain_walls_.size()];
         extend({polygon.bounds.min.x, polygon.bounds.min.y, polygon.z});
@@ -210,6 +272,8 @@ RTCGeometry ProceduralGeometry::create_embree_geometry(RTCDevice device) {
     walls_.shrink_to_fit();
     plain_walls_.shrink_to_fit();
     polygons_.shrink_to_fit();
+    faces_.shrink_to_fit();
+    face_points_.shrink_to_fit();
     points_.shrink_to_fit();
     ring_ends_.shrink_to_fit();
     RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);

@@ -43,24 +43,32 @@ public:
     // A horizontal polygon at height z facing up (normal_z = +1) or down (-1); any orientation.
     void add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z, uint16_t material,
                      int normal_z = +1);
+    // A planar polygon in any orientation (roof faces, gable walls), front side counter-clockwise:
+    // plane hit plus point-in-polygon in the plane's projection along its dominant axis.
+    void add_face(uint32_t object, const std::vector<Vec3>& points, uint16_t material);
 
     ObjectKind kind() const override { return kind_; }
     GeometryMode mode() const override { return GeometryMode::Procedural; }
     RTCGeometry create_embree_geometry(RTCDevice device) override;
     void complete_hit(const RTCHit& embree_hit, Hit& hit) const override;
-    uint64_t primitive_count() const override { return walls_.size() + plain_walls_.size() + polygons_.size(); }
+    uint64_t primitive_count() const override {
+        return walls_.size() + plain_walls_.size() + polygons_.size() + faces_.size();
+    }
     uint64_t triangle_count() const override { return 0; }
     size_t buffer_bytes() const override;
 
     size_t wall_count() const { return walls_.size(); }
     size_t plain_wall_count() const { return plain_walls_.size(); }
     size_t polygon_count() const { return polygons_.size(); }
-    // Primitive ids: facade walls, then plain walls, then polygons.
+    size_t face_count() const { return faces_.size(); }
+    // Primitive ids: facade walls, then plain walls, then polygons, then faces.
     uint32_t object(unsigned prim_id) const {
         if (prim_id < walls_.size()) return walls_[prim_id].object;
         prim_id -= static_cast<unsigned>(walls_.size());
         if (prim_id < plain_walls_.size()) return plain_walls_[prim_id].object;
-        return polygons_[prim_id - plain_walls_.size()].object;
+        prim_id -= static_cast<unsigned>(plain_walls_.size());
+        if (prim_id < polygons_.size()) return polygons_[prim_id].object;
+        return faces_[prim_id - polygons_.size()].object;
     }
 
     // What the callbacks compute, in double precision (tests, debugging).
@@ -93,6 +101,16 @@ private:
         uint16_t material;
         int8_t normal_z;
     };
+    struct Face {
+        uint32_t first_point, point_count;  // into face_points_ (projected on axes u, v)
+        Vec3 normal;                        // unit, front side
+        double offset;                      // plane: dot(normal, p) = offset
+        uint8_t axis_u, axis_v;             // the two world axes the polygon is projected on
+        Vec3 lo, hi;                        // bounds
+        uint32_t object;
+        uint16_t material;
+    };
+    bool intersect_face(const Face& face, Vec3 origin, Vec3 direction, double tmin, double tmax, double* t) const;
     bool inside_polygon(const Polygon& polygon, Vec2 p) const;
     // The wall primitive prim_id as a layout and frame (plain walls are built on the fly).
     bool wall_of(unsigned prim_id, WallLayout* layout, WallFrame* frame) const;
@@ -106,6 +124,8 @@ private:
     std::vector<Wall> walls_;
     std::vector<PlainWall> plain_walls_;
     std::vector<Polygon> polygons_;
+    std::vector<Face> faces_;
+    std::vector<Vec2> face_points_;    // all faces' projected points, back to back
     std::vector<Vec2> points_;         // all polygon rings, back to back
     std::vector<uint32_t> ring_ends_;  // end (exclusive) of each ring in points_
 };

@@ -25,7 +25,7 @@ void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, s
     const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
     Hit hit;
     if (!context.scene.intersect(ray, hit)) return;  // AOVs stay zero for the sky
-    const Material& m = context.materials[hit.material];
+    const Material m = surface_material(context.materials, context.building_looks, hit);
     const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
     const Color albedo = m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy ? m.albedo : m.specular;
     film.depth[i] = static_cast<float>(hit.t);

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cmath>
 
 #include "facade_materials.h"
 #include "facade_mesh.h"
@@ -19,9 +20,10 @@ void add_facade_walls(const Building& b, uint32_t object, double bottom, const F
     for (size_t w = 0, n = building_wall_count(b); w < n; ++w) {
         Vec2 p, q;
         building_wall(b, w, &p, &q);
-        if (p == q) continue;
+        const WallInput input = building_wall_input(b, w);
+        if (p == q || !(input.height > 0)) continue;  // no wall under a roof that starts at the bottom
         scratch.clear();
-        append_wall_mesh(make_wall_layout(facades, building_wall_input(b, w)), wall_frame(p, q, bottom), scratch);
+        append_wall_mesh(make_wall_layout(facades, input), wall_frame(p, q, bottom), scratch);
         const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
         for (Vec3 v : scratch.vertices) mesh.add_vertex(v);
         for (size_t t = 0; t < scratch.triangles.size(); ++t) {
@@ -57,6 +59,44 @@ void reserve_buildings(const Scene& scene, const FacadeOptions& facades, Triangl
     mesh.face_material.reserve(triangles);
 }
 
+// A planar face as triangles, wound counter-clockwise seen from the face's front: triangulated
+// in its projection along the dominant axis of its normal (faces may be non-convex).
+void add_planar_face(const std::vector<Vec3>& points, uint32_t object, uint16_t material, TriangleMesh& mesh) {
+    Vec3 n{0, 0, 0};
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Vec3 a = points[i] - points[0], b = points[(i + 1) % points.size()] - points[0];
+        n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+    }
+    if (points.size() < 3 || !(length(n) > 0)) return;
+    const Vec3 m{std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)};
+    const int drop = m.z >= m.x && m.z >= m.y ? 2 : (m.y >= m.x ? 1 : 0);
+    const int au = drop == 0 ? 1 : 0, av = drop == 2 ? 1 : 2;
+    Ring flat;
+    for (Vec3 p : points) flat.push_back({p[au], p[av]});
+    const PolygonTriangulation tri = triangulate_polygon(flat);
+    // Points of the triangulation back in 3D: on the face's plane, the same plane the procedural
+    // mode intersects (unit Newell normal through the mean of the points).
+    n = normalize(n);
+    double offset = 0;
+    for (Vec3 p : points) offset += dot(n, p);
+    offset /= static_cast<double>(points.size());
+    const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
+    for (Vec2 q : tri.points) {
+        double c[3] = {0, 0, 0};
+        c[au] = q.x;
+        c[av] = q.y;
+        c[drop] = (offset - n[au] * q.x - n[av] * q.y) / n[drop];
+        mesh.add_vertex({c[0], c[1], c[2]});
+    }
+    // The projection keeps the winding when the normal's dropped component is positive
+    // (for the x axis dropped the (y, z) frame is right-handed; for y, (x, z) is left-handed).
+    const bool keep = (drop == 1) ? n[drop] < 0 : n[drop] > 0;
+    for (const auto& t : tri.triangles) {
+        if (keep) mesh.add_triangle(first + t[0], first + t[1], first + t[2], object, material);
+        else mesh.add_triangle(first + t[0], first + t[2], first + t[1], object, material);
+    }
+}
+
 Ring oriented(const Ring& ring, bool counter_clockwise) {
     Ring r = ring;
     if ((signed_area(r) > 0) != counter_clockwise) std::reverse(r.begin(), r.end());
@@ -64,6 +104,14 @@ Ring oriented(const Ring& ring, bool counter_clockwise) {
 }
 
 }  // namespace
+
+std::vector<Vec3> lifted_face(const RoofFace& face, double ground_z) {
+    std::vector<Vec3> points = face.points;
+    for (Vec3& p : points) p.z += ground_z;
+    return points;
+}
+
+uint16_t roof_face_material(const RoofFace& face) { return face.kind == RoofFaceKind::Gable ? kFacade : kRoof; }
 
 TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& facades, Progress* progress) {
     TriangleMesh mesh;
@@ -83,10 +131,14 @@ TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& fac
         add_facade_walls(b, index, bottom, facades, scratch, mesh);
 
         const PolygonTriangulation roof = triangulate_polygon(outer, holes);
-        const uint32_t first_top = static_cast<uint32_t>(mesh.vertex_count());
-        for (Vec2 p : roof.points) mesh.add_vertex({p.x, p.y, top});
-        for (const auto& t : roof.triangles)
-            mesh.add_triangle(first_top + t[0], first_top + t[1], first_top + t[2], index, kRoof);
+        if (b.roof_faces.empty()) {
+            const uint32_t first_top = static_cast<uint32_t>(mesh.vertex_count());
+            for (Vec2 p : roof.points) mesh.add_vertex({p.x, p.y, top});
+            for (const auto& t : roof.triangles)
+                mesh.add_triangle(first_top + t[0], first_top + t[1], first_top + t[2], index, kRoof);
+        }
+        for (const RoofFace& face : b.roof_faces)
+            add_planar_face(lifted_face(face, ground), index, roof_face_material(face), mesh);
         if (b.min_height > 0) {  // a floating part (bridge, overhang) needs an underside
             const uint32_t first_bottom = static_cast<uint32_t>(mesh.vertex_count());
             for (Vec2 p : roof.points) mesh.add_vertex({p.x, p.y, bottom});

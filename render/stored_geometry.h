@@ -38,6 +38,11 @@ struct SidewalkShape {
 };
 bool sidewalk_shape(const Scene& scene, uint32_t index, SidewalkShape* shape);
 
+// A roof face's points standing on the ground at ground_z (the scene's faces stand on z = 0),
+// and its material: roof faces kRoof, gable walls kFacade. Shared by both geometry modes.
+std::vector<Vec3> lifted_face(const RoofFace& face, double ground_z);
+uint16_t roof_face_material(const RoofFace& face);
+
 // The rectangle build_stored_terrain covers (shared with the procedural terrain).
 Box2 terrain_extent(const Scene& scene);
 

@@ -130,7 +130,7 @@ TEST(BuildBuildings, HeightsInFeetAndLevels) {
     EXPECT_DOUBLE_EQ(only(103).height, 12.5);
     EXPECT_DOUBLE_EQ(only(104).height, 21);
     EXPECT_EQ(only(105).height_source, HeightSource::Random);  // 5000 m is absurd
-    EXPECT_DOUBLE_EQ(only(106).height, 9);                      // "tall" ignored, 3 levels
+    EXPECT_DOUBLE_EQ(only(106).eaves_height(), 9);              // "tall" ignored, 3 levels (+ any roof)
     EXPECT_EQ(report.note_count("buildings", "bad height tag ignored"), 2);
 }
 
