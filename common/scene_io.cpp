@@ -172,7 +172,7 @@ void decode_building_look(const fb::Building* x, const Checker& check, Building&
             if (f->points()->size() > kMaxRingPoints) check.fail("roof face with too many points");
             for (const fb::Vec3* p : *f->points())
                 face.points.push_back({check.coordinate(p->x(), "roof face"), check.coordinate(p->y(), "roof face"),
-                                       check.height(p->z(), "roof face height")});
+                                       check.coordinate(p->z(), "roof face")});
             bld.roof_faces.push_back(std::move(face));
         }
     if (x->height_rule() > fb::HeightRule::MAX) check.fail("invalid height rule");
