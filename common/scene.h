@@ -12,7 +12,7 @@
 namespace citygen {
 
 constexpr uint16_t kSceneFormatMajor = 1;
-constexpr uint16_t kSceneFormatMinor = 0;
+constexpr uint16_t kSceneFormatMinor = 1;
 
 enum class OsmType : uint8_t { Node = 0, Way = 1, Relation = 2 };
 
@@ -88,6 +88,50 @@ struct Ground {
     double z = 0;
 };
 
+// Land cover classes, in the schema's order (schema/scene.fbs).
+enum class LandCoverClass : uint8_t { Water = 0, Sea, Green, Forest, Paved, Sand, Farmland, BuiltUp };
+constexpr int kLandCoverClassCount = 8;
+const char* to_string(LandCoverClass c);  // "water", "sea", ...
+
+// Where classes overlap, the one with the higher priority is seen: render draws each class
+// at its own small height in this order (0 lowest), so nothing z-fights and nothing shows
+// twice. Water lies on everything, paved open space on green, green on forest and farmland,
+// the sea above built-up land use (a harbour's landuse polygon often reaches into the
+// basin), built-up paving lowest. The one definition; README "Land cover" documents it.
+inline int land_cover_priority(LandCoverClass c) {
+    switch (c) {
+        case LandCoverClass::BuiltUp: return 0;
+        case LandCoverClass::Farmland: return 1;
+        case LandCoverClass::Sea: return 2;
+        case LandCoverClass::Forest: return 3;
+        case LandCoverClass::Green: return 4;
+        case LandCoverClass::Sand: return 5;
+        case LandCoverClass::Paved: return 6;
+        case LandCoverClass::Water: return 7;
+    }
+    return 0;
+}
+
+struct LandCover {
+    OsmRef osm;
+    LandCoverClass cover = LandCoverClass::Green;
+    Ring outer;               // CCW
+    std::vector<Ring> holes;  // CW
+};
+
+enum class LeafType : uint8_t { Broadleaved = 0, Needleleaved = 1 };
+enum class TreeSource : uint8_t { Mapped = 0, Row = 1, Scattered = 2 };
+const char* to_string(TreeSource s);  // "mapped", "row", "scattered"
+
+struct Tree {
+    OsmRef osm;
+    Vec2 position;
+    double height = 10;          // ground to crown top
+    double crown_diameter = 6;
+    LeafType leaf_type = LeafType::Broadleaved;
+    TreeSource source = TreeSource::Mapped;
+};
+
 struct SceneHeader {
     uint16_t format_major = kSceneFormatMajor;
     uint16_t format_minor = kSceneFormatMinor;
@@ -108,6 +152,8 @@ struct Scene {
     std::vector<Sidewalk> sidewalks;
     std::vector<Lamp> lamps;
     Ground ground;
+    std::vector<LandCover> land_cover;  // format 1.1
+    std::vector<Tree> trees;            // format 1.1
 };
 
 }  // namespace citygen

@@ -13,6 +13,17 @@
 
 namespace citygen {
 
+const char* to_string(LandCoverClass c) {
+    static const char* const names[kLandCoverClassCount] = {"water", "sea",  "green",    "forest",
+                                                            "paved", "sand", "farmland", "built_up"};
+    const int i = static_cast<int>(c);
+    return i < kLandCoverClassCount ? names[i] : "?";
+}
+
+const char* to_string(TreeSource s) {
+    return s == TreeSource::Mapped ? "mapped" : s == TreeSource::Row ? "row" : "scattered";
+}
+
 std::string to_string(OsmRef ref) {
     const char prefix = ref.type == OsmType::Node ? 'n' : ref.type == OsmType::Way ? 'w' : 'r';
     return prefix + std::to_string(ref.id);
@@ -143,9 +154,27 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
     fb::Vec2 gmin = to_fb(scene.ground.min), gmax = to_fb(scene.ground.max);
     auto ground = fb::CreateGround(b, &gmin, &gmax, static_cast<float>(scene.ground.z));
 
+    std::vector<flatbuffers::Offset<fb::LandCover>> land_cover;
+    for (const LandCover& x : scene.land_cover) {
+        std::vector<flatbuffers::Offset<fb::Ring>> holes;
+        for (const Ring& r : x.holes) holes.push_back(ring(b, r));
+        fb::OsmRef osm = to_fb(x.osm);
+        land_cover.push_back(fb::CreateLandCover(b, &osm, static_cast<fb::LandCoverClass>(x.cover), ring(b, x.outer),
+                                                 b.CreateVector(holes)));
+    }
+
+    std::vector<fb::Tree> trees;
+    trees.reserve(scene.trees.size());
+    for (const Tree& x : scene.trees)
+        trees.emplace_back(static_cast<float>(x.position.x), static_cast<float>(x.position.y),
+                           static_cast<float>(x.height), static_cast<float>(x.crown_diameter), x.osm.id,
+                           static_cast<fb::OsmType>(x.osm.type), static_cast<fb::LeafType>(x.leaf_type),
+                           static_cast<fb::TreeSource>(x.source));
+
     auto root = fb::CreateScene(b, header, b.CreateVector(buildings), b.CreateVector(roads),
                                 b.CreateVector(joints), b.CreateVector(sidewalks),
-                                b.CreateVector(lamps), ground);
+                                b.CreateVector(lamps), ground, b.CreateVector(land_cover),
+                                b.CreateVectorOfStructs(trees));
     fb::FinishSceneBuffer(b, root);
     return {b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize()};
 }
@@ -270,6 +299,34 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
         s.ground.max = check.vec(g->max(), "ground");
         s.ground.z = check.finite(g->z(), "ground");
     }
+
+    if (in->land_cover())
+        for (const fb::LandCover* x : *in->land_cover()) {
+            LandCover c;
+            c.osm = check.osm(x->osm());
+            if (x->cover() > fb::LandCoverClass::MAX) check.fail("invalid land cover class");
+            c.cover = static_cast<LandCoverClass>(x->cover());
+            c.outer = check.ring(x->outer(), "land cover outline");
+            if (x->holes())
+                for (const fb::Ring* r : *x->holes()) c.holes.push_back(check.ring(r, "land cover hole"));
+            s.land_cover.push_back(std::move(c));
+        }
+
+    if (in->trees())
+        for (const fb::Tree* x : *in->trees()) {
+            Tree t;
+            if (x->osm_type() > fb::OsmType::MAX) check.fail("invalid OSM object type");
+            if (x->leaf_type() > fb::LeafType::MAX) check.fail("invalid leaf type");
+            if (x->source() > fb::TreeSource::MAX) check.fail("invalid tree source");
+            t.osm = {static_cast<OsmType>(x->osm_type()), x->osm_id()};
+            t.position = {check.finite(x->x(), "tree position"), check.finite(x->y(), "tree position")};
+            t.height = check.finite(x->height(), "tree height");
+            t.crown_diameter = check.finite(x->crown_diameter(), "tree crown");
+            if (!(t.height > 0) || !(t.crown_diameter > 0)) check.fail("tree with non-positive size");
+            t.leaf_type = static_cast<LeafType>(x->leaf_type());
+            t.source = static_cast<TreeSource>(x->source());
+            s.trees.push_back(t);
+        }
     return s;
 }
 

@@ -114,6 +114,30 @@ void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
     for (const Lamp& l : s.lamps) generated += l.source == LampSource::Generated;
     std::fprintf(out, "lamps: %zu (%zu tagged, %zu generated)\n", s.lamps.size(),
                  s.lamps.size() - generated, generated);
+    // Format 1.1: land cover by class (polygons and square metres) and trees by source.
+    std::fprintf(out, "land_cover: %zu\n", s.land_cover.size());
+    {
+        size_t count[kLandCoverClassCount] = {}, holes = 0;
+        double area[kLandCoverClassCount] = {};
+        for (const LandCover& c : s.land_cover) {
+            const int k = static_cast<int>(c.cover);
+            ++count[k];
+            area[k] += std::fabs(signed_area(c.outer));
+            for (const Ring& hole : c.holes) area[k] -= std::fabs(signed_area(hole));
+            holes += c.holes.size();
+        }
+        for (int k = 0; k < kLandCoverClassCount; ++k)
+            if (count[k])
+                std::fprintf(out, "land_cover_%s: %zu (%.0f m2)\n", to_string(static_cast<LandCoverClass>(k)),
+                             count[k], area[k]);
+        std::fprintf(out, "land_cover_holes: %zu\n", holes);
+    }
+    {
+        size_t by_source[3] = {};
+        for (const Tree& t : s.trees) ++by_source[static_cast<int>(t.source)];
+        std::fprintf(out, "trees: %zu (%zu mapped, %zu in rows, %zu scattered)\n", s.trees.size(), by_source[0],
+                     by_source[1], by_source[2]);
+    }
     std::fprintf(out, "ground: [%.1f, %.1f] - [%.1f, %.1f] m at z=%.2f\n", s.ground.min.x,
                  s.ground.min.y, s.ground.max.x, s.ground.max.y, s.ground.z);
     std::fprintf(out, "options:\n");
@@ -188,6 +212,29 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
               [tol](const Lamp& x, const Lamp& y) -> std::string {
                   double d = length(x.position - y.position);
                   return d > tol ? "moved " + metres(d) : "";
+              },
+              out);
+
+    auto cover_key = [](const LandCover& x) { return std::string(to_string(x.cover)) + " " + to_string(x.osm); };
+    diff_kind("land_cover", keyed(a.land_cover, cover_key), keyed(b.land_cover, cover_key),
+              [tol](const LandCover& x, const LandCover& y) -> std::string {
+                  double d = max_point_distance(x.outer, y.outer);
+                  if (d > tol) return "outline moved " + metres(d);
+                  if (x.holes.size() != y.holes.size()) return "number of holes differs";
+                  for (size_t i = 0; i < x.holes.size(); ++i)
+                      if ((d = max_point_distance(x.holes[i], y.holes[i])) > tol) return "hole moved " + metres(d);
+                  return "";
+              },
+              out);
+
+    auto tree_key = [](const Tree& x) { return std::string(to_string(x.source)) + " " + to_string(x.osm); };
+    diff_kind("tree", keyed(a.trees, tree_key), keyed(b.trees, tree_key),
+              [tol](const Tree& x, const Tree& y) -> std::string {
+                  const double d = length(x.position - y.position);
+                  if (d > tol) return "moved " + metres(d);
+                  if (std::fabs(x.height - y.height) > tol || std::fabs(x.crown_diameter - y.crown_diameter) > tol)
+                      return "size changed";
+                  return "";
               },
               out);
     return out;

@@ -3,7 +3,9 @@
 
 #include <chrono>
 
+#include "assemble_sea.h"
 #include "build_buildings.h"
+#include "build_land_cover.h"
 #include "build_road_graph.h"
 #include "build_road_polygons.h"
 #include "build_sidewalks.h"
@@ -32,7 +34,12 @@ std::string base_name(const std::string& path) {
 
 // The origin is the centre of the data's bounding box, so coordinates stay small.
 Projection projection_for(const OsmData& osm) {
-    if (osm.min.lat > osm.max.lat) return Projection(0, 0);  // nothing located
+    if (osm.min.lat > osm.max.lat) {  // nothing located but perhaps coastline: the extract's centre
+        if (osm.has_extract_bounds)
+            return Projection(0.5 * (osm.extract_min.lat + osm.extract_max.lat),
+                              0.5 * (osm.extract_min.lon + osm.extract_max.lon));
+        return Projection(0, 0);
+    }
     return Projection(0.5 * (osm.min.lat + osm.max.lat), 0.5 * (osm.min.lon + osm.max.lon));
 }
 
@@ -93,6 +100,13 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     });
     scene.lamps = timed(report, "street lamps", [&] {
         return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
+    });
+    scene.land_cover = timed(report, "land cover", [&] {
+        std::vector<LandCover> cover = build_land_cover(osm, projection, job.params.buildings, report);
+        std::vector<LandCover> sea =
+            assemble_sea(osm, projection, extract_box(osm, projection), scene.buildings, report);
+        cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
+        return cover;
     });
     set_bounds_and_ground(scene);
     return scene;

@@ -107,6 +107,18 @@ std::string scene_to_geojson(const Scene& scene) {
         w.point_feature({l.position.x, l.position.y},
                         "\"kind\":\"lamp\",\"osm\":" + str(to_string(l.osm)) + ",\"height\":" + num(l.height) +
                             ",\"source\":\"" + (l.source == LampSource::Tagged ? "tagged" : "generated") + "\"");
+    for (const LandCover& c : scene.land_cover) {
+        std::vector<const Ring*> rings{&c.outer};
+        for (const Ring& h : c.holes) rings.push_back(&h);
+        w.polygon(rings, "\"kind\":\"land_cover\",\"class\":\"" + std::string(to_string(c.cover)) +
+                             "\",\"osm\":" + str(to_string(c.osm)));
+    }
+    for (const Tree& t : scene.trees)
+        w.point_feature(t.position, "\"kind\":\"tree\",\"osm\":" + str(to_string(t.osm)) + ",\"height\":" +
+                                        num(t.height) + ",\"crown_diameter\":" + num(t.crown_diameter) +
+                                        ",\"leaf_type\":\"" +
+                                        (t.leaf_type == LeafType::Needleleaved ? "needleleaved" : "broadleaved") +
+                                        "\",\"source\":\"" + to_string(t.source) + "\"");
     return w.finish();
 }
 

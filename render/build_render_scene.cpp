@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "land_cover_geometry.h"
 #include "procedural_geometry.h"
 #include "stored_geometry.h"
 
@@ -24,6 +25,11 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     else render_scene->add(stored(build_stored_joints(scene)));
     if (procedural(GeometryClass::Sidewalks)) render_scene->add(build_procedural_sidewalks(scene));
     else render_scene->add(stored(build_stored_sidewalks(scene)));
+    // The map beyond roads (format 1.1); empty classes add no geometry.
+    if (!scene.land_cover.empty()) {
+        if (procedural(GeometryClass::LandCover)) render_scene->add(with_water_waves(build_procedural_land_cover(scene)));
+        else render_scene->add(with_water_waves(stored(build_stored_land_cover(scene))));
+    }
     geometry_progress.finish();
     render_scene->commit(progress);
     return render_scene;

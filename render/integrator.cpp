@@ -55,7 +55,9 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         if (bounce >= settings.max_depth) break;
 
         // Normal on the side the ray came from; glass wants the true outward normal.
-        const Vec3 n = front ? hit.geometric_normal : -hit.geometric_normal;
+        // Shading normals (water waves) bend the normal a little; never across the surface.
+        const Vec3 facing = dot(hit.shading_normal, hit.geometric_normal) > 0 ? hit.shading_normal : hit.geometric_normal;
+        const Vec3 n = front ? facing : -facing;
         const bool delta = is_delta(material);
 
         if (!delta && sky.has_sun() && settings.sample_sun) {
