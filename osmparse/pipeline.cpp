@@ -11,6 +11,7 @@
 #include "build_sidewalks.h"
 #include "narrow_roads.h"
 #include "place_lamps.h"
+#include "place_trees.h"
 #include "projection.h"
 #include "read_osm.h"
 
@@ -107,6 +108,9 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
             assemble_sea(osm, projection, extract_box(osm, projection), scene.buildings, report);
         cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
         return cover;
+    });
+    scene.trees = timed(report, "trees", [&] {
+        return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);
     });
     set_bounds_and_ground(scene);
     return scene;

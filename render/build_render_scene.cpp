@@ -4,6 +4,7 @@
 
 #include "land_cover_geometry.h"
 #include "procedural_geometry.h"
+#include "tree_geometry.h"
 #include "stored_geometry.h"
 
 namespace citygen {
@@ -29,6 +30,10 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     if (!scene.land_cover.empty()) {
         if (procedural(GeometryClass::LandCover)) render_scene->add(with_water_waves(build_procedural_land_cover(scene)));
         else render_scene->add(with_water_waves(stored(build_stored_land_cover(scene))));
+    }
+    if (!scene.trees.empty()) {
+        if (procedural(GeometryClass::Trees)) render_scene->add(build_procedural_trees(scene));
+        else render_scene->add(build_stored_trees(scene));
     }
     geometry_progress.finish();
     render_scene->commit(progress);

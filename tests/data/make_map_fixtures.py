@@ -117,3 +117,17 @@ o, outer = square(1, 0, 0, 100)
 write('riverbank_missing_member', 'a riverbank multipolygon with a member missing', o,
       [(10, outer, {})],
       [(100, [('outer', 10), ('inner', 99)], {'type': 'multipolygon', 'waterway': 'riverbank'})])
+
+# Trees: two mapped trees (one with absurd tags), a tree row, and a forest crossed by a
+# road, with a house and a pond in it: no scattered tree on the road, in the house or pond.
+f, forest = square(1, 0, 0, 150)
+hs, house = square(11, 60, 60, 8)
+pd, pond = square(21, -60, 60, 15)
+nodes = {**f, **hs, **pd, 31: (-190, -20), 32: (190, -20), 41: (-180, 180), 42: (-20, 180),
+         51: (170, 170), 52: (175, 160)}
+write('trees', 'mapped trees (one with height=-3, diameter_crown=1e9), a tree row, a forest with a road, house and pond',
+      nodes,
+      [(10, forest, {'landuse': 'forest'}), (11, house, HOUSE), (12, pond, {'natural': 'water'}),
+       (13, [31, 32], {'highway': 'residential'}), (14, [41, 42], {'natural': 'tree_row'})],
+      node_tags={51: {'natural': 'tree', 'height': '-3', 'diameter_crown': '1e9'},
+                 52: {'natural': 'tree', 'height': '12', 'leaf_type': 'needleleaved'}})

@@ -3,6 +3,7 @@
 // counted; and on Monaco, the sea where the sea is and valid polygons everywhere.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "assemble_sea.h"
@@ -55,16 +56,25 @@ void expect_valid(const Scene& s) {
     }
 }
 
+
+// A point of the fixture's local metres (make_map_fixtures.py: around 43.7N 7.4E) in the
+// scene's coordinates (whose origin is the centre of the data).
+Vec2 at(const Scene& s, double x, double y) {
+    const Projection projection(s.header.origin_lat, s.header.origin_lon);
+    const double m_lat = 111320.0, m_lon = 111320.0 * std::cos(43.7 * M_PI / 180);
+    return projection.to_local(43.7 + y / m_lat, 7.4 + x / m_lon);
+}
+
 }  // namespace
 
 TEST(Sea, CoastlineAcrossTheExtractPutsTheSeaOnItsRight) {
     ParseReport report;
     const Scene s = fixture("coast_cut", report);
     ASSERT_EQ(count(s, LandCoverClass::Sea), 1u);
-    EXPECT_TRUE(covered(s, LandCoverClass::Sea, {0, -150}));
-    EXPECT_TRUE(covered(s, LandCoverClass::Sea, {-190, -190}));
-    EXPECT_FALSE(covered(s, LandCoverClass::Sea, {0, 150}));
-    EXPECT_FALSE(covered(s, LandCoverClass::Sea, {0, 100}));  // the house
+    EXPECT_TRUE(covered(s, LandCoverClass::Sea, at(s, 0, -150)));
+    EXPECT_TRUE(covered(s, LandCoverClass::Sea, at(s, -190, -190)));
+    EXPECT_FALSE(covered(s, LandCoverClass::Sea, at(s, 0, 150)));
+    EXPECT_FALSE(covered(s, LandCoverClass::Sea, at(s, 0, 100)));  // the house
     expect_valid(s);
 }
 
@@ -72,9 +82,9 @@ TEST(Sea, TheSameCoastlineDrawnTheOtherWayRoundFloodsTheOtherSide) {
     ParseReport report;
     const Scene s = fixture("coast_cut_reversed", report);
     ASSERT_EQ(count(s, LandCoverClass::Sea), 1u);
-    EXPECT_TRUE(covered(s, LandCoverClass::Sea, {0, 150}));
-    EXPECT_FALSE(covered(s, LandCoverClass::Sea, {0, -150}));
-    EXPECT_FALSE(covered(s, LandCoverClass::Sea, {0, -100}));
+    EXPECT_TRUE(covered(s, LandCoverClass::Sea, at(s, 0, 150)));
+    EXPECT_FALSE(covered(s, LandCoverClass::Sea, at(s, 0, -150)));
+    EXPECT_FALSE(covered(s, LandCoverClass::Sea, at(s, 0, -100)));
     expect_valid(s);
 }
 
@@ -82,9 +92,9 @@ TEST(Sea, ACoastlineCuttingACornerClosesAlongTheEdgeAroundTheOtherCorners) {
     ParseReport report;
     const Scene s = fixture("coast_corner", report);
     ASSERT_EQ(count(s, LandCoverClass::Sea), 1u);
-    EXPECT_FALSE(covered(s, LandCoverClass::Sea, {-190, -190}));  // the land corner
+    EXPECT_FALSE(covered(s, LandCoverClass::Sea, at(s, -190, -190)));  // the land corner
     for (Vec2 p : {Vec2{190, -190}, Vec2{190, 190}, Vec2{-190, 190}, Vec2{0, 0}})
-        EXPECT_TRUE(covered(s, LandCoverClass::Sea, p)) << p.x << "," << p.y;
+        EXPECT_TRUE(covered(s, LandCoverClass::Sea, at(s, p.x, p.y))) << p.x << "," << p.y;
     expect_valid(s);
 }
 
@@ -93,9 +103,9 @@ TEST(Sea, AnIslandIsAHoleInASeaFillingTheExtract) {
     const Scene s = fixture("island", report);
     ASSERT_EQ(count(s, LandCoverClass::Sea), 1u);
     EXPECT_EQ(s.land_cover[0].holes.size(), 1u);
-    EXPECT_FALSE(covered(s, LandCoverClass::Sea, {0, 0}));
-    EXPECT_TRUE(covered(s, LandCoverClass::Sea, {-190, -190}));
-    EXPECT_TRUE(covered(s, LandCoverClass::Sea, {150, 150}));
+    EXPECT_FALSE(covered(s, LandCoverClass::Sea, at(s, 0, 0)));
+    EXPECT_TRUE(covered(s, LandCoverClass::Sea, at(s, -190, -190)));
+    EXPECT_TRUE(covered(s, LandCoverClass::Sea, at(s, 150, 150)));
     expect_valid(s);
 }
 
@@ -154,8 +164,8 @@ TEST(LandCover, ALakeMultipolygonKeepsItsIslandAsAHole) {
     ASSERT_EQ(count(s, LandCoverClass::Water), 1u);
     EXPECT_EQ(s.land_cover[0].osm, (OsmRef{OsmType::Relation, 100}));
     EXPECT_EQ(s.land_cover[0].holes.size(), 1u);
-    EXPECT_TRUE(covered(s, LandCoverClass::Water, {-80, 0}));
-    EXPECT_FALSE(covered(s, LandCoverClass::Water, {10, 0}));
+    EXPECT_TRUE(covered(s, LandCoverClass::Water, at(s, -80, 0)));
+    EXPECT_FALSE(covered(s, LandCoverClass::Water, at(s, 10, 0)));
     expect_valid(s);
 }
 
