@@ -132,6 +132,24 @@ struct Tree {
     TreeSource source = TreeSource::Mapped;
 };
 
+enum class PathClass : uint8_t {
+    Footway = 0, Path, Cycleway, Pedestrian, Steps, Track, Bridleway, Rail, Tram, LightRail, Subway
+};
+constexpr int kPathClassCount = 11;
+const char* to_string(PathClass c);  // "footway", ..., "light_rail", "subway"
+inline bool is_rail(PathClass c) { return c >= PathClass::Rail; }
+
+struct PathEdge {
+    OsmRef osm;
+    int64_t from_node = 0, to_node = 0;
+    std::vector<Vec2> centreline;
+    Ring quad;                // 4 points CCW
+    double width = 0;
+    PathClass path_class = PathClass::Footway;
+    int from_joint = -1, to_joint = -1;  // into Scene::path_joints
+    bool sidewalk = false;
+};
+
 struct SceneHeader {
     uint16_t format_major = kSceneFormatMajor;
     uint16_t format_minor = kSceneFormatMinor;
@@ -154,6 +172,8 @@ struct Scene {
     Ground ground;
     std::vector<LandCover> land_cover;  // format 1.1
     std::vector<Tree> trees;            // format 1.1
+    std::vector<PathEdge> paths;        // format 1.1
+    std::vector<Joint> path_joints;     // format 1.1; edges index into paths
 };
 
 }  // namespace citygen

@@ -24,6 +24,14 @@ const char* to_string(TreeSource s) {
     return s == TreeSource::Mapped ? "mapped" : s == TreeSource::Row ? "row" : "scattered";
 }
 
+const char* to_string(PathClass c) {
+    static const char* const names[kPathClassCount] = {"footway", "path",  "cycleway", "pedestrian",
+                                                       "steps",   "track", "bridleway", "rail",
+                                                       "tram",    "light_rail", "subway"};
+    const int i = static_cast<int>(c);
+    return i < kPathClassCount ? names[i] : "?";
+}
+
 std::string to_string(OsmRef ref) {
     const char prefix = ref.type == OsmType::Node ? 'n' : ref.type == OsmType::Way ? 'w' : 'r';
     return prefix + std::to_string(ref.id);
@@ -171,10 +179,23 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
                            static_cast<fb::OsmType>(x.osm.type), static_cast<fb::LeafType>(x.leaf_type),
                            static_cast<fb::TreeSource>(x.source));
 
+    std::vector<flatbuffers::Offset<fb::PathEdge>> paths;
+    for (const PathEdge& x : scene.paths) {
+        fb::OsmRef osm = to_fb(x.osm);
+        paths.push_back(fb::CreatePathEdge(b, &osm, x.from_node, x.to_node, points(b, x.centreline), points(b, x.quad),
+                                           static_cast<float>(x.width), static_cast<fb::PathClass>(x.path_class),
+                                           x.from_joint, x.to_joint, x.sidewalk));
+    }
+    std::vector<flatbuffers::Offset<fb::Joint>> path_joints;
+    for (const Joint& x : scene.path_joints) {
+        fb::OsmRef osm = to_fb(x.osm);
+        path_joints.push_back(fb::CreateJoint(b, &osm, points(b, x.polygon), b.CreateVector(x.edges)));
+    }
+
     auto root = fb::CreateScene(b, header, b.CreateVector(buildings), b.CreateVector(roads),
                                 b.CreateVector(joints), b.CreateVector(sidewalks),
                                 b.CreateVector(lamps), ground, b.CreateVector(land_cover),
-                                b.CreateVectorOfStructs(trees));
+                                b.CreateVectorOfStructs(trees), b.CreateVector(paths), b.CreateVector(path_joints));
     fb::FinishSceneBuffer(b, root);
     return {b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize()};
 }
@@ -326,6 +347,38 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             t.leaf_type = static_cast<LeafType>(x->leaf_type());
             t.source = static_cast<TreeSource>(x->source());
             s.trees.push_back(t);
+        }
+
+    const size_t path_count = in->paths() ? in->paths()->size() : 0;
+    const size_t path_joint_count = in->path_joints() ? in->path_joints()->size() : 0;
+    if (in->paths())
+        for (const fb::PathEdge* x : *in->paths()) {
+            PathEdge p;
+            p.osm = check.osm(x->osm());
+            p.from_node = x->from_node();
+            p.to_node = x->to_node();
+            p.centreline = check.pts(x->centreline(), "path centreline");
+            p.quad = check.pts(x->quad(), "path quadrangle");
+            if (p.centreline.size() < 2 || p.quad.size() != 4) check.fail("path without centreline or quadrangle");
+            p.width = check.finite(x->width(), "path width");
+            if (x->path_class() > fb::PathClass::MAX) check.fail("invalid path class");
+            p.path_class = static_cast<PathClass>(x->path_class());
+            p.from_joint = check.index(x->from_joint(), path_joint_count, "path joint");
+            p.to_joint = check.index(x->to_joint(), path_joint_count, "path joint");
+            p.sidewalk = x->sidewalk();
+            s.paths.push_back(std::move(p));
+        }
+    if (in->path_joints())
+        for (const fb::Joint* x : *in->path_joints()) {
+            Joint j;
+            j.osm = check.osm(x->osm());
+            j.polygon = check.pts(x->polygon(), "path joint polygon");
+            if (x->edges())
+                for (uint32_t e : *x->edges()) {
+                    if (e >= path_count) check.fail("path joint edge index " + std::to_string(e) + " out of range");
+                    j.edges.push_back(e);
+                }
+            s.path_joints.push_back(std::move(j));
         }
     return s;
 }

@@ -138,6 +138,17 @@ void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
         std::fprintf(out, "trees: %zu (%zu mapped, %zu in rows, %zu scattered)\n", s.trees.size(), by_source[0],
                      by_source[1], by_source[2]);
     }
+    {
+        size_t per_class[kPathClassCount] = {}, mapped_sidewalks = 0;
+        for (const PathEdge& p : s.paths) {
+            ++per_class[static_cast<int>(p.path_class)];
+            mapped_sidewalks += p.sidewalk;
+        }
+        std::fprintf(out, "paths: %zu (%zu mapped sidewalks)\n", s.paths.size(), mapped_sidewalks);
+        for (int k = 0; k < kPathClassCount; ++k)
+            if (per_class[k]) std::fprintf(out, "paths_%s: %zu\n", to_string(static_cast<PathClass>(k)), per_class[k]);
+        std::fprintf(out, "path_joints: %zu\n", s.path_joints.size());
+    }
     std::fprintf(out, "ground: [%.1f, %.1f] - [%.1f, %.1f] m at z=%.2f\n", s.ground.min.x,
                  s.ground.min.y, s.ground.max.x, s.ground.max.y, s.ground.z);
     std::fprintf(out, "options:\n");
@@ -212,6 +223,25 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
               [tol](const Lamp& x, const Lamp& y) -> std::string {
                   double d = length(x.position - y.position);
                   return d > tol ? "moved " + metres(d) : "";
+              },
+              out);
+
+    auto path_key = [](const PathEdge& x) {
+        return to_string(x.osm) + ":" + std::to_string(x.from_node) + "-" + std::to_string(x.to_node);
+    };
+    diff_kind("path", keyed(a.paths, path_key), keyed(b.paths, path_key),
+              [tol](const PathEdge& x, const PathEdge& y) -> std::string {
+                  double d = max_point_distance(x.quad, y.quad);
+                  if (d > tol) return "quadrangle moved " + metres(d);
+                  if (x.path_class != y.path_class) return "class differs";
+                  return "";
+              },
+              out);
+    auto path_joint_key = [](const Joint& x) { return to_string(x.osm); };
+    diff_kind("path_joint", keyed(a.path_joints, path_joint_key), keyed(b.path_joints, path_joint_key),
+              [tol](const Joint& x, const Joint& y) -> std::string {
+                  double d = max_point_distance(x.polygon, y.polygon);
+                  return d > tol ? "polygon moved " + metres(d) : "";
               },
               out);
 

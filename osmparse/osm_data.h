@@ -70,6 +70,7 @@ struct OsmData {
     std::vector<OsmWay> coastlines;         // natural=coastline ways, cut into runs of present nodes
     std::vector<OsmNode> trees;             // natural=tree nodes
     std::vector<OsmWay> tree_rows;          // natural=tree_row ways, cut into runs of present nodes
+    std::vector<OsmWay> railways;           // railway=rail|tram|light_rail|subway ways, runs of present nodes
     // The extract's bounds from the file header (<bounds> or the PBF header box), when given.
     bool has_extract_bounds = false;
     LatLon extract_min, extract_max;

@@ -6,6 +6,7 @@
 #include "assemble_sea.h"
 #include "build_buildings.h"
 #include "build_land_cover.h"
+#include "build_paths.h"
 #include "build_road_graph.h"
 #include "build_road_polygons.h"
 #include "build_sidewalks.h"
@@ -99,6 +100,12 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
         return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
                                job.params.roads.miter_limit, report);
     });
+    PathSurface paths = timed(report, "paths and rails", [&] {
+        return build_paths(osm, projection, job.params.roads, report);
+    });
+    scene.sidewalks = drop_doubled_sidewalks(std::move(scene.sidewalks), paths.paths, report);
+    scene.paths = std::move(paths.paths);
+    scene.path_joints = std::move(paths.joints);
     scene.lamps = timed(report, "street lamps", [&] {
         return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
     });

@@ -74,6 +74,13 @@ public:
             report_.read("tree rows");
             if (keep_runs(way, data_.tree_rows, true) == 0) report_.dropped("tree rows", "nodes missing from extract");
         }
+        if (const char* railway = way.tags().get_value_by_key("railway")) {
+            if (!std::strcmp(railway, "rail") || !std::strcmp(railway, "tram") || !std::strcmp(railway, "light_rail") ||
+                !std::strcmp(railway, "subway")) {
+                report_.read("railway ways");
+                if (keep_runs(way, data_.railways, false) == 0) report_.dropped("railway ways", "nodes missing from extract");
+            }
+        }
         if (!way.tags().has_key("highway")) return;
         report_.read("highway ways");
         const int before = static_cast<int>(data_.highways.size());

@@ -113,6 +113,12 @@ std::string scene_to_geojson(const Scene& scene) {
         w.polygon(rings, "\"kind\":\"land_cover\",\"class\":\"" + std::string(to_string(c.cover)) +
                              "\",\"osm\":" + str(to_string(c.osm)));
     }
+    for (const PathEdge& p : scene.paths)
+        w.polygon({&p.quad}, "\"kind\":\"path\",\"class\":\"" + std::string(to_string(p.path_class)) +
+                                 "\",\"osm\":" + str(to_string(p.osm)) + ",\"width\":" + num(p.width) +
+                                 ",\"sidewalk\":" + (p.sidewalk ? "true" : "false"));
+    for (const Joint& j : scene.path_joints)
+        w.polygon({&j.polygon}, "\"kind\":\"path_joint\",\"osm\":" + str(to_string(j.osm)));
     for (const Tree& t : scene.trees)
         w.point_feature(t.position, "\"kind\":\"tree\",\"osm\":" + str(to_string(t.osm)) + ",\"height\":" +
                                         num(t.height) + ",\"crown_diameter\":" + num(t.crown_diameter) +

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "land_cover_geometry.h"
+#include "path_geometry.h"
 #include "procedural_geometry.h"
 #include "tree_geometry.h"
 #include "stored_geometry.h"
@@ -30,6 +31,15 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     if (!scene.land_cover.empty()) {
         if (procedural(GeometryClass::LandCover)) render_scene->add(with_water_waves(build_procedural_land_cover(scene)));
         else render_scene->add(with_water_waves(stored(build_stored_land_cover(scene))));
+    }
+    if (!scene.paths.empty()) {
+        if (procedural(GeometryClass::Paths)) {
+            render_scene->add(with_rail_tracks(build_procedural_paths(scene), scene));
+            if (!scene.path_joints.empty()) render_scene->add(build_procedural_path_joints(scene));
+        } else {
+            render_scene->add(with_rail_tracks(stored(build_stored_paths(scene)), scene));
+            if (!scene.path_joints.empty()) render_scene->add(stored(build_stored_path_joints(scene)));
+        }
     }
     if (!scene.trees.empty()) {
         if (procedural(GeometryClass::Trees)) render_scene->add(build_procedural_trees(scene));

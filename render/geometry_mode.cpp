@@ -15,6 +15,8 @@ const char* to_string(ObjectKind kind) {
         case ObjectKind::Lamp: return "lamp";
         case ObjectKind::LandCover: return "land_cover";
         case ObjectKind::Tree: return "tree";
+        case ObjectKind::Path: return "path";
+        case ObjectKind::PathJoint: return "path_joint";
     }
     return "?";
 }
@@ -38,6 +40,7 @@ const char* to_string(GeometryClass c) {
         case GeometryClass::Terrain: return "terrain";
         case GeometryClass::LandCover: return "land-cover";
         case GeometryClass::Trees: return "trees";
+        case GeometryClass::Paths: return "paths";
     }
     return "?";
 }

@@ -31,6 +31,13 @@ MaterialTable default_materials() {
     // Road paint: brighter than asphalt and a little smoother.
     t[kPaintWhite] = {"paint_white", MaterialType::Glossy, {0.7, 0.7, 0.68}, {0.05, 0.05, 0.05}, 60, 1.5, {}};
     t[kPaintYellow] = {"paint_yellow", MaterialType::Glossy, {0.65, 0.45, 0.06}, {0.05, 0.05, 0.05}, 60, 1.5, {}};
+    t[kPathPaving] = {"path_paving", MaterialType::Diffuse, {0.42, 0.39, 0.35}, {}, 1, 1.5, {}};
+    t[kCyclewaySurface] = {"cycleway", MaterialType::Diffuse, {0.28, 0.11, 0.09}, {}, 1, 1.5, {}};
+    t[kGravel] = {"gravel", MaterialType::Diffuse, {0.36, 0.31, 0.24}, {}, 1, 1.5, {}};
+    t[kBallast] = {"ballast", MaterialType::Diffuse, {0.2, 0.19, 0.18}, {}, 1, 1.5, {}};
+    t[kRailSteel] = {"rail_steel", MaterialType::Glossy, {0.25, 0.24, 0.23}, {0.3, 0.3, 0.3}, 80, 1.5, {}};
+    t[kSleeper] = {"sleeper", MaterialType::Diffuse, {0.38, 0.37, 0.35}, {}, 1, 1.5, {}};
+    t[kAsphaltLight] = {"asphalt_light", MaterialType::Glossy, {0.11, 0.11, 0.115}, {0.04, 0.04, 0.04}, 40, 1.5, {}};
     return t;
 }
 

@@ -61,6 +61,13 @@ enum MaterialId : uint16_t {
     kLeavesNeedle,
     kPaintWhite,
     kPaintYellow,
+    kPathPaving,
+    kCyclewaySurface,
+    kGravel,
+    kBallast,
+    kRailSteel,
+    kSleeper,
+    kAsphaltLight,  // asphalt grain: a lighter speckle of the same asphalt
     kStockMaterialCount
 };
 

@@ -131,3 +131,15 @@ write('trees', 'mapped trees (one with height=-3, diameter_crown=1e9), a tree ro
        (13, [31, 32], {'highway': 'residential'}), (14, [41, 42], {'natural': 'tree_row'})],
       node_tags={51: {'natural': 'tree', 'height': '-3', 'diameter_crown': '1e9'},
                  52: {'natural': 'tree', 'height': '12', 'leaf_type': 'needleleaved'}})
+
+# Paths and rails: a footway crossing a residential street (sharing a node, as crossings
+# do), a mapped sidewalk along the street's north side, a railway and a railway in a tunnel.
+nodes = {1: (-150, 0), 2: (0, 0), 3: (150, 0), 11: (0, 100), 12: (0, -60), 21: (-100, 7), 22: (100, 7),
+         31: (-190, -90), 32: (190, -90), 41: (-190, -130), 42: (190, -130), 51: (60, 60), 52: (60, 100)}
+write('paths', 'a footway crossing a street, a mapped sidewalk, steps, a railway and one in a tunnel', nodes,
+      [(10, [1, 2, 3], {'highway': 'residential', 'sidewalk': 'both'}),
+       (11, [11, 2, 12], {'highway': 'footway'}),
+       (12, [21, 22], {'highway': 'footway', 'footway': 'sidewalk'}),
+       (13, [31, 32], {'railway': 'rail'}),
+       (14, [41, 42], {'railway': 'rail', 'tunnel': 'yes'}),
+       (15, [51, 52], {'highway': 'steps', 'width': '3'})])
