@@ -44,6 +44,8 @@ enum class RoadClass : uint8_t {
     Residential, LivingStreet, Service, Other
 };
 
+enum class CentreLine : uint8_t { None = 0, Dashed, Solid, Double };
+
 struct RoadEdge {
     OsmRef osm;
     int64_t from_node = 0, to_node = 0;
@@ -56,6 +58,10 @@ struct RoadEdge {
     bool bridge = false;
     int from_joint = -1, to_joint = -1;
     bool sidewalk_left = false, sidewalk_right = false;
+    // Format 1.1: the lane layout markings are painted from.
+    int lanes_forward = 0, lanes_backward = 0;
+    CentreLine centre_line = CentreLine::None;
+    bool edge_lines = false;
 };
 
 struct Joint {
@@ -150,6 +156,17 @@ struct PathEdge {
     bool sidewalk = false;
 };
 
+enum class CrossingKind : uint8_t { Zebra = 0, StopLine = 1 };
+enum class RoadSide : uint8_t { Both = 0, Left = 1, Right = 2 };
+
+struct Crossing {
+    OsmRef osm;
+    int road = -1;
+    Vec2 position;
+    CrossingKind kind = CrossingKind::Zebra;
+    RoadSide side = RoadSide::Both;
+};
+
 struct SceneHeader {
     uint16_t format_major = kSceneFormatMajor;
     uint16_t format_minor = kSceneFormatMinor;
@@ -174,6 +191,7 @@ struct Scene {
     std::vector<Tree> trees;            // format 1.1
     std::vector<PathEdge> paths;        // format 1.1
     std::vector<Joint> path_joints;     // format 1.1; edges index into paths
+    std::vector<Crossing> crossings;    // format 1.1
 };
 
 }  // namespace citygen

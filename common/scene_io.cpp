@@ -135,7 +135,8 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
             b, &osm, x.from_node, x.to_node, points(b, x.centreline), points(b, x.quad),
             static_cast<float>(x.width), static_cast<fb::RoadClass>(x.road_class),
             static_cast<uint8_t>(x.lanes), x.oneway, x.bridge, x.from_joint, x.to_joint,
-            x.sidewalk_left, x.sidewalk_right));
+            x.sidewalk_left, x.sidewalk_right, static_cast<uint8_t>(x.lanes_forward),
+            static_cast<uint8_t>(x.lanes_backward), static_cast<fb::CentreLine>(x.centre_line), x.edge_lines));
     }
 
     std::vector<flatbuffers::Offset<fb::Joint>> joints;
@@ -192,10 +193,19 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
         path_joints.push_back(fb::CreateJoint(b, &osm, points(b, x.polygon), b.CreateVector(x.edges)));
     }
 
+    std::vector<flatbuffers::Offset<fb::Crossing>> crossings;
+    for (const Crossing& x : scene.crossings) {
+        fb::OsmRef osm = to_fb(x.osm);
+        fb::Vec2 pos = to_fb(x.position);
+        crossings.push_back(fb::CreateCrossing(b, &osm, x.road, &pos, static_cast<fb::CrossingKind>(x.kind),
+                                               static_cast<fb::RoadSide>(x.side)));
+    }
+
     auto root = fb::CreateScene(b, header, b.CreateVector(buildings), b.CreateVector(roads),
                                 b.CreateVector(joints), b.CreateVector(sidewalks),
                                 b.CreateVector(lamps), ground, b.CreateVector(land_cover),
-                                b.CreateVectorOfStructs(trees), b.CreateVector(paths), b.CreateVector(path_joints));
+                                b.CreateVectorOfStructs(trees), b.CreateVector(paths), b.CreateVector(path_joints),
+                                b.CreateVector(crossings));
     fb::FinishSceneBuffer(b, root);
     return {b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize()};
 }
@@ -273,6 +283,11 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             r.to_joint = check.index(x->to_joint(), joint_count, "road joint");
             r.sidewalk_left = x->sidewalk_left();
             r.sidewalk_right = x->sidewalk_right();
+            r.lanes_forward = x->lanes_forward();
+            r.lanes_backward = x->lanes_backward();
+            if (x->centre_line() > fb::CentreLine::MAX) check.fail("invalid centre line");
+            r.centre_line = static_cast<CentreLine>(x->centre_line());
+            r.edge_lines = x->edge_lines();
             s.roads.push_back(std::move(r));
         }
 
@@ -379,6 +394,18 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
                     j.edges.push_back(e);
                 }
             s.path_joints.push_back(std::move(j));
+        }
+    if (in->crossings())
+        for (const fb::Crossing* x : *in->crossings()) {
+            Crossing c;
+            c.osm = check.osm(x->osm());
+            if (x->road() < 0 || x->road() >= static_cast<int64_t>(road_count)) check.fail("crossing road index out of range");
+            c.road = x->road();
+            c.position = check.vec(x->position(), "crossing");
+            if (x->kind() > fb::CrossingKind::MAX || x->side() > fb::RoadSide::MAX) check.fail("invalid crossing");
+            c.kind = static_cast<CrossingKind>(x->kind());
+            c.side = static_cast<RoadSide>(x->side());
+            s.crossings.push_back(c);
         }
     return s;
 }

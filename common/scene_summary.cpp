@@ -148,6 +148,12 @@ void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
         for (int k = 0; k < kPathClassCount; ++k)
             if (per_class[k]) std::fprintf(out, "paths_%s: %zu\n", to_string(static_cast<PathClass>(k)), per_class[k]);
         std::fprintf(out, "path_joints: %zu\n", s.path_joints.size());
+        size_t zebras = 0, marked = 0;
+        for (const Crossing& c : s.crossings) zebras += c.kind == CrossingKind::Zebra;
+        for (const RoadEdge& r : s.roads) marked += r.centre_line != CentreLine::None || r.edge_lines;
+        std::fprintf(out, "crossings: %zu (%zu zebra, %zu stop lines)\n", s.crossings.size(), zebras,
+                     s.crossings.size() - zebras);
+        std::fprintf(out, "roads_with_markings: %zu\n", marked);
     }
     std::fprintf(out, "ground: [%.1f, %.1f] - [%.1f, %.1f] m at z=%.2f\n", s.ground.min.x,
                  s.ground.min.y, s.ground.max.x, s.ground.max.y, s.ground.z);
@@ -186,6 +192,9 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
                   if ((d = max_point_distance(x.centreline, y.centreline)) > tol) return "centreline moved " + metres(d);
                   if (std::fabs(x.width - y.width) > tol) return "width changed by " + metres(std::fabs(x.width - y.width));
                   if (x.sidewalk_left != y.sidewalk_left || x.sidewalk_right != y.sidewalk_right) return "sidewalks differ";
+                  if (x.lanes_forward != y.lanes_forward || x.lanes_backward != y.lanes_backward ||
+                      x.centre_line != y.centre_line || x.edge_lines != y.edge_lines)
+                      return "lanes or markings differ";
                   return "";
               },
               out);
@@ -242,6 +251,16 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
               [tol](const Joint& x, const Joint& y) -> std::string {
                   double d = max_point_distance(x.polygon, y.polygon);
                   return d > tol ? "polygon moved " + metres(d) : "";
+              },
+              out);
+
+    auto crossing_key = [](const Crossing& x) {
+        return std::string(x.kind == CrossingKind::Zebra ? "zebra " : "stop line ") + to_string(x.osm);
+    };
+    diff_kind("crossing", keyed(a.crossings, crossing_key), keyed(b.crossings, crossing_key),
+              [tol](const Crossing& x, const Crossing& y) -> std::string {
+                  const double d = length(x.position - y.position);
+                  return d > tol ? "moved " + metres(d) : "";
               },
               out);
 

@@ -7,6 +7,7 @@
 #include "build_buildings.h"
 #include "build_land_cover.h"
 #include "build_paths.h"
+#include "lay_out_lanes.h"
 #include "build_road_graph.h"
 #include "build_road_polygons.h"
 #include "build_sidewalks.h"
@@ -96,6 +97,7 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     });
     scene.roads = surface.roads;
     scene.joints = surface.joints;
+    lay_out_lanes(scene.roads, osm, report);
     scene.sidewalks = timed(report, "sidewalks", [&] {
         return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
                                job.params.roads.miter_limit, report);
@@ -119,6 +121,7 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     scene.trees = timed(report, "trees", [&] {
         return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);
     });
+    scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
     set_bounds_and_ground(scene);
     return scene;
 }

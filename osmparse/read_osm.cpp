@@ -52,6 +52,11 @@ public:
             if (!node.location().valid()) report_.dropped("mapped trees", "invalid location");
             else data_.trees.push_back({node.id(), to_latlon(node.location()), copy_tags(node.tags())});
         }
+        if (node.tags().has_tag("highway", "crossing") || node.tags().has_tag("highway", "traffic_signals")) {
+            report_.read("crossing and signal nodes");
+            if (node.location().valid())
+                data_.road_marks.push_back({node.id(), to_latlon(node.location()), copy_tags(node.tags())});
+        }
         if (!node.tags().has_tag("highway", "street_lamp")) return;
         report_.read("tagged street lamps");
         if (!node.location().valid()) {

@@ -93,7 +93,11 @@ std::string scene_to_geojson(const Scene& scene) {
                                  std::to_string(r.from_node) + ",\"to_node\":" + std::to_string(r.to_node) +
                                  ",\"width\":" + num(r.width) + ",\"class\":\"" + class_name(r.road_class) +
                                  "\",\"lanes\":" + std::to_string(r.lanes) + ",\"oneway\":" + (r.oneway ? "true" : "false") +
-                                 ",\"bridge\":" + (r.bridge ? "true" : "false"));
+                                 ",\"bridge\":" + (r.bridge ? "true" : "false") +
+                                 ",\"lanes_forward\":" + std::to_string(r.lanes_forward) +
+                                 ",\"lanes_backward\":" + std::to_string(r.lanes_backward) +
+                                 ",\"centre_line\":" + std::to_string(static_cast<int>(r.centre_line)) +
+                                 ",\"edge_lines\":" + (r.edge_lines ? "true" : "false"));
     for (const Joint& j : scene.joints)
         w.polygon({&j.polygon}, "\"kind\":\"joint\",\"osm\":" + str(to_string(j.osm)) + ",\"edges\":" +
                                     std::to_string(j.edges.size()));
@@ -119,6 +123,11 @@ std::string scene_to_geojson(const Scene& scene) {
                                  ",\"sidewalk\":" + (p.sidewalk ? "true" : "false"));
     for (const Joint& j : scene.path_joints)
         w.polygon({&j.polygon}, "\"kind\":\"path_joint\",\"osm\":" + str(to_string(j.osm)));
+    for (const Crossing& c : scene.crossings)
+        w.point_feature(c.position, std::string("\"kind\":\"") +
+                                        (c.kind == CrossingKind::Zebra ? "zebra_crossing" : "stop_line") +
+                                        "\",\"osm\":" + str(to_string(c.osm)) + ",\"road\":" +
+                                        str(to_string(scene.roads[c.road].osm)));
     for (const Tree& t : scene.trees)
         w.point_feature(t.position, "\"kind\":\"tree\",\"osm\":" + str(to_string(t.osm)) + ",\"height\":" +
                                         num(t.height) + ",\"crown_diameter\":" + num(t.crown_diameter) +

@@ -5,6 +5,7 @@
 #include "land_cover_geometry.h"
 #include "path_geometry.h"
 #include "procedural_geometry.h"
+#include "road_markings.h"
 #include "tree_geometry.h"
 #include "stored_geometry.h"
 
@@ -21,10 +22,11 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     else render_scene->add(stored(build_stored_buildings(scene, facades, &geometry_progress)));
     if (procedural(GeometryClass::Terrain)) render_scene->add(build_procedural_terrain(scene));
     else render_scene->add(stored(build_stored_terrain(scene)));
-    if (procedural(GeometryClass::Roads)) render_scene->add(build_procedural_roads(scene));
-    else render_scene->add(stored(build_stored_roads(scene)));
-    if (procedural(GeometryClass::Joints)) render_scene->add(build_procedural_joints(scene));
-    else render_scene->add(stored(build_stored_joints(scene)));
+    // Markings and asphalt grain are painted at shading time (road_markings.h), in both modes.
+    if (procedural(GeometryClass::Roads)) render_scene->add(with_road_markings(build_procedural_roads(scene), scene));
+    else render_scene->add(with_road_markings(stored(build_stored_roads(scene)), scene));
+    if (procedural(GeometryClass::Joints)) render_scene->add(with_asphalt_grain(build_procedural_joints(scene)));
+    else render_scene->add(with_asphalt_grain(stored(build_stored_joints(scene))));
     if (procedural(GeometryClass::Sidewalks)) render_scene->add(build_procedural_sidewalks(scene));
     else render_scene->add(stored(build_stored_sidewalks(scene)));
     // The map beyond roads (format 1.1); empty classes add no geometry.

@@ -96,9 +96,17 @@ uint16_t path_surface_material(const PathEdge& path, Vec2 p) {
 }
 
 std::unique_ptr<RenderGeometry> with_rail_tracks(std::unique_ptr<RenderGeometry> geometry, const Scene& scene) {
-    return std::make_unique<SurfaceDetailGeometry>(std::move(geometry), [&scene](Hit& hit) {
-        if (hit.kind != ObjectKind::Path || hit.object >= scene.paths.size()) return;
-        hit.material = path_surface_material(scene.paths[hit.object], {hit.position.x, hit.position.y});
+    // Its own copy of the centrelines and classes: the scene may go first.
+    auto paths = std::make_shared<std::vector<PathEdge>>();
+    for (const PathEdge& p : scene.paths) {
+        PathEdge copy;
+        copy.centreline = p.centreline;
+        copy.path_class = p.path_class;
+        paths->push_back(std::move(copy));
+    }
+    return std::make_unique<SurfaceDetailGeometry>(std::move(geometry), [paths](Hit& hit) {
+        if (hit.kind != ObjectKind::Path || hit.object >= paths->size()) return;
+        hit.material = path_surface_material((*paths)[hit.object], {hit.position.x, hit.position.y});
     });
 }
 

@@ -143,3 +143,18 @@ write('paths', 'a footway crossing a street, a mapped sidewalk, steps, a railway
        (13, [31, 32], {'railway': 'rail'}),
        (14, [41, 42], {'railway': 'rail', 'tunnel': 'yes'}),
        (15, [51, 52], {'highway': 'steps', 'width': '3'})])
+
+# Lanes and markings: a 4-lane primary road with turn lanes meeting a residential street at
+# traffic signals, a zebra crossing on the residential street, an unmarked crossing (no
+# zebra), and a residential street with lanes=banana (falls back, counted).
+nodes = {1: (-150, 0), 2: (0, 0), 3: (150, 0), 4: (0, 150), 5: (0, 40), 6: (-50, 0), 7: (-150, 80),
+         8: (150, 80), 9: (0, 100)}
+write('lanes', 'a 4-lane primary with turn lanes, signals, a zebra crossing, lanes=banana', nodes,
+      [(10, [1, 6, 2], {'highway': 'primary', 'lanes': '4', 'turn:lanes:forward': 'left|through',
+                        'cycleway': 'lane'}),
+       (11, [2, 3], {'highway': 'primary', 'lanes': '4'}),
+       (12, [2, 5, 9, 4], {'highway': 'residential'}),
+       (13, [7, 8], {'highway': 'residential', 'lanes': 'banana'})],
+      node_tags={5: {'highway': 'crossing', 'crossing': 'zebra'},
+                 9: {'highway': 'crossing', 'crossing': 'unmarked'},
+                 6: {'highway': 'traffic_signals'}})
