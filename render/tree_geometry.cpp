@@ -233,8 +233,14 @@ private:
             if (!self->cut_out_[prim]) continue;
             const Vec3 o{RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i), RTCRayN_org_z(args->ray, N, i)};
             const Vec3 d{RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i), RTCRayN_dir_z(args->ray, N, i)};
-            const Vec3 p = o + d * RTCRayN_tfar(args->ray, N, i);
-            if (!leaf_present(self->shapes_[self->stored_mesh()->face_object[prim]], p)) args->valid[i] = 0;
+            const TreeShape& shape = self->shapes_[self->stored_mesh()->face_object[prim]];
+            // The facet's point moved onto the true ellipsoid, so the leaf pattern matches the
+            // procedural crown's.
+            const Vec3 q = o + d * RTCRayN_tfar(args->ray, N, i) - shape.crown_centre;
+            const double r = shape.crown_radius, h = shape.crown_half_height;
+            const double scale = std::sqrt((q.x * q.x + q.y * q.y) / (r * r) + q.z * q.z / (h * h));
+            const Vec3 on_surface = shape.crown_centre + q * (scale > 0 ? 1 / scale : 1.0);
+            if (!leaf_present(shape, on_surface)) args->valid[i] = 0;
         }
     }
     std::vector<uint8_t> cut_out_;
@@ -245,6 +251,10 @@ private:
 void add_ellipsoid(TriangleMesh& mesh, std::vector<uint8_t>& cut_out, uint8_t cut, Vec3 c, double r, double h,
                    int segments, int rings, uint32_t object, uint16_t material) {
     const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
+    // Vertices a little outside the surface, so the facets straddle it instead of lying inside.
+    const double out = 0.5 * (1 + 1 / std::cos(M_PI / segments));
+    r *= out;
+    h *= 0.5 * (1 + 1 / std::cos(M_PI / (2 * rings)));
     for (int k = 0; k <= rings; ++k) {
         const double theta = M_PI * k / rings;  // from the top
         for (int j = 0; j < segments; ++j) {
@@ -315,7 +325,7 @@ std::unique_ptr<RenderGeometry> build_stored_trees(const Scene& scene) {
             mesh.add_quad(p0, p1, p1 + up, p0 + up, i, kBark);
             cut_out.insert(cut_out.end(), {0, 0});
         }
-        add_ellipsoid(mesh, cut_out, 1, s.crown_centre, s.crown_radius, s.crown_half_height, 12, 8, i,
+        add_ellipsoid(mesh, cut_out, 1, s.crown_centre, s.crown_radius, s.crown_half_height, 16, 10, i,
                       s.leaf_material);
         add_ellipsoid(mesh, cut_out, 0, s.crown_centre, s.crown_radius * kTreeCoreScale,
                       s.crown_half_height * kTreeCoreScale, 8, 5, i, s.leaf_material);

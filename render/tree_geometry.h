@@ -1,8 +1,9 @@
 // Trees (format 1.1) in both geometry modes: a trunk (vertical cylinder) and a crown (an
 // ellipsoid shell with a noise cut-out at leaf-clump scale, around an opaque inner core), so
 // light falls through in patches and the crown shows leaf-scale detail.
-//   - stored: triangles (an 8-sided trunk, a 12 x 8 shell, a 8 x 5 core); an Embree filter
-//     function cuts the shell where the leaf noise says "gap";
+//   - stored: triangles (an 8-sided trunk, a 16 x 10 shell, a 8 x 5 core); an Embree filter
+//     function cuts the shell where the leaf noise (at the point moved onto the true
+//     ellipsoid) says "gap";
 //   - procedural: one user primitive per tree, 20 bytes of our own; the callback intersects
 //     the cylinder and the two ellipsoids analytically with the same cut-out.
 // The shape and the cut-out are defined once (tree_shape, leaf_present) for both.
