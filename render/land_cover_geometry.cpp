@@ -151,7 +151,7 @@ Vec3 water_normal(Vec2 p, bool sea) {
     };
     static const Train trains[] = {{0.8, 0.6, 7.3, 0.05}, {0.3, -0.95, 4.1, 0.035}, {-0.7, 0.7, 2.3, 0.025},
                                    {0.99, 0.1, 1.3, 0.015}};
-    const double scale = sea ? 1.0 : 0.35;
+    const double scale = sea ? 0.6 : 0.3;
     double gx = 0, gy = 0;
     for (const Train& t : trains) {
         const double k = 2 * M_PI / t.wavelength;
