@@ -103,6 +103,10 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
     for (const RoadEdge& r : scene.roads) surface_pieces.push_back(as_polygon(r.quad));
     for (const Joint& j : scene.joints) surface_pieces.push_back(as_polygon(j.polygon));
     const BuildingIndex surface(surface_pieces);
+    std::vector<Building> path_pieces;  // paths, rails and their joints
+    for (const PathEdge& p : scene.paths) path_pieces.push_back(as_polygon(p.quad));
+    for (const Joint& j : scene.path_joints) path_pieces.push_back(as_polygon(j.polygon));
+    const BuildingIndex paths(path_pieces);
     std::vector<Building> water_pieces;
     for (const LandCover& c : scene.land_cover)
         if (c.cover == LandCoverClass::Water || c.cover == LandCoverClass::Sea)
@@ -116,9 +120,9 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
             if (point_in_ring(p, surface_pieces[i].outer)) return &surface_pieces[i].outer;
         return nullptr;
     };
-    // Free ground for a trunk: off roads and buildings by kTrunkClearance, out of water.
+    // Free ground for a trunk: off roads and buildings by kTrunkClearance, off paths, out of water.
     auto free_ground = [&](Vec2 p) {
-        if (water.contains(p)) return false;
+        if (water.contains(p) || paths.contains(p)) return false;
         for (Vec2 d : {Vec2{0, 0}, Vec2{kTrunkClearance, 0}, Vec2{-kTrunkClearance, 0}, Vec2{0, kTrunkClearance},
                        Vec2{0, -kTrunkClearance}})
             if (buildings.contains(p + d) || surface_containing(p + d)) return false;

@@ -20,10 +20,11 @@ namespace citygen {
 Tree tree_from_tags(const OsmTags& tags, ParseReport& report, const char* kind);
 
 // Every tree of the scene, in order: mapped, rows, scattered. No tree stands in a building,
-// on a road, joint or path, or in water; a mapped tree on our (often wider than mapped) road
-// surface is moved just off it, one in a building or in water is dropped. Scattered trees
+// on a road or joint, or in water; a mapped tree on our (often wider than mapped) road
+// surface is moved just off it, one in a building or in water is dropped. Row and forest
+// trees also keep off paths and rails. Scattered trees
 // keep params.forest_spacing from each other, the seed decides where. Uses the scene's
-// buildings, roads, joints, sidewalks and land cover.
+// buildings, roads, joints, paths and land cover.
 std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, const Scene& scene,
                               const TreeParams& params, uint64_t seed, ParseReport& report);
 

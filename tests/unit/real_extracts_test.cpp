@@ -84,6 +84,16 @@ TEST_P(RealExtract, EveryStoredRingIsSimpleOrientedAndPositive) {
         EXPECT_LE(b.height, 1000) << who;
         EXPECT_GE(b.levels, 1) << who;
     }
+    // Land cover (format 1.1), as stored: simple, outer counter-clockwise, holes clockwise inside.
+    for (const LandCover& c : scene.land_cover) {
+        const std::string who = std::string(to_string(c.cover)) + " " + to_string(c.osm);
+        ASSERT_TRUE(ring_is_simple(c.outer)) << who;
+        EXPECT_GT(signed_area(c.outer), 0) << who;
+        for (const Ring& hole : c.holes) {
+            ASSERT_TRUE(ring_is_simple(hole)) << who;
+            EXPECT_LT(signed_area(hole), 0) << who;
+        }
+    }
 }
 
 TEST_P(RealExtract, ParsingTwiceGivesTheSameBytes) {
