@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "materials.h"
+#include "road_markings.h"
 #include "surface_detail.h"
 #include "triangulate_polygon.h"
 
@@ -39,20 +40,23 @@ uint16_t path_material(PathClass c) {
         case PathClass::Path:
         case PathClass::Track:
         case PathClass::Bridleway: return kGravel;
+        case PathClass::Tram: return kAsphalt;  // street track: paved between the rails
         case PathClass::Rail:
-        case PathClass::Tram:
         case PathClass::LightRail:
         case PathClass::Subway: return kBallast;
     }
     return kPathPaving;
 }
 
+double path_z(const Scene& scene, const PathEdge& path) {
+    return scene.ground.z + (path.path_class == PathClass::Tram ? kTramLift : kPathLift);
+}
+
 TriangleMesh build_stored_paths(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Path;
-    const double z = scene.ground.z + kPathLift;
     for (uint32_t i = 0; i < scene.paths.size(); ++i)
-        add_flat(mesh, scene.paths[i].quad, z, i, path_material(scene.paths[i].path_class));
+        add_flat(mesh, scene.paths[i].quad, path_z(scene, scene.paths[i]), i, path_material(scene.paths[i].path_class));
     return mesh;
 }
 
@@ -67,10 +71,10 @@ TriangleMesh build_stored_path_joints(const Scene& scene) {
 
 std::unique_ptr<ProceduralGeometry> build_procedural_paths(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Path, walls());
-    const double z = scene.ground.z + kPathLift;
     for (uint32_t i = 0; i < scene.paths.size(); ++i)
         if (scene.paths[i].quad.size() >= 3)
-            geometry->add_polygon(i, scene.paths[i].quad, {}, z, path_material(scene.paths[i].path_class));
+            geometry->add_polygon(i, scene.paths[i].quad, {}, path_z(scene, scene.paths[i]),
+                                  path_material(scene.paths[i].path_class));
     return geometry;
 }
 
@@ -92,7 +96,7 @@ uint16_t path_surface_material(const PathEdge& path, Vec2 p) {
     if (std::fabs(across - kHalfGauge) < kRailHead) return kRailSteel;
     const double phase = along / 0.6 - std::floor(along / 0.6);
     if (path.path_class != PathClass::Tram && across < 1.3 && phase < 0.4) return kSleeper;
-    return base;
+    return base == kAsphalt ? asphalt_grain(p) : base;
 }
 
 std::unique_ptr<RenderGeometry> with_rail_tracks(std::unique_ptr<RenderGeometry> geometry, const Scene& scene) {

@@ -1,6 +1,7 @@
 // Paths and rails (format 1.1): flat strips and joints just below the roads (a footway
 // crossing a street disappears under it), one material per class; rail classes show their
-// rails and sleepers as a shading-time pattern, the same in both modes.
+// rails (and sleepers, but for trams) as a shading-time pattern, the same in both modes.
+// Tram tracks are paved and lie just above the roads, so street tracks show their rails.
 #pragma once
 
 #include <memory>
@@ -13,6 +14,10 @@
 namespace citygen {
 
 constexpr double kPathLift = 0.018;  // above land cover, below kRoadLift
+constexpr double kTramLift = 0.023;  // tram tracks lie in the street: just above kRoadLift
+
+// Height of a path's strip: trams above the road they run in (paved, with rails), others below.
+double path_z(const Scene& scene, const PathEdge& path);
 
 uint16_t path_material(PathClass c);
 TriangleMesh build_stored_paths(const Scene& scene);
