@@ -62,6 +62,7 @@ struct RoadEdge {
     int lanes_forward = 0, lanes_backward = 0;
     CentreLine centre_line = CentreLine::None;
     bool edge_lines = false;
+    bool cycle_lane_left = false, cycle_lane_right = false;  // painted cycle lanes at the edges
 };
 
 struct Joint {

@@ -136,7 +136,8 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
             static_cast<float>(x.width), static_cast<fb::RoadClass>(x.road_class),
             static_cast<uint8_t>(x.lanes), x.oneway, x.bridge, x.from_joint, x.to_joint,
             x.sidewalk_left, x.sidewalk_right, static_cast<uint8_t>(x.lanes_forward),
-            static_cast<uint8_t>(x.lanes_backward), static_cast<fb::CentreLine>(x.centre_line), x.edge_lines));
+            static_cast<uint8_t>(x.lanes_backward), static_cast<fb::CentreLine>(x.centre_line), x.edge_lines,
+            x.cycle_lane_left, x.cycle_lane_right));
     }
 
     std::vector<flatbuffers::Offset<fb::Joint>> joints;
@@ -288,6 +289,8 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             if (x->centre_line() > fb::CentreLine::MAX) check.fail("invalid centre line");
             r.centre_line = static_cast<CentreLine>(x->centre_line());
             r.edge_lines = x->edge_lines();
+            r.cycle_lane_left = x->cycle_lane_left();
+            r.cycle_lane_right = x->cycle_lane_right();
             s.roads.push_back(std::move(r));
         }
 

@@ -193,7 +193,8 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
                   if (std::fabs(x.width - y.width) > tol) return "width changed by " + metres(std::fabs(x.width - y.width));
                   if (x.sidewalk_left != y.sidewalk_left || x.sidewalk_right != y.sidewalk_right) return "sidewalks differ";
                   if (x.lanes_forward != y.lanes_forward || x.lanes_backward != y.lanes_backward ||
-                      x.centre_line != y.centre_line || x.edge_lines != y.edge_lines)
+                      x.centre_line != y.centre_line || x.edge_lines != y.edge_lines ||
+                      x.cycle_lane_left != y.cycle_lane_left || x.cycle_lane_right != y.cycle_lane_right)
                       return "lanes or markings differ";
                   return "";
               },

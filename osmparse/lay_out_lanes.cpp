@@ -83,6 +83,9 @@ LaneLayout lane_layout(const OsmTags& tags, RoadClass road_class, double width, 
         out.backward = single ? 0 : 1;
         if (road_class == RoadClass::Motorway) out.forward = out.backward = 2;
     }
+    const bool cycle_both = is_one_of(tags.get("cycleway"), {"lane"}) || is_one_of(tags.get("cycleway:both"), {"lane"});
+    out.cycle_left = cycle_both || is_one_of(tags.get("cycleway:left"), {"lane"});
+    out.cycle_right = cycle_both || is_one_of(tags.get("cycleway:right"), {"lane"});
     const int lanes = out.forward + out.backward;
     const bool two_way = out.forward > 0 && out.backward > 0;
     if (two_way && lanes >= 2 && width >= 5) {
@@ -111,6 +114,10 @@ void lay_out_lanes(std::vector<RoadEdge>& roads, const OsmData& osm, ParseReport
         r.lanes_backward = layout.backward;
         r.centre_line = layout.centre;
         r.edge_lines = layout.edge_lines;
+        // A cycle lane needs 1.5 m beside at least 2.5 m per motor lane.
+        const double room = r.width - 2.5 * std::max(1, layout.forward + layout.backward);
+        r.cycle_lane_left = layout.cycle_left && room >= 1.5 * (1 + layout.cycle_right);
+        r.cycle_lane_right = layout.cycle_right && room >= 1.5 * (1 + layout.cycle_left);
         report.kept("road lanes", layout.forward + layout.backward);
     }
 }

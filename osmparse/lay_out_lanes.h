@@ -17,6 +17,7 @@ struct LaneLayout {
     int forward = 1, backward = 1;  // motor-traffic lanes along and against the way
     CentreLine centre = CentreLine::None;
     bool edge_lines = false;
+    bool cycle_left = false, cycle_right = false;  // cycleway=lane|cycleway:both=lane: both; :left/:right
 };
 
 // Lanes: lanes:forward / lanes:backward when tagged; else `lanes` (or the count of

@@ -97,7 +97,8 @@ std::string scene_to_geojson(const Scene& scene) {
                                  ",\"lanes_forward\":" + std::to_string(r.lanes_forward) +
                                  ",\"lanes_backward\":" + std::to_string(r.lanes_backward) +
                                  ",\"centre_line\":" + std::to_string(static_cast<int>(r.centre_line)) +
-                                 ",\"edge_lines\":" + (r.edge_lines ? "true" : "false"));
+                                 ",\"edge_lines\":" + (r.edge_lines ? "true" : "false") +
+                                 ",\"cycle_lanes\":" + std::to_string(r.cycle_lane_left + r.cycle_lane_right));
     for (const Joint& j : scene.joints)
         w.polygon({&j.polygon}, "\"kind\":\"joint\",\"osm\":" + str(to_string(j.osm)) + ",\"edges\":" +
                                     std::to_string(j.edges.size()));

@@ -45,11 +45,18 @@ uint16_t road_surface_material(const RoadEdge& road, const std::vector<const Cro
         }
     }
 
+    // Cycle lanes: 1.5 m at the edge, behind a solid line; the motor lanes share the rest.
+    constexpr double kCycleLane = 1.5;
+    const double right_edge = -half + (road.cycle_lane_right ? kCycleLane : 0);
+    const double left_edge = half - (road.cycle_lane_left ? kCycleLane : 0);
+    if ((road.cycle_lane_right && std::fabs(across - right_edge) <= 0.5 * kEdgeLine) ||
+        (road.cycle_lane_left && std::fabs(across - left_edge) <= 0.5 * kEdgeLine))
+        return kPaintWhite;
     const int lanes = road.lanes_forward + road.lanes_backward;
-    if (lanes > 0 && half > 0) {
-        const double lane_width = road.width / lanes;
+    if (lanes > 0 && left_edge > right_edge) {
+        const double lane_width = (left_edge - right_edge) / lanes;
         // Right-hand traffic: forward lanes on the right (across < 0).
-        const double split = -half + road.lanes_forward * lane_width;
+        const double split = right_edge + road.lanes_forward * lane_width;
         const double to_split = std::fabs(across - split);
         switch (road.centre_line) {
             case CentreLine::Dashed:
@@ -66,7 +73,7 @@ uint16_t road_surface_material(const RoadEdge& road, const std::vector<const Cro
         // Dividers between lanes of one direction.
         for (int k = 1; k < lanes; ++k) {
             if (k == road.lanes_forward) continue;  // the centre line's place
-            if (std::fabs(across - (-half + k * lane_width)) <= 0.5 * kLine && dashed_on(along)) return kPaintWhite;
+            if (std::fabs(across - (right_edge + k * lane_width)) <= 0.5 * kLine && dashed_on(along)) return kPaintWhite;
         }
         if (road.edge_lines && std::fabs(std::fabs(across) - (half - 0.3)) <= 0.5 * kEdgeLine) return kPaintWhite;
     }
@@ -90,6 +97,8 @@ std::unique_ptr<RenderGeometry> with_road_markings(std::unique_ptr<RenderGeometr
         copy.lanes_backward = r.lanes_backward;
         copy.centre_line = r.centre_line;
         copy.edge_lines = r.edge_lines;
+        copy.cycle_lane_left = r.cycle_lane_left;
+        copy.cycle_lane_right = r.cycle_lane_right;
         paint->roads.push_back(std::move(copy));
     }
     paint->crossings = scene.crossings;

@@ -79,6 +79,7 @@ TEST(Markings, FixtureHasLanesAZebraAndAStopLine) {
     EXPECT_DOUBLE_EQ(primary->width, 15.0);
     EXPECT_EQ(primary->lanes_forward, 2);
     EXPECT_EQ(primary->centre_line, CentreLine::Double);
+    EXPECT_TRUE(primary->cycle_lane_left && primary->cycle_lane_right);  // cycleway=lane
     ASSERT_EQ(s.crossings.size(), 2u);  // the unmarked crossing is not painted
     const Crossing* zebra = nullptr;
     const Crossing* stop = nullptr;
@@ -115,4 +116,8 @@ TEST(Markings, FixtureHasLanesAZebraAndAStopLine) {
     EXPECT_EQ(road_surface_material(*primary, on_primary, far + pn * (0.5 * primary->width - 0.3)), kPaintWhite);
     EXPECT_EQ(road_surface_material(*primary, on_primary, stop->position - pn * 4.1), kPaintWhite);
     EXPECT_NE(road_surface_material(*primary, on_primary, stop->position + pn * 4.1), kPaintWhite);
+    // The cycle lanes' lines 1.5 m inside each edge, bare asphalt in the cycle lane.
+    EXPECT_EQ(road_surface_material(*primary, on_primary, far + pn * (0.5 * primary->width - 1.5)), kPaintWhite);
+    EXPECT_EQ(road_surface_material(*primary, on_primary, far - pn * (0.5 * primary->width - 1.5)), kPaintWhite);
+    EXPECT_NE(road_surface_material(*primary, on_primary, far - pn * (0.5 * primary->width - 0.9)), kPaintWhite);
 }
