@@ -111,8 +111,10 @@ std::vector<Piece> clip_chain(const CoastlineChain& chain, const Boundary& bound
             current = Piece{};
             current.way_id = chain.way_id;
             const bool entering = !inside(box, a);
-            current.start_on_edge = entering || boundary.distance_to_edge(a) <= kEdgeSnap;
-            current.points.push_back(current.start_on_edge ? boundary.snap(p0) : p0);
+            const bool carried = !entering && i == 0 && chain.cut_before;
+            current.start_on_edge = entering || carried || boundary.distance_to_edge(a) <= kEdgeSnap;
+            if (carried && boundary.distance_to_edge(a) > kEdgeSnap) current.points.push_back(boundary.snap(a));
+            current.points.push_back(current.start_on_edge && !carried ? boundary.snap(p0) : p0);
             open = true;
         }
         if (!inside(box, b)) {
@@ -125,8 +127,10 @@ std::vector<Piece> clip_chain(const CoastlineChain& chain, const Boundary& bound
         }
     }
     if (open) {
-        current.end_on_edge = boundary.distance_to_edge(current.points.back()) <= kEdgeSnap;
-        if (current.end_on_edge) current.points.back() = boundary.snap(current.points.back());
+        const Vec2 last = current.points.back();
+        current.end_on_edge = chain.cut_after || boundary.distance_to_edge(last) <= kEdgeSnap;
+        if (boundary.distance_to_edge(last) <= kEdgeSnap) current.points.back() = boundary.snap(last);
+        else if (chain.cut_after) current.points.push_back(boundary.snap(last));
         pieces.push_back(std::move(current));
     }
     // A closed chain that starts inside the box: its last and first pieces are one.
@@ -285,9 +289,11 @@ std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projec
     auto follow = [&](size_t i) {
         CoastlineChain chain;
         chain.way_id = osm.coastlines[i].id;
+        chain.cut_before = osm.coastlines[i].cut_before;
         for (size_t k = i;;) {
             used[k] = true;
             const OsmWay& way = osm.coastlines[k];
+            chain.cut_after = way.cut_after;
             for (size_t n = chain.points.empty() ? 0 : 1; n < way.locations.size(); ++n)
                 chain.points.push_back(round_to_stored_precision(projection.to_local(way.locations[n].lat, way.locations[n].lon)));
             auto next = by_start.find(way.nodes.back());
@@ -305,6 +311,10 @@ std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projec
     for (size_t i = 0; i < osm.coastlines.size(); ++i)
         if (!used[i]) follow(i);
     report.kept("coastline ways", static_cast<int64_t>(osm.coastlines.size()));
+    for (const CoastlineChain& c : chains) {
+        if (c.cut_before) report.note("coastline ways", "cut by the extract: end carried to its edge");
+        if (c.cut_after) report.note("coastline ways", "cut by the extract: end carried to its edge");
+    }
     report.read(kSea, static_cast<int64_t>(chains.size()));
 
     std::vector<LandCover> sea = sea_from_chains(chains, box, report);

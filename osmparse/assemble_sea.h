@@ -17,10 +17,11 @@ namespace citygen {
 // else the bounds of the data read.
 Box2 extract_box(const OsmData& osm, const Projection& projection);
 
-// Sea polygons (class Sea, outer CCW, holes CW) inside `box`. Coastline that cannot be
-// closed consistently (a chain ending inside the box, two chains leaving the same edge
-// point in the same direction) gives no sea at all, counted under "sea": never a flooded
-// city. `buildings` guard the result too: a sea polygon holding more than half of them
+// Sea polygons (class Sea, outer CCW, holes CW) inside `box`. A chain cut short by a
+// clipped extract (its next node missing) is carried to the nearest box edge, counted.
+// Coastline that cannot be closed consistently (a chain ending inside the box without being
+// cut there, pieces whose directions disagree along the edge) gives no sea at all, counted
+// under "sea polygons": never a flooded city. `buildings` guard the result too: a sea polygon holding more than half of them
 // (at least 10) is taken for land and dropped. Sorted by OSM identity of its first way.
 std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projection, const Box2& box,
                                     const std::vector<Building>& buildings, ParseReport& report);
@@ -30,6 +31,9 @@ std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projec
 struct CoastlineChain {
     std::vector<Vec2> points;
     int64_t way_id = 0;
+    // The chain goes on beyond its first / last point through nodes missing from a clipped
+    // extract: an end inside the box is then carried straight to the nearest box edge.
+    bool cut_before = false, cut_after = false;
 };
 std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains, const Box2& box,
                                        ParseReport& report);

@@ -45,6 +45,9 @@ struct OsmWay {
     OsmTags tags;
     std::vector<int64_t> nodes;
     std::vector<LatLon> locations;  // one per node
+    // The run was cut before its first / after its last node (the way goes on through nodes
+    // missing from the extract).
+    bool cut_before = false, cut_after = false;
 };
 
 struct OsmPolygon {

@@ -100,26 +100,30 @@ public:
     size_t keep_runs(const osmium::Way& way, std::vector<OsmWay>& out, bool extend_bounds) {
         size_t located = 0;
         OsmWay run;
-        auto flush = [&] {
+        bool missing_before = false;  // a node of the way before the current run is missing
+        auto flush = [&](bool cut_after) {
+            run.cut_after = cut_after;
             if (run.nodes.size() >= 2) out.push_back(run);
             run.nodes.clear();
             run.locations.clear();
         };
         for (const osmium::NodeRef& ref : way.nodes()) {
             if (!ref.location().valid()) {
-                flush();
+                if (!run.nodes.empty()) flush(true);
+                missing_before = true;
                 continue;
             }
             ++located;
             if (run.nodes.empty()) {
                 run.id = way.id();
                 run.tags = copy_tags(way.tags());
+                run.cut_before = missing_before;
             }
             run.nodes.push_back(ref.ref());
             run.locations.push_back(to_latlon(ref.location()));
             if (extend_bounds) extend(ref.location());
         }
-        flush();
+        if (!run.nodes.empty()) flush(false);
         return located;
     }
 

@@ -89,6 +89,14 @@ nodes.update(h)
 write('island', 'a closed coastline ring: an island in a sea that fills the extract', nodes,
       [(10, [1, 2, 3, 4, 1], COAST), (20, ring, HOUSE)])
 
+# The coastline of a clipped extract: its nodes beyond the bounds are missing from the file,
+# so the way stops 10-15 m inside; its ends are carried to the edge and the sea is south.
+nodes = {2: (-190, 10), 3: (-100, -20), 4: (0, 5), 5: (120, -15), 6: (185, 0)}
+h, ring = square(100, 0, 100, 8)
+nodes.update(h)
+write('coast_clipped', 'a coastline whose nodes beyond the bounds are missing: ends carried to the edge', nodes,
+      [(10, [1, 2, 3, 4, 5, 6, 7], COAST), (20, ring, HOUSE)])
+
 # A coastline ending inside the extract: broken, so no sea (never a flooded city).
 nodes = {1: (-400, 10), 2: (-100, -20), 3: (50, 5)}
 write('coast_broken', 'a coastline that ends inside the extract: no sea, counted', nodes,

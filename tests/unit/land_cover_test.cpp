@@ -110,6 +110,18 @@ TEST(Sea, AnIslandIsAHoleInASeaFillingTheExtract) {
     expect_valid(s);
 }
 
+TEST(Sea, ACoastlineCutByAClippedExtractIsCarriedToTheEdge) {
+    ParseReport report;
+    const Scene s = fixture("coast_clipped", report);
+    ASSERT_EQ(count(s, LandCoverClass::Sea), 1u);
+    EXPECT_TRUE(covered(s, LandCoverClass::Sea, at(s, 0, -150)));
+    EXPECT_TRUE(covered(s, LandCoverClass::Sea, at(s, -195, -50)));  // beside the carried west end
+    EXPECT_FALSE(covered(s, LandCoverClass::Sea, at(s, 0, 150)));
+    EXPECT_FALSE(covered(s, LandCoverClass::Sea, at(s, 0, 100)));
+    EXPECT_EQ(report.note_count("coastline ways", "cut by the extract: end carried to its edge"), 2);
+    expect_valid(s);
+}
+
 TEST(Sea, ACoastlineEndingInsideTheExtractGivesNoSeaAndIsCounted) {
     ParseReport report;
     const Scene s = fixture("coast_broken", report);
