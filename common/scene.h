@@ -84,6 +84,8 @@ enum class RoadClass : uint8_t {
     Residential, LivingStreet, Service, Other
 };
 
+enum class CentreLine : uint8_t { None = 0, Dashed, Solid, Double };
+
 struct RoadEdge {
     OsmRef osm;
     int64_t from_node = 0, to_node = 0;
@@ -96,6 +98,11 @@ struct RoadEdge {
     bool bridge = false;
     int from_joint = -1, to_joint = -1;
     bool sidewalk_left = false, sidewalk_right = false;
+    // Format 1.1: the lane layout markings are painted from.
+    int lanes_forward = 0, lanes_backward = 0;
+    CentreLine centre_line = CentreLine::None;
+    bool edge_lines = false;
+    bool cycle_lane_left = false, cycle_lane_right = false;  // painted cycle lanes at the edges
 };
 
 struct Joint {
@@ -128,6 +135,79 @@ struct Ground {
     double z = 0;
 };
 
+// Land cover classes, in the schema's order (schema/scene.fbs).
+enum class LandCoverClass : uint8_t { Water = 0, Sea, Green, Forest, Paved, Sand, Farmland, BuiltUp };
+constexpr int kLandCoverClassCount = 8;
+const char* to_string(LandCoverClass c);  // "water", "sea", ...
+
+// Where classes overlap, the one with the higher priority is seen: render draws each class
+// at its own small height in this order (0 lowest), so nothing z-fights and nothing shows
+// twice. Water lies on everything, paved open space on green, green on forest and farmland,
+// the sea above built-up land use (a harbour's landuse polygon often reaches into the
+// basin), built-up paving lowest. The one definition; README "Land cover" documents it.
+inline int land_cover_priority(LandCoverClass c) {
+    switch (c) {
+        case LandCoverClass::BuiltUp: return 0;
+        case LandCoverClass::Farmland: return 1;
+        case LandCoverClass::Sea: return 2;
+        case LandCoverClass::Forest: return 3;
+        case LandCoverClass::Green: return 4;
+        case LandCoverClass::Sand: return 5;
+        case LandCoverClass::Paved: return 6;
+        case LandCoverClass::Water: return 7;
+    }
+    return 0;
+}
+
+struct LandCover {
+    OsmRef osm;
+    LandCoverClass cover = LandCoverClass::Green;
+    Ring outer;               // CCW
+    std::vector<Ring> holes;  // CW
+};
+
+enum class LeafType : uint8_t { Broadleaved = 0, Needleleaved = 1 };
+enum class TreeSource : uint8_t { Mapped = 0, Row = 1, Scattered = 2 };
+const char* to_string(TreeSource s);  // "mapped", "row", "scattered"
+
+struct Tree {
+    OsmRef osm;
+    Vec2 position;
+    double height = 10;          // ground to crown top
+    double crown_diameter = 6;
+    LeafType leaf_type = LeafType::Broadleaved;
+    TreeSource source = TreeSource::Mapped;
+};
+
+enum class PathClass : uint8_t {
+    Footway = 0, Path, Cycleway, Pedestrian, Steps, Track, Bridleway, Rail, Tram, LightRail, Subway
+};
+constexpr int kPathClassCount = 11;
+const char* to_string(PathClass c);  // "footway", ..., "light_rail", "subway"
+inline bool is_rail(PathClass c) { return c >= PathClass::Rail; }
+
+struct PathEdge {
+    OsmRef osm;
+    int64_t from_node = 0, to_node = 0;
+    std::vector<Vec2> centreline;
+    Ring quad;                // 4 points CCW
+    double width = 0;
+    PathClass path_class = PathClass::Footway;
+    int from_joint = -1, to_joint = -1;  // into Scene::path_joints
+    bool sidewalk = false;
+};
+
+enum class CrossingKind : uint8_t { Zebra = 0, StopLine = 1 };
+enum class RoadSide : uint8_t { Both = 0, Left = 1, Right = 2 };
+
+struct Crossing {
+    OsmRef osm;
+    int road = -1;
+    Vec2 position;
+    CrossingKind kind = CrossingKind::Zebra;
+    RoadSide side = RoadSide::Both;
+};
+
 struct SceneHeader {
     uint16_t format_major = kSceneFormatMajor;
     uint16_t format_minor = kSceneFormatMinor;
@@ -148,6 +228,11 @@ struct Scene {
     std::vector<Sidewalk> sidewalks;
     std::vector<Lamp> lamps;
     Ground ground;
+    std::vector<LandCover> land_cover;  // format 1.1
+    std::vector<Tree> trees;            // format 1.1
+    std::vector<PathEdge> paths;        // format 1.1
+    std::vector<Joint> path_joints;     // format 1.1; edges index into paths
+    std::vector<Crossing> crossings;    // format 1.1
 };
 
 }  // namespace citygen

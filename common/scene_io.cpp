@@ -16,6 +16,25 @@
 
 namespace citygen {
 
+const char* to_string(LandCoverClass c) {
+    static const char* const names[kLandCoverClassCount] = {"water", "sea",  "green",    "forest",
+                                                            "paved", "sand", "farmland", "built_up"};
+    const int i = static_cast<int>(c);
+    return i < kLandCoverClassCount ? names[i] : "?";
+}
+
+const char* to_string(TreeSource s) {
+    return s == TreeSource::Mapped ? "mapped" : s == TreeSource::Row ? "row" : "scattered";
+}
+
+const char* to_string(PathClass c) {
+    static const char* const names[kPathClassCount] = {"footway", "path",  "cycleway", "pedestrian",
+                                                       "steps",   "track", "bridleway", "rail",
+                                                       "tram",    "light_rail", "subway"};
+    const int i = static_cast<int>(c);
+    return i < kPathClassCount ? names[i] : "?";
+}
+
 std::string to_string(OsmRef ref) {
     const char prefix = ref.type == OsmType::Node ? 'n' : ref.type == OsmType::Way ? 'w' : 'r';
     return prefix + std::to_string(ref.id);
@@ -104,26 +123,28 @@ struct Checker {
         if (!p) fail(std::string("missing point in ") + what);
         return {coordinate(p->x(), what), coordinate(p->y(), what)};
     }
-    std::vector<Vec2> pts(const flatbuffers::Vector<const fb::Vec2*>* v, const char* what) const {
+    std::vector<Vec2> pts(const flatbuffers::Vector<const fb::Vec2*>* v, const char* what,
+                          size_t max_points = kMaxRingPoints, double max_extent = kMaxObjectExtent) const {
         std::vector<Vec2> out;
         if (!v) return out;
-        if (v->size() > kMaxRingPoints)
+        if (v->size() > max_points)
             fail(std::string(what) + " has " + std::to_string(v->size()) + " points (limit " +
-                 std::to_string(kMaxRingPoints) + ")");
+                 std::to_string(max_points) + ")");
         out.reserve(v->size());
         for (const fb::Vec2* p : *v) out.push_back(vec(p, what));
-        extent(out, what);
+        extent(out, what, max_extent);
         return out;
     }
-    // One object's points fit in a kMaxObjectExtent square.
-    void extent(const std::vector<Vec2>& points, const char* what) const {
+    // One object's points fit in a max_extent square.
+    void extent(const std::vector<Vec2>& points, const char* what, double max_extent = kMaxObjectExtent) const {
         const Box2 box = bounds_of(points);
-        if (!box.empty() && std::max(box.max.x - box.min.x, box.max.y - box.min.y) > kMaxObjectExtent)
-            fail(std::string(what) + " is over " + std::to_string(static_cast<long>(kMaxObjectExtent)) + " m across");
+        if (!box.empty() && std::max(box.max.x - box.min.x, box.max.y - box.min.y) > max_extent)
+            fail(std::string(what) + " is over " + std::to_string(static_cast<long>(max_extent)) + " m across");
     }
-    Ring ring(const fb::Ring* r, const char* what) const {
+    Ring ring(const fb::Ring* r, const char* what, size_t max_points = kMaxRingPoints,
+              double max_extent = kMaxObjectExtent) const {
         if (!r) fail(std::string("missing ring in ") + what);
-        return pts(r->points(), what);
+        return pts(r->points(), what, max_points, max_extent);
     }
     // A ring the renderer extrudes and triangulates: at least 3 points, not all on one line.
     void area_ring(const Ring& ring, const char* what) const {
@@ -242,7 +263,9 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
             b, &osm, x.from_node, x.to_node, centreline, quad,
             static_cast<float>(x.width), static_cast<fb::RoadClass>(x.road_class),
             static_cast<uint8_t>(x.lanes), x.oneway, x.bridge, x.from_joint, x.to_joint,
-            x.sidewalk_left, x.sidewalk_right));
+            x.sidewalk_left, x.sidewalk_right, static_cast<uint8_t>(x.lanes_forward),
+            static_cast<uint8_t>(x.lanes_backward), static_cast<fb::CentreLine>(x.centre_line), x.edge_lines,
+            x.cycle_lane_left, x.cycle_lane_right));
     }
 
     std::vector<flatbuffers::Offset<fb::Joint>> joints;
@@ -271,14 +294,62 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
     fb::Vec2 gmin = to_fb(scene.ground.min), gmax = to_fb(scene.ground.max);
     auto ground = fb::CreateGround(b, &gmin, &gmax, static_cast<float>(scene.ground.z));
 
+    std::vector<flatbuffers::Offset<fb::LandCover>> land_cover;
+    for (const LandCover& x : scene.land_cover) {
+        std::vector<flatbuffers::Offset<fb::Ring>> holes;
+        for (const Ring& r : x.holes) holes.push_back(ring(b, r));
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto hole_vector = b.CreateVector(holes);
+        const auto outer = ring(b, x.outer);
+        land_cover.push_back(fb::CreateLandCover(b, &osm, static_cast<fb::LandCoverClass>(x.cover), outer, hole_vector));
+    }
+
+    std::vector<fb::Tree> trees;
+    trees.reserve(scene.trees.size());
+    for (const Tree& x : scene.trees)
+        trees.emplace_back(static_cast<float>(x.position.x), static_cast<float>(x.position.y),
+                           static_cast<float>(x.height), static_cast<float>(x.crown_diameter), x.osm.id,
+                           static_cast<fb::OsmType>(x.osm.type), static_cast<fb::LeafType>(x.leaf_type),
+                           static_cast<fb::TreeSource>(x.source));
+
+    std::vector<flatbuffers::Offset<fb::PathEdge>> paths;
+    for (const PathEdge& x : scene.paths) {
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto quad = points(b, x.quad);
+        const auto centreline = points(b, x.centreline);
+        paths.push_back(fb::CreatePathEdge(b, &osm, x.from_node, x.to_node, centreline, quad,
+                                           static_cast<float>(x.width), static_cast<fb::PathClass>(x.path_class),
+                                           x.from_joint, x.to_joint, x.sidewalk));
+    }
+    std::vector<flatbuffers::Offset<fb::Joint>> path_joints;
+    for (const Joint& x : scene.path_joints) {
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto edges = b.CreateVector(x.edges);
+        const auto polygon = points(b, x.polygon);
+        path_joints.push_back(fb::CreateJoint(b, &osm, polygon, edges));
+    }
+
+    std::vector<flatbuffers::Offset<fb::Crossing>> crossings;
+    for (const Crossing& x : scene.crossings) {
+        fb::OsmRef osm = to_fb(x.osm);
+        fb::Vec2 pos = to_fb(x.position);
+        crossings.push_back(fb::CreateCrossing(b, &osm, x.road, &pos, static_cast<fb::CrossingKind>(x.kind),
+                                               static_cast<fb::RoadSide>(x.side)));
+    }
+
+    const auto crossing_vector = b.CreateVector(crossings);
+    const auto path_joint_vector = b.CreateVector(path_joints);
+    const auto path_vector = b.CreateVector(paths);
+    const auto tree_vector = b.CreateVectorOfStructs(trees);
+    const auto land_cover_vector = b.CreateVector(land_cover);
     const auto lamp_vector = b.CreateVector(lamps);
     const auto sidewalk_vector = b.CreateVector(sidewalks);
     const auto joint_vector = b.CreateVector(joints);
     const auto road_vector = b.CreateVector(roads);
     const auto building_vector = b.CreateVector(buildings);
-    auto root = fb::CreateScene(b, header, building_vector, road_vector,
-                                joint_vector, sidewalk_vector,
-                                lamp_vector, ground);
+    auto root = fb::CreateScene(b, header, building_vector, road_vector, joint_vector, sidewalk_vector, lamp_vector,
+                                ground, land_cover_vector, tree_vector, path_vector, path_joint_vector,
+                                crossing_vector);
     fb::FinishSceneBuffer(b, root);
     return {b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize()};
 }
@@ -361,6 +432,13 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             r.to_joint = check.index(x->to_joint(), joint_count, "road joint");
             r.sidewalk_left = x->sidewalk_left();
             r.sidewalk_right = x->sidewalk_right();
+            r.lanes_forward = x->lanes_forward();
+            r.lanes_backward = x->lanes_backward();
+            if (x->centre_line() > fb::CentreLine::MAX) check.fail("invalid centre line");
+            r.centre_line = static_cast<CentreLine>(x->centre_line());
+            r.edge_lines = x->edge_lines();
+            r.cycle_lane_left = x->cycle_lane_left();
+            r.cycle_lane_right = x->cycle_lane_right();
             s.roads.push_back(std::move(r));
         }
 
@@ -414,6 +492,80 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
         s.ground.max = {g->max()->x(), g->max()->y()};
         s.ground.z = check.coordinate(g->z(), "ground");
     }
+
+    if (in->land_cover())
+        for (const fb::LandCover* x : *in->land_cover()) {
+            LandCover c;
+            c.osm = check.osm(x->osm());
+            if (x->cover() > fb::LandCoverClass::MAX) check.fail("invalid land cover class");
+            c.cover = static_cast<LandCoverClass>(x->cover());
+            c.outer = check.ring(x->outer(), "land cover outline", kMaxLandCoverPoints, kMaxLandCoverExtent);
+            check.area_ring(c.outer, "land cover outline");
+            if (x->holes())
+                for (const fb::Ring* r : *x->holes())
+                    c.holes.push_back(check.ring(r, "land cover hole", kMaxLandCoverPoints, kMaxLandCoverExtent));
+            s.land_cover.push_back(std::move(c));
+        }
+
+    if (in->trees())
+        for (const fb::Tree* x : *in->trees()) {
+            Tree t;
+            if (x->osm_type() > fb::OsmType::MAX) check.fail("invalid OSM object type");
+            if (x->leaf_type() > fb::LeafType::MAX) check.fail("invalid leaf type");
+            if (x->source() > fb::TreeSource::MAX) check.fail("invalid tree source");
+            t.osm = {static_cast<OsmType>(x->osm_type()), x->osm_id()};
+            t.position = {check.coordinate(x->x(), "tree position"), check.coordinate(x->y(), "tree position")};
+            t.height = check.height(x->height(), "tree height");
+            t.crown_diameter = check.height(x->crown_diameter(), "tree crown");
+            if (!(t.height > 0) || !(t.crown_diameter > 0)) check.fail("tree with non-positive size");
+            t.leaf_type = static_cast<LeafType>(x->leaf_type());
+            t.source = static_cast<TreeSource>(x->source());
+            s.trees.push_back(t);
+        }
+
+    const size_t path_count = in->paths() ? in->paths()->size() : 0;
+    const size_t path_joint_count = in->path_joints() ? in->path_joints()->size() : 0;
+    if (in->paths())
+        for (const fb::PathEdge* x : *in->paths()) {
+            PathEdge p;
+            p.osm = check.osm(x->osm());
+            p.from_node = x->from_node();
+            p.to_node = x->to_node();
+            p.centreline = check.pts(x->centreline(), "path centreline");
+            p.quad = check.pts(x->quad(), "path quadrangle");
+            if (p.centreline.size() < 2 || p.quad.size() != 4) check.fail("path without centreline or quadrangle");
+            p.width = check.height(x->width(), "path width");
+            if (x->path_class() > fb::PathClass::MAX) check.fail("invalid path class");
+            p.path_class = static_cast<PathClass>(x->path_class());
+            p.from_joint = check.index(x->from_joint(), path_joint_count, "path joint");
+            p.to_joint = check.index(x->to_joint(), path_joint_count, "path joint");
+            p.sidewalk = x->sidewalk();
+            s.paths.push_back(std::move(p));
+        }
+    if (in->path_joints())
+        for (const fb::Joint* x : *in->path_joints()) {
+            Joint j;
+            j.osm = check.osm(x->osm());
+            j.polygon = check.pts(x->polygon(), "path joint polygon");
+            if (x->edges())
+                for (uint32_t e : *x->edges()) {
+                    if (e >= path_count) check.fail("path joint edge index " + std::to_string(e) + " out of range");
+                    j.edges.push_back(e);
+                }
+            s.path_joints.push_back(std::move(j));
+        }
+    if (in->crossings())
+        for (const fb::Crossing* x : *in->crossings()) {
+            Crossing c;
+            c.osm = check.osm(x->osm());
+            if (x->road() < 0 || x->road() >= static_cast<int64_t>(road_count)) check.fail("crossing road index out of range");
+            c.road = x->road();
+            c.position = check.vec(x->position(), "crossing");
+            if (x->kind() > fb::CrossingKind::MAX || x->side() > fb::RoadSide::MAX) check.fail("invalid crossing");
+            c.kind = static_cast<CrossingKind>(x->kind());
+            c.side = static_cast<RoadSide>(x->side());
+            s.crossings.push_back(c);
+        }
     return s;
 }
 

@@ -17,4 +17,9 @@ constexpr double kMaxHeight = 1000;
 // Points in one ring or polygon (an OSM way has at most 2000 nodes).
 constexpr size_t kMaxRingPoints = 10000;
 
+// Land cover (the sea, a forest) may span a whole region: its own, looser limits on one
+// polygon's points and size (a coastline of a large extract has many points).
+constexpr size_t kMaxLandCoverPoints = 1000000;
+constexpr double kMaxLandCoverExtent = 2 * kMaxCoordinate;
+
 }  // namespace citygen

@@ -139,6 +139,47 @@ void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
     for (const Lamp& l : s.lamps) generated += l.source == LampSource::Generated;
     std::fprintf(out, "lamps: %zu (%zu tagged, %zu generated)\n", s.lamps.size(),
                  s.lamps.size() - generated, generated);
+    // Format 1.1: land cover by class (polygons and square metres) and trees by source.
+    std::fprintf(out, "land_cover: %zu\n", s.land_cover.size());
+    {
+        size_t count[kLandCoverClassCount] = {}, holes = 0;
+        double area[kLandCoverClassCount] = {};
+        for (const LandCover& c : s.land_cover) {
+            const int k = static_cast<int>(c.cover);
+            ++count[k];
+            area[k] += std::fabs(signed_area(c.outer));
+            for (const Ring& hole : c.holes) area[k] -= std::fabs(signed_area(hole));
+            holes += c.holes.size();
+        }
+        for (int k = 0; k < kLandCoverClassCount; ++k)
+            if (count[k])
+                std::fprintf(out, "land_cover_%s: %zu (%.0f m2)\n", to_string(static_cast<LandCoverClass>(k)),
+                             count[k], area[k]);
+        std::fprintf(out, "land_cover_holes: %zu\n", holes);
+    }
+    {
+        size_t by_source[3] = {};
+        for (const Tree& t : s.trees) ++by_source[static_cast<int>(t.source)];
+        std::fprintf(out, "trees: %zu (%zu mapped, %zu in rows, %zu scattered)\n", s.trees.size(), by_source[0],
+                     by_source[1], by_source[2]);
+    }
+    {
+        size_t per_class[kPathClassCount] = {}, mapped_sidewalks = 0;
+        for (const PathEdge& p : s.paths) {
+            ++per_class[static_cast<int>(p.path_class)];
+            mapped_sidewalks += p.sidewalk;
+        }
+        std::fprintf(out, "paths: %zu (%zu mapped sidewalks)\n", s.paths.size(), mapped_sidewalks);
+        for (int k = 0; k < kPathClassCount; ++k)
+            if (per_class[k]) std::fprintf(out, "paths_%s: %zu\n", to_string(static_cast<PathClass>(k)), per_class[k]);
+        std::fprintf(out, "path_joints: %zu\n", s.path_joints.size());
+        size_t zebras = 0, marked = 0;
+        for (const Crossing& c : s.crossings) zebras += c.kind == CrossingKind::Zebra;
+        for (const RoadEdge& r : s.roads) marked += r.centre_line != CentreLine::None || r.edge_lines;
+        std::fprintf(out, "crossings: %zu (%zu zebra, %zu stop lines)\n", s.crossings.size(), zebras,
+                     s.crossings.size() - zebras);
+        std::fprintf(out, "roads_with_markings: %zu\n", marked);
+    }
     std::fprintf(out, "ground: [%.1f, %.1f] - [%.1f, %.1f] m at z=%.2f\n", s.ground.min.x,
                  s.ground.min.y, s.ground.max.x, s.ground.max.y, s.ground.z);
     std::fprintf(out, "options:\n");
@@ -193,6 +234,10 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
                   if ((d = max_point_distance(x.centreline, y.centreline)) > tol) return "centreline moved " + metres(d);
                   if (std::fabs(x.width - y.width) > tol) return "width changed by " + metres(std::fabs(x.width - y.width));
                   if (x.sidewalk_left != y.sidewalk_left || x.sidewalk_right != y.sidewalk_right) return "sidewalks differ";
+                  if (x.lanes_forward != y.lanes_forward || x.lanes_backward != y.lanes_backward ||
+                      x.centre_line != y.centre_line || x.edge_lines != y.edge_lines ||
+                      x.cycle_lane_left != y.cycle_lane_left || x.cycle_lane_right != y.cycle_lane_right)
+                      return "lanes or markings differ";
                   return "";
               },
               out);
@@ -230,6 +275,58 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
               [tol](const Lamp& x, const Lamp& y) -> std::string {
                   double d = length(x.position - y.position);
                   return d > tol ? "moved " + metres(d) : "";
+              },
+              out);
+
+    auto path_key = [](const PathEdge& x) {
+        return to_string(x.osm) + ":" + std::to_string(x.from_node) + "-" + std::to_string(x.to_node);
+    };
+    diff_kind("path", keyed(a.paths, path_key), keyed(b.paths, path_key),
+              [tol](const PathEdge& x, const PathEdge& y) -> std::string {
+                  double d = max_point_distance(x.quad, y.quad);
+                  if (d > tol) return "quadrangle moved " + metres(d);
+                  if (x.path_class != y.path_class) return "class differs";
+                  return "";
+              },
+              out);
+    auto path_joint_key = [](const Joint& x) { return to_string(x.osm); };
+    diff_kind("path_joint", keyed(a.path_joints, path_joint_key), keyed(b.path_joints, path_joint_key),
+              [tol](const Joint& x, const Joint& y) -> std::string {
+                  double d = max_point_distance(x.polygon, y.polygon);
+                  return d > tol ? "polygon moved " + metres(d) : "";
+              },
+              out);
+
+    auto crossing_key = [](const Crossing& x) {
+        return std::string(x.kind == CrossingKind::Zebra ? "zebra " : "stop line ") + to_string(x.osm);
+    };
+    diff_kind("crossing", keyed(a.crossings, crossing_key), keyed(b.crossings, crossing_key),
+              [tol](const Crossing& x, const Crossing& y) -> std::string {
+                  const double d = length(x.position - y.position);
+                  return d > tol ? "moved " + metres(d) : "";
+              },
+              out);
+
+    auto cover_key = [](const LandCover& x) { return std::string(to_string(x.cover)) + " " + to_string(x.osm); };
+    diff_kind("land_cover", keyed(a.land_cover, cover_key), keyed(b.land_cover, cover_key),
+              [tol](const LandCover& x, const LandCover& y) -> std::string {
+                  double d = max_point_distance(x.outer, y.outer);
+                  if (d > tol) return "outline moved " + metres(d);
+                  if (x.holes.size() != y.holes.size()) return "number of holes differs";
+                  for (size_t i = 0; i < x.holes.size(); ++i)
+                      if ((d = max_point_distance(x.holes[i], y.holes[i])) > tol) return "hole moved " + metres(d);
+                  return "";
+              },
+              out);
+
+    auto tree_key = [](const Tree& x) { return std::string(to_string(x.source)) + " " + to_string(x.osm); };
+    diff_kind("tree", keyed(a.trees, tree_key), keyed(b.trees, tree_key),
+              [tol](const Tree& x, const Tree& y) -> std::string {
+                  const double d = length(x.position - y.position);
+                  if (d > tol) return "moved " + metres(d);
+                  if (std::fabs(x.height - y.height) > tol || std::fabs(x.crown_diameter - y.crown_diameter) > tol)
+                      return "size changed";
+                  return "";
               },
               out);
     return out;

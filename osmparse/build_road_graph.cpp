@@ -7,6 +7,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "lay_out_lanes.h"
 #include "osm_units.h"
 #include "scene_limits.h"
 
@@ -89,11 +90,12 @@ double road_width(const OsmTags& tags, const RoadParams& params, ParseReport* re
     }
     if (const char* l = tags.get("lanes")) {
         std::optional<double> lanes = parse_osm_count(l);
-        if (lanes && *lanes >= 1 && *lanes <= kMaxLanes) return std::floor(*lanes) * params.lane_width;
+        if (lanes && *lanes >= 1 && *lanes <= kMaxLanes)
+            return std::floor(*lanes) * params.lane_width + lane_extras_width(tags);
         if (report) report->note("road edges", "lanes tag unusable, fell back");
     }
     const char* highway = tags.get("highway");
-    return default_road_width(highway ? highway : "", is_oneway(tags));
+    return default_road_width(highway ? highway : "", is_oneway(tags)) + lane_extras_width(tags);
 }
 
 SidewalkSides sidewalk_sides(const OsmTags& tags) {

@@ -243,7 +243,8 @@ Vec2 interior_point(const Ring& ring) {
 std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring>& holes,
                                        const BuildingParams& params, ParseReport& report,
                                        const std::string& kind) {
-    const std::string hole_kind = "building holes";
+    // Buildings count their holes under "building holes" (as they always did), others under "<kind> holes".
+    const std::string hole_kind = kind.rfind("building", 0) == 0 ? std::string("building holes") : kind + " (holes)";
     RingOutcome outcome = RingOutcome::Clean;
     std::vector<Ring> pieces = clean_ring(outer, params.simplify_angle_deg, outcome);
     if (outcome == RingOutcome::Degenerate) report.dropped(kind, "degenerate (fewer than 3 distinct points)");

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
     std::string output, info_file, geojson;
     std::vector<std::string> diff_files;
     double tolerance = 0.01;
-    std::string ignore_types, road_classes;
+    std::string ignore_types, road_classes, trees = "all";
 
     app.add_option("input", job.input, "OSM input: .osm, .osm.gz, .osm.bz2 or .osm.pbf");
     app.add_option("-o,--output", output, "scene file to write");
@@ -83,6 +83,10 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(0.0, 100.0))->capture_default_str();
     app.add_option("--lamp-spacing", p.lamps.spacing, "distance between generated street lamps (m)")
         ->check(CLI::Range(1.0, 10000.0))->capture_default_str();
+    app.add_option("--trees", trees, "which trees: none, mapped (natural=tree nodes and tree rows) or all (+ forests)")
+        ->check(CLI::IsMember({"none", "mapped", "all"}))->capture_default_str();
+    app.add_option("--forest-tree-spacing", p.trees.forest_spacing, "least distance between trees scattered in forests (m)")
+        ->check(CLI::Range(1.0, 1000.0))->capture_default_str();
     app.add_option("--geojson", geojson, "also write the scene as GeoJSON in WGS84");
     app.add_flag("--fill-empty-blocks", p.blocks.enabled,
                  "generate buildings in built-up road-graph blocks the map left empty (marked generated)");
@@ -117,6 +121,7 @@ int main(int argc, char** argv) {
         if (!ignore_types.empty()) p.buildings.ignore_types = split_list(ignore_types);
         if (!road_classes.empty()) p.roads.classes = split_list(road_classes);
         p.buildings.seed = p.seed;
+        p.trees.mode = trees == "none" ? TreeMode::None : trees == "mapped" ? TreeMode::Mapped : TreeMode::All;
 
         ParseReport report;
         const Scene scene = parse_osm_to_scene(job, report);

@@ -45,6 +45,9 @@ struct OsmWay {
     OsmTags tags;
     std::vector<int64_t> nodes;
     std::vector<LatLon> locations;  // one per node
+    // The run was cut before its first / after its last node (the way goes on through nodes
+    // missing from the extract).
+    bool cut_before = false, cut_after = false;
 };
 
 struct OsmPolygon {
@@ -65,6 +68,16 @@ struct OsmData {
     std::vector<OsmWay> highways;       // every way with a highway=* tag
     std::vector<OsmArea> building_areas;  // building=* and building:part=*
     LatLon min{90, 180}, max{-90, -180};  // bounds of every kept location
+    // The map beyond roads and buildings (DESIGN 6b).
+    std::vector<OsmArea> land_cover_areas;  // areas with a land cover class (build_land_cover.h)
+    std::vector<OsmWay> coastlines;         // natural=coastline ways, cut into runs of present nodes
+    std::vector<OsmNode> trees;             // natural=tree nodes
+    std::vector<OsmNode> road_marks;        // highway=crossing and highway=traffic_signals nodes
+    std::vector<OsmWay> tree_rows;          // natural=tree_row ways, cut into runs of present nodes
+    std::vector<OsmWay> railways;           // railway=rail|tram|light_rail|subway ways, runs of present nodes
+    // The extract's bounds from the file header (<bounds> or the PBF header box), when given.
+    bool has_extract_bounds = false;
+    LatLon extract_min, extract_max;
 };
 
 }  // namespace citygen

@@ -37,6 +37,9 @@ std::vector<std::pair<std::string, std::string>> ParseParams::to_key_values() co
         {"lamp-spacing", number(lamps.spacing)},
         {"lamp-min-distance", number(lamps.min_distance_to_tagged)},
         {"lamp-height", number(lamps.height)},
+        {"trees", trees.mode == TreeMode::None ? "none" : trees.mode == TreeMode::Mapped ? "mapped" : "all"},
+        {"forest-tree-spacing", number(trees.forest_spacing)},
+        {"tree-row-spacing", number(trees.row_spacing)},
     };
     if (blocks.enabled) kv.push_back({"fill-empty-blocks", "true"});  // only when on: older headers unchanged
     std::sort(kv.begin(), kv.end());

@@ -57,12 +57,22 @@ struct BlockParams {
     double near_distance = 60;
 };
 
+// Trees (place_trees.h).
+enum class TreeMode : uint8_t { None, Mapped, All };  // --trees: none, mapped (nodes and rows), all (+ forests)
+struct TreeParams {
+    TreeMode mode = TreeMode::All;
+    double forest_spacing = 6;       // --forest-tree-spacing: least distance between scattered trees
+    double row_spacing = 8;          // metres between trees of a natural=tree_row
+    size_t max_scattered = 200000;   // a cap on forest trees, so a national park cannot fill memory
+};
+
 struct ParseParams {
     BuildingParams buildings;
     RoadParams roads;
     SidewalkParams sidewalks;
     LampParams lamps;
     BlockParams blocks;
+    TreeParams trees;
     uint64_t seed = 1;
 
     // Every parameter as text, sorted by key, for the scene header and --info.

@@ -4,7 +4,11 @@
 #include <algorithm>
 #include <chrono>
 
+#include "assemble_sea.h"
 #include "build_buildings.h"
+#include "build_land_cover.h"
+#include "build_paths.h"
+#include "lay_out_lanes.h"
 #include "build_road_graph.h"
 #include "build_road_polygons.h"
 #include "build_roofs.h"
@@ -15,6 +19,7 @@
 #include "build_sidewalks.h"
 #include "narrow_roads.h"
 #include "place_lamps.h"
+#include "place_trees.h"
 #include "projection.h"
 #include "read_osm.h"
 #include "rng.h"
@@ -62,7 +67,12 @@ LatLon median_location(const OsmData& osm) {
 // mistake): then the median location, which a few strays cannot move out of town (their
 // objects are dropped as beyond the scene limits).
 Projection projection_for(const OsmData& osm) {
-    if (osm.min.lat > osm.max.lat) return Projection(0, 0);  // nothing located
+    if (osm.min.lat > osm.max.lat) {  // nothing located but perhaps coastline: the extract's centre
+        if (osm.has_extract_bounds)
+            return Projection(0.5 * (osm.extract_min.lat + osm.extract_max.lat),
+                              0.5 * (osm.extract_min.lon + osm.extract_max.lon));
+        return Projection(0, 0);
+    }
     if (osm.max.lat - osm.min.lat > 1 || osm.max.lon - osm.min.lon > 1) {
         const LatLon m = median_location(osm);
         return Projection(m.lat, m.lon);
@@ -157,10 +167,17 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     });
     scene.roads = surface.roads;
     scene.joints = surface.joints;
+    lay_out_lanes(scene.roads, osm, report);
     scene.sidewalks = timed(report, "sidewalks", [&] {
         return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
                                job.params.roads.miter_limit, report);
     });
+    PathSurface paths = timed(report, "paths and rails", [&] {
+        return build_paths(osm, projection, job.params.roads, report);
+    });
+    scene.sidewalks = drop_doubled_sidewalks(std::move(scene.sidewalks), paths.paths, report);
+    scene.paths = std::move(paths.paths);
+    scene.path_joints = std::move(paths.joints);
     if (job.params.blocks.enabled) {
         std::vector<Building> generated = timed(report, "empty blocks", [&] {
             return fill_empty_blocks(scene, job.params.buildings, job.params.blocks, job.params.sidewalks.width, report);
@@ -170,6 +187,17 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     scene.lamps = timed(report, "street lamps", [&] {
         return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
     });
+    scene.land_cover = timed(report, "land cover", [&] {
+        std::vector<LandCover> cover = build_land_cover(osm, projection, job.params.buildings, report);
+        std::vector<LandCover> sea =
+            assemble_sea(osm, projection, extract_box(osm, projection), scene.buildings, report);
+        cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
+        return drop_land_cover_beyond_limits(std::move(cover), report);
+    });
+    scene.trees = timed(report, "trees", [&] {
+        return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);
+    });
+    scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
     set_bounds_and_ground(scene);
     return scene;
 }

@@ -16,6 +16,7 @@
 #include <osmium/tags/tags_filter.hpp>
 #include <osmium/visitor.hpp>
 
+#include "build_land_cover.h"
 #include "error.h"
 #include "progress.h"
 
@@ -46,6 +47,16 @@ public:
     Collector(OsmData& data, ParseReport& report) : data_(data), report_(report) {}
 
     void node(const osmium::Node& node) {
+        if (node.tags().has_tag("natural", "tree")) {
+            report_.read("mapped trees");
+            if (!node.location().valid()) report_.dropped("mapped trees", "invalid location");
+            else data_.trees.push_back({node.id(), to_latlon(node.location()), copy_tags(node.tags())});
+        }
+        if (node.tags().has_tag("highway", "crossing") || node.tags().has_tag("highway", "traffic_signals")) {
+            report_.read("crossing and signal nodes");
+            if (node.location().valid())
+                data_.road_marks.push_back({node.id(), to_latlon(node.location()), copy_tags(node.tags())});
+        }
         if (!node.tags().has_tag("highway", "street_lamp")) return;
         report_.read("tagged street lamps");
         if (!node.location().valid()) {
@@ -58,40 +69,70 @@ public:
 
     void way(const osmium::Way& way) {
         if (is_building_tags(way.tags()) && way.is_closed()) keep_building_way_ring(way);
+        // Coastlines reach far beyond a clipped extract: they do not extend the data's bounds
+        // (the sea is clipped to the extract, see assemble_sea.h).
+        if (way.tags().has_tag("natural", "coastline")) {
+            report_.read("coastline ways");
+            if (keep_runs(way, data_.coastlines, false) == 0) report_.dropped("coastline ways", "nodes missing from extract");
+        }
+        if (way.tags().has_tag("natural", "tree_row")) {
+            report_.read("tree rows");
+            if (keep_runs(way, data_.tree_rows, true) == 0) report_.dropped("tree rows", "nodes missing from extract");
+        }
+        if (const char* railway = way.tags().get_value_by_key("railway")) {
+            if (!std::strcmp(railway, "rail") || !std::strcmp(railway, "tram") || !std::strcmp(railway, "light_rail") ||
+                !std::strcmp(railway, "subway")) {
+                report_.read("railway ways");
+                if (keep_runs(way, data_.railways, false) == 0) report_.dropped("railway ways", "nodes missing from extract");
+            }
+        }
         if (!way.tags().has_key("highway")) return;
         report_.read("highway ways");
-        // Cut the way into runs of nodes whose locations are known.
-        bool clipped = false;
-        int runs_kept = 0;
+        const int before = static_cast<int>(data_.highways.size());
+        const bool clipped = keep_runs(way, data_.highways, true) != way.nodes().size();
+        const int runs_kept = static_cast<int>(data_.highways.size()) - before;
+        if (runs_kept == 0) report_.dropped("highway ways", "nodes missing from extract");
+        else if (clipped) report_.note("highway ways", "clipped at extract edge");
+    }
+
+    // Cuts the way into runs of nodes whose locations are known and appends the runs of at
+    // least two nodes to `out`; returns how many nodes had a location.
+    size_t keep_runs(const osmium::Way& way, std::vector<OsmWay>& out, bool extend_bounds) {
+        size_t located = 0;
         OsmWay run;
-        auto flush = [&] {
-            if (run.nodes.size() >= 2) {
-                data_.highways.push_back(run);
-                ++runs_kept;
-            }
+        bool missing_before = false;  // a node of the way before the current run is missing
+        auto flush = [&](bool cut_after) {
+            run.cut_after = cut_after;
+            if (run.nodes.size() >= 2) out.push_back(run);
             run.nodes.clear();
             run.locations.clear();
         };
         for (const osmium::NodeRef& ref : way.nodes()) {
             if (!ref.location().valid()) {
-                clipped = true;
-                flush();
+                if (!run.nodes.empty()) flush(true);
+                missing_before = true;
                 continue;
             }
+            ++located;
             if (run.nodes.empty()) {
                 run.id = way.id();
                 run.tags = copy_tags(way.tags());
+                run.cut_before = missing_before;
             }
             run.nodes.push_back(ref.ref());
             run.locations.push_back(to_latlon(ref.location()));
-            extend(ref.location());
+            if (extend_bounds) extend(ref.location());
         }
-        flush();
-        if (runs_kept == 0) report_.dropped("highway ways", "nodes missing from extract");
-        else if (clipped) report_.note("highway ways", "clipped at extract edge");
+        if (!run.nodes.empty()) flush(false);
+        return located;
     }
 
     void area(const osmium::Area& area) {
+        const bool building = is_building_tags(area.tags());
+        if (!building) {
+            keep_land_cover(area);
+            return;
+        }
         OsmArea out;
         out.ref = {area.from_way() ? OsmType::Way : OsmType::Relation, area.orig_id()};
         out.tags = copy_tags(area.tags());
@@ -122,6 +163,30 @@ public:
         for (const OsmPolygon& p : out.polygons)
             for (const LatLon& l : p.outer) extend(osmium::Location(l.lon, l.lat));
         data_.building_areas.push_back(std::move(out));
+    }
+
+    // An area with a land cover class (build_land_cover.h); others that the filter let
+    // through (e.g. a closed highway=pedestrian way without area=yes) are ignored.
+    void keep_land_cover(const osmium::Area& area) {
+        OsmArea out;
+        out.tags = copy_tags(area.tags());
+        if (!land_cover_class(out.tags)) return;
+        out.ref = {area.from_way() ? OsmType::Way : OsmType::Relation, area.orig_id()};
+        report_.read("land cover areas");
+        for (const osmium::OuterRing& outer : area.outer_rings()) {
+            OsmPolygon polygon;
+            for (const osmium::NodeRef& ref : outer) polygon.outer.push_back(to_latlon(ref.location()));
+            for (const osmium::InnerRing& inner : area.inner_rings(outer)) {
+                polygon.inners.emplace_back();
+                for (const osmium::NodeRef& ref : inner) polygon.inners.back().push_back(to_latlon(ref.location()));
+            }
+            out.polygons.push_back(std::move(polygon));
+        }
+        if (out.polygons.empty()) {
+            report_.dropped("land cover areas", "invalid multipolygon (could not assemble)");
+            return;
+        }
+        data_.land_cover_areas.push_back(std::move(out));
     }
 
 private:
@@ -191,6 +256,9 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
         osmium::TagsFilter building_filter{false};
         building_filter.add_rule(true, osmium::TagMatcher{"building"});
         building_filter.add_rule(true, osmium::TagMatcher{"building:part"});
+        // Land cover goes through the same assembler (a superset of the keys that
+        // land_cover_class reads; Collector::area sorts the areas out).
+        for (const char* key : land_cover_keys()) building_filter.add_rule(true, osmium::TagMatcher{key});
         osmium::area::Assembler::config_type assembler_config;
         osmium::area::MultipolygonManager<osmium::area::Assembler> multipolygons{assembler_config,
                                                                                 building_filter};
@@ -255,9 +323,24 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
             });
         }
 
-        int64_t incomplete = 0;
-        multipolygons.for_each_incomplete_relation([&](const osmium::relations::RelationHandle&) { ++incomplete; });
+        int64_t incomplete = 0, incomplete_cover = 0;
+        multipolygons.for_each_incomplete_relation([&](const osmium::relations::RelationHandle& handle) {
+            if (is_building_tags(handle->tags())) ++incomplete;
+            else if (land_cover_class(copy_tags(handle->tags()))) ++incomplete_cover;
+        });
         if (incomplete) report.dropped("building relations", "members missing from extract", incomplete);
+        if (incomplete_cover) report.dropped("land cover areas", "relation members missing from extract", incomplete_cover);
+        {
+            osmium::io::Reader header_reader{file, osmium::osm_entity_bits::nothing};
+            const osmium::Box box = header_reader.header().box();
+            header_reader.close();
+            if (box.valid() && box.bottom_left().lat() < box.top_right().lat() &&
+                box.bottom_left().lon() < box.top_right().lon()) {
+                data.has_extract_bounds = true;
+                data.extract_min = to_latlon(box.bottom_left());
+                data.extract_max = to_latlon(box.top_right());
+            }
+        }
         report.read("building areas", static_cast<int64_t>(data.building_areas.size()));
     } catch (const Error&) {
         throw;

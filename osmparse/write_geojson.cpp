@@ -108,7 +108,12 @@ std::string scene_to_geojson(const Scene& scene) {
                                  std::to_string(r.from_node) + ",\"to_node\":" + std::to_string(r.to_node) +
                                  ",\"width\":" + num(r.width) + ",\"class\":\"" + class_name(r.road_class) +
                                  "\",\"lanes\":" + std::to_string(r.lanes) + ",\"oneway\":" + (r.oneway ? "true" : "false") +
-                                 ",\"bridge\":" + (r.bridge ? "true" : "false"));
+                                 ",\"bridge\":" + (r.bridge ? "true" : "false") +
+                                 ",\"lanes_forward\":" + std::to_string(r.lanes_forward) +
+                                 ",\"lanes_backward\":" + std::to_string(r.lanes_backward) +
+                                 ",\"centre_line\":" + std::to_string(static_cast<int>(r.centre_line)) +
+                                 ",\"edge_lines\":" + (r.edge_lines ? "true" : "false") +
+                                 ",\"cycle_lanes\":" + std::to_string(r.cycle_lane_left + r.cycle_lane_right));
     for (const Joint& j : scene.joints)
         w.polygon({&j.polygon}, "\"kind\":\"joint\",\"osm\":" + str(to_string(j.osm)) + ",\"edges\":" +
                                     std::to_string(j.edges.size()));
@@ -122,6 +127,29 @@ std::string scene_to_geojson(const Scene& scene) {
         w.point_feature({l.position.x, l.position.y},
                         "\"kind\":\"lamp\",\"osm\":" + str(to_string(l.osm)) + ",\"height\":" + num(l.height) +
                             ",\"source\":\"" + (l.source == LampSource::Tagged ? "tagged" : "generated") + "\"");
+    for (const LandCover& c : scene.land_cover) {
+        std::vector<const Ring*> rings{&c.outer};
+        for (const Ring& h : c.holes) rings.push_back(&h);
+        w.polygon(rings, "\"kind\":\"land_cover\",\"class\":\"" + std::string(to_string(c.cover)) +
+                             "\",\"osm\":" + str(to_string(c.osm)));
+    }
+    for (const PathEdge& p : scene.paths)
+        w.polygon({&p.quad}, "\"kind\":\"path\",\"class\":\"" + std::string(to_string(p.path_class)) +
+                                 "\",\"osm\":" + str(to_string(p.osm)) + ",\"width\":" + num(p.width) +
+                                 ",\"sidewalk\":" + (p.sidewalk ? "true" : "false"));
+    for (const Joint& j : scene.path_joints)
+        w.polygon({&j.polygon}, "\"kind\":\"path_joint\",\"osm\":" + str(to_string(j.osm)));
+    for (const Crossing& c : scene.crossings)
+        w.point_feature(c.position, std::string("\"kind\":\"") +
+                                        (c.kind == CrossingKind::Zebra ? "zebra_crossing" : "stop_line") +
+                                        "\",\"osm\":" + str(to_string(c.osm)) + ",\"road\":" +
+                                        str(to_string(scene.roads[c.road].osm)));
+    for (const Tree& t : scene.trees)
+        w.point_feature(t.position, "\"kind\":\"tree\",\"osm\":" + str(to_string(t.osm)) + ",\"height\":" +
+                                        num(t.height) + ",\"crown_diameter\":" + num(t.crown_diameter) +
+                                        ",\"leaf_type\":\"" +
+                                        (t.leaf_type == LeafType::Needleleaved ? "needleleaved" : "broadleaved") +
+                                        "\",\"source\":\"" + to_string(t.source) + "\"");
     return w.finish();
 }
 

@@ -45,6 +45,13 @@ double phong_pdf(const Material& m, Vec3 n, Vec3 wo, Vec3 wi) {
     return (m.exponent + 1) / (2 * kPi) * std::pow(c, m.exponent);
 }
 
+// Schlick's Fresnel reflectance of a water surface seen at cos_o from its normal.
+double water_fresnel(const Material& m, double cos_o) {
+    const double r0 = ((1 - m.ior) / (1 + m.ior)) * ((1 - m.ior) / (1 + m.ior));
+    const double c = 1 - std::clamp(cos_o, 0.0, 1.0);
+    return r0 + (1 - r0) * c * c * c * c * c;
+}
+
 }  // namespace
 
 double luminance(Color c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
@@ -58,6 +65,7 @@ Vec3 sample_cone(Vec3 axis, double cos_max, double u1, double u2) {
 Color bsdf_eval(const Material& m, Vec3 n, Vec3 wo, Vec3 wi) {
     if (dot(n, wi) <= 0 || dot(n, wo) <= 0) return {0, 0, 0};
     Color f = m.albedo * (1 / kPi);
+    if (m.type == MaterialType::Water) return f * (1 - water_fresnel(m, dot(n, wo)));  // the body; reflection is delta
     if (m.type == MaterialType::Glossy) {
         // Normalised modified Phong: energy conserving for any exponent.
         const double c = std::max(0.0, dot(reflect(wo, n), wi));
@@ -69,6 +77,7 @@ Color bsdf_eval(const Material& m, Vec3 n, Vec3 wo, Vec3 wi) {
 double bsdf_pdf(const Material& m, Vec3 n, Vec3 wo, Vec3 wi) {
     const double cos_i = dot(n, wi);
     if (cos_i <= 0) return 0;
+    if (m.type == MaterialType::Water) return (1 - water_fresnel(m, dot(n, wo))) * cos_i / kPi;
     if (m.type != MaterialType::Glossy) return cos_i / kPi;
     const double ps = specular_choice(m);
     return (1 - ps) * cos_i / kPi + ps * phong_pdf(m, n, wo, wi);
@@ -104,6 +113,28 @@ bool bsdf_sample(const Material& m, Vec3 n, Vec3 wo, double u1, double u2, doubl
             // Choosing reflection with probability F makes the weight exactly the tint.
             if (u3 < fresnel) out.wi = reflect(wo, nn);
             else out.wi = normalize(wo * -eta + nn * (eta * cos_i - cos_t));
+            return true;
+        }
+        case MaterialType::Water: {
+            // Mirror reflection with probability F (weight 1: the tint is `specular`), else the
+            // body scatters diffusely (weight = albedo, as F cancels).
+            const double cos_o = dot(n, wo);
+            if (cos_o <= 0) return false;
+            const double fresnel = water_fresnel(m, cos_o);
+            if (u3 < fresnel) {
+                out.wi = reflect(wo, n);
+                out.weight = m.specular;
+                out.delta = true;
+                out.pdf = 1;
+                return true;
+            }
+            out.wi = around(n, std::sqrt(u1), 2 * kPi * u2);
+            const double cos_i = dot(n, out.wi);
+            if (cos_i <= 0) return false;
+            out.delta = false;
+            out.pdf = (1 - fresnel) * cos_i / kPi;
+            if (!(out.pdf > 0)) return false;
+            out.weight = m.albedo;
             return true;
         }
         case MaterialType::Diffuse:

@@ -2,7 +2,11 @@
 
 #include <string>
 
+#include "land_cover_geometry.h"
+#include "path_geometry.h"
 #include "procedural_geometry.h"
+#include "road_markings.h"
+#include "tree_geometry.h"
 #include "stored_geometry.h"
 
 namespace citygen {
@@ -18,12 +22,31 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     else render_scene->add(stored(build_stored_buildings(scene, facades, &geometry_progress)));
     if (procedural(GeometryClass::Terrain)) render_scene->add(build_procedural_terrain(scene));
     else render_scene->add(stored(build_stored_terrain(scene)));
-    if (procedural(GeometryClass::Roads)) render_scene->add(build_procedural_roads(scene));
-    else render_scene->add(stored(build_stored_roads(scene)));
-    if (procedural(GeometryClass::Joints)) render_scene->add(build_procedural_joints(scene));
-    else render_scene->add(stored(build_stored_joints(scene)));
+    // Markings and asphalt grain are painted at shading time (road_markings.h), in both modes.
+    if (procedural(GeometryClass::Roads)) render_scene->add(with_road_markings(build_procedural_roads(scene), scene));
+    else render_scene->add(with_road_markings(stored(build_stored_roads(scene)), scene));
+    if (procedural(GeometryClass::Joints)) render_scene->add(with_asphalt_grain(build_procedural_joints(scene)));
+    else render_scene->add(with_asphalt_grain(stored(build_stored_joints(scene))));
     if (procedural(GeometryClass::Sidewalks)) render_scene->add(build_procedural_sidewalks(scene));
     else render_scene->add(stored(build_stored_sidewalks(scene)));
+    // The map beyond roads (format 1.1); empty classes add no geometry.
+    if (!scene.land_cover.empty()) {
+        if (procedural(GeometryClass::LandCover)) render_scene->add(with_water_waves(build_procedural_land_cover(scene)));
+        else render_scene->add(with_water_waves(stored(build_stored_land_cover(scene))));
+    }
+    if (!scene.paths.empty()) {
+        if (procedural(GeometryClass::Paths)) {
+            render_scene->add(with_rail_tracks(build_procedural_paths(scene), scene));
+            if (!scene.path_joints.empty()) render_scene->add(build_procedural_path_joints(scene));
+        } else {
+            render_scene->add(with_rail_tracks(stored(build_stored_paths(scene)), scene));
+            if (!scene.path_joints.empty()) render_scene->add(stored(build_stored_path_joints(scene)));
+        }
+    }
+    if (!scene.trees.empty()) {
+        if (procedural(GeometryClass::Trees)) render_scene->add(build_procedural_trees(scene));
+        else render_scene->add(build_stored_trees(scene));
+    }
     geometry_progress.finish();
     render_scene->commit(progress);
     return render_scene;

@@ -28,7 +28,9 @@ void export_ply(const RenderScene& scene, const MaterialTable& materials, const 
         vertices += mesh->vertex_count();
         faces += mesh->triangle_count();
     }
-    static const char* const kTypeNames[] = {"diffuse", "glossy", "mirror", "glass"};
+    static const char* const kTypeNames[] = {"diffuse", "glossy", "mirror", "glass", "water"};
+    static_assert(sizeof kTypeNames / sizeof *kTypeNames == static_cast<int>(MaterialType::Water) + 1,
+                  "a name for every MaterialType");
     std::string material_comments;
     for (size_t id = 0; id < materials.size(); ++id) {
         const Material& m = materials[id];

@@ -13,6 +13,10 @@ const char* to_string(ObjectKind kind) {
         case ObjectKind::Sidewalk: return "sidewalk";
         case ObjectKind::Terrain: return "terrain";
         case ObjectKind::Lamp: return "lamp";
+        case ObjectKind::LandCover: return "land_cover";
+        case ObjectKind::Tree: return "tree";
+        case ObjectKind::Path: return "path";
+        case ObjectKind::PathJoint: return "path_joint";
     }
     return "?";
 }
@@ -34,6 +38,9 @@ const char* to_string(GeometryClass c) {
         case GeometryClass::Joints: return "joints";
         case GeometryClass::Sidewalks: return "sidewalks";
         case GeometryClass::Terrain: return "terrain";
+        case GeometryClass::LandCover: return "land-cover";
+        case GeometryClass::Trees: return "trees";
+        case GeometryClass::Paths: return "paths";
     }
     return "?";
 }

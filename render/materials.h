@@ -17,6 +17,8 @@ enum class MaterialType : uint8_t {
     Glossy,   // Lambertian `albedo` plus a normalised Phong lobe `specular` with `exponent`
     Mirror,   // perfect reflection scaled by `specular`
     Glass,    // smooth dielectric with index `ior`, Schlick Fresnel, tinted by `specular`
+    Water,    // a smooth surface over a dark body: mirror reflection with Schlick Fresnel
+              // (index `ior`), else Lambertian `albedo` (the water's colour seen from above)
 };
 
 struct Material {
@@ -45,6 +47,27 @@ enum MaterialId : uint16_t {
     kBalcony,
     kFence,
     kShopWindow,
+    // Land cover (one per LandCoverClass), trees and paint (the map's content, format 1.1).
+    kWater,
+    kSea,
+    kGrass,
+    kForestFloor,
+    kPaving,
+    kSand,
+    kFarmland,
+    kUrbanGround,
+    kBark,
+    kLeavesBroad,
+    kLeavesNeedle,
+    kPaintWhite,
+    kPaintYellow,
+    kPathPaving,
+    kCyclewaySurface,
+    kGravel,
+    kBallast,
+    kRailSteel,
+    kSleeper,
+    kAsphaltLight,  // asphalt grain: a lighter speckle of the same asphalt
     kStockMaterialCount
 };
 

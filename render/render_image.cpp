@@ -27,7 +27,7 @@ void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, s
     if (!context.scene.intersect(ray, hit)) return;  // AOVs stay zero for the sky
     const Material m = surface_material(context.materials, context.building_looks, hit);
     const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
-    const Color albedo = m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy ? m.albedo : m.specular;
+    const Color albedo = m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy || m.type == MaterialType::Water ? m.albedo : m.specular;
     film.depth[i] = static_cast<float>(hit.t);
     for (int c = 0; c < 3; ++c) {
         film.normal[3 * i + c] = static_cast<float>(n[c]);

@@ -22,6 +22,9 @@ void print_scene_info(const Scene& scene, FILE* out) {
                  scene.lamps.size());
     std::fprintf(out, "buildings: %zu\nroads: %zu\njoints: %zu\nsidewalks: %zu\nlamps: %zu\n", scene.buildings.size(),
                  scene.roads.size(), scene.joints.size(), scene.sidewalks.size(), scene.lamps.size());
+    std::fprintf(out, "land_cover: %zu\ntrees: %zu\npaths: %zu\npath_joints: %zu\ncrossings: %zu\n",
+                 scene.land_cover.size(), scene.trees.size(), scene.paths.size(), scene.path_joints.size(),
+                 scene.crossings.size());
     std::fprintf(out, "bounds_min: %.3f %.3f\nbounds_max: %.3f %.3f\n", scene.header.bounds_min.x,
                  scene.header.bounds_min.y, scene.header.bounds_max.x, scene.header.bounds_max.y);
 }

@@ -56,6 +56,11 @@ def make_material(m):
         bsdf.inputs["Transmission"].default_value = 1.0
         bsdf.inputs["Roughness"].default_value = 0.0
         bsdf.inputs["IOR"].default_value = m["ior"]
+    elif kind == "water":
+        # A smooth dielectric over the water's body colour: F0 = 0.08 * Specular = 0.02.
+        bsdf.inputs["Base Color"].default_value = (*m["albedo"], 1)
+        bsdf.inputs["Roughness"].default_value = 0.0
+        bsdf.inputs["Specular"].default_value = 0.25
     elif kind == "mirror":
         bsdf.inputs["Base Color"].default_value = (*m["specular"], 1)
         bsdf.inputs["Metallic"].default_value = 1.0

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "pipeline.h"
+#include "polygon_overlap.h"
 #include "scene_io.h"
 
 using namespace citygen;
@@ -83,6 +84,33 @@ TEST_P(RealExtract, EveryStoredRingIsSimpleOrientedAndPositive) {
         EXPECT_GE(b.min_height, 0) << who;
         EXPECT_LE(b.height, 1000) << who;
         EXPECT_GE(b.levels, 1) << who;
+    }
+    // Paths (format 1.1): convex-or-simple CCW strips; trees: none in a building or on a road.
+    for (const PathEdge& p : scene.paths) {
+        ASSERT_EQ(p.quad.size(), 4u) << to_string(p.osm);
+        EXPECT_TRUE(ring_is_simple(p.quad)) << to_string(p.osm);
+        EXPECT_GT(signed_area(p.quad), 0) << to_string(p.osm);
+    }
+    {
+        const BuildingIndex buildings(scene.buildings);
+        std::vector<Building> surface;
+        for (const RoadEdge& r : scene.roads) surface.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
+        for (const Joint& j : scene.joints) surface.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
+        const BuildingIndex roads(surface);
+        for (const Tree& t : scene.trees) {
+            EXPECT_FALSE(buildings.contains(t.position)) << "tree " << to_string(t.osm) << " in a building";
+            EXPECT_FALSE(roads.contains(t.position)) << "tree " << to_string(t.osm) << " on a road";
+        }
+    }
+    // Land cover (format 1.1), as stored: simple, outer counter-clockwise, holes clockwise inside.
+    for (const LandCover& c : scene.land_cover) {
+        const std::string who = std::string(to_string(c.cover)) + " " + to_string(c.osm);
+        ASSERT_TRUE(ring_is_simple(c.outer)) << who;
+        EXPECT_GT(signed_area(c.outer), 0) << who;
+        for (const Ring& hole : c.holes) {
+            ASSERT_TRUE(ring_is_simple(hole)) << who;
+            EXPECT_LT(signed_area(hole), 0) << who;
+        }
     }
 }
 

@@ -1,0 +1,226 @@
+#include "place_trees.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <unordered_map>
+
+#include "clean_footprint.h"
+#include "osm_units.h"
+#include "polygon_overlap.h"
+#include "rng.h"
+
+namespace citygen {
+
+namespace {
+
+constexpr double kMinHeight = 1, kMaxHeight = 80, kMinCrown = 0.5, kMaxCrown = 40;
+constexpr double kTrunkClearance = 0.75;  // metres a trunk keeps from roads and buildings
+
+Building as_polygon(const Ring& outer, const std::vector<Ring>& holes = {}) {
+    Building b;
+    b.outer = outer;
+    b.holes = holes;
+    return b;
+}
+
+// Points already placed, bucketed for "is one within r" queries.
+class PointGrid {
+public:
+    explicit PointGrid(double cell) : cell_(std::max(cell, 0.5)) {}
+    void add(Vec2 p) { cells_[key(cell_of(p.x), cell_of(p.y))].push_back(p); }
+    bool any_within(Vec2 p, double r) const {
+        const int64_t cx = cell_of(p.x), cy = cell_of(p.y), reach = static_cast<int64_t>(std::ceil(r / cell_));
+        for (int64_t x = cx - reach; x <= cx + reach; ++x)
+            for (int64_t y = cy - reach; y <= cy + reach; ++y) {
+                auto it = cells_.find(key(x, y));
+                if (it == cells_.end()) continue;
+                for (Vec2 q : it->second)
+                    if (length(q - p) < r) return true;
+            }
+        return false;
+    }
+
+private:
+    int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
+    static int64_t key(int64_t x, int64_t y) { return x * 73856093 ^ y * 19349663; }
+    double cell_;
+    std::unordered_map<int64_t, std::vector<Vec2>> cells_;
+};
+
+// The point moved just outside the nearest edge of a CCW ring.
+Vec2 push_out_of(const Ring& ring, Vec2 p, double margin) {
+    double best = 1e300;
+    Vec2 out = p;
+    for (size_t i = 0, n = ring.size(); i < n; ++i) {
+        const Vec2 a = ring[i], b = ring[(i + 1) % n], ab = b - a;
+        const double t = std::clamp(dot(p - a, ab) / std::max(dot(ab, ab), 1e-12), 0.0, 1.0);
+        const Vec2 c = a + ab * t;
+        if (length(p - c) < best) {
+            best = length(p - c);
+            out = c + normalize(Vec2(ab.y, -ab.x)) * margin;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+Tree tree_from_tags(const OsmTags& tags, ParseReport& report, const char* kind) {
+    Tree t;
+    const char* leaf = tags.get("leaf_type");
+    t.leaf_type = leaf && !std::strcmp(leaf, "needleleaved") ? LeafType::Needleleaved : LeafType::Broadleaved;
+    const bool needle = t.leaf_type == LeafType::Needleleaved;
+    t.height = needle ? 14 : 10;
+    t.crown_diameter = needle ? 5 : 7;
+    for (const char* key : {"height", "est_height"}) {
+        const char* text = tags.get(key);
+        if (!text) continue;
+        const std::optional<double> h = parse_osm_length(text);
+        if (h && *h >= kMinHeight && *h <= kMaxHeight) {
+            t.height = *h;
+            break;
+        }
+        report.note(kind, std::string(key) + " unusable, default used");
+    }
+    if (const char* text = tags.get("diameter_crown")) {
+        const std::optional<double> d = parse_osm_length(text);
+        if (d && *d >= kMinCrown && *d <= kMaxCrown) t.crown_diameter = *d;
+        else report.note(kind, "diameter_crown unusable, default used");
+    }
+    // A crown wider than the tree is tall reads as a bush: keep it in proportion.
+    t.crown_diameter = std::min(t.crown_diameter, 1.2 * t.height);
+    return t;
+}
+
+std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, const Scene& scene,
+                              const TreeParams& params, uint64_t seed, ParseReport& report) {
+    std::vector<Tree> trees;
+    if (params.mode == TreeMode::None) return trees;
+
+    const BuildingIndex buildings(scene.buildings);
+    std::vector<Building> surface_pieces;  // road quads and joints
+    for (const RoadEdge& r : scene.roads) surface_pieces.push_back(as_polygon(r.quad));
+    for (const Joint& j : scene.joints) surface_pieces.push_back(as_polygon(j.polygon));
+    const BuildingIndex surface(surface_pieces);
+    std::vector<Building> path_pieces;  // paths, rails and their joints
+    for (const PathEdge& p : scene.paths) path_pieces.push_back(as_polygon(p.quad));
+    for (const Joint& j : scene.path_joints) path_pieces.push_back(as_polygon(j.polygon));
+    const BuildingIndex paths(path_pieces);
+    std::vector<Building> water_pieces;
+    for (const LandCover& c : scene.land_cover)
+        if (c.cover == LandCoverClass::Water || c.cover == LandCoverClass::Sea)
+            water_pieces.push_back(as_polygon(c.outer, c.holes));
+    const BuildingIndex water(water_pieces, 200);
+
+    auto surface_containing = [&](Vec2 p) -> const Ring* {
+        Box2 box;
+        box.extend(p);
+        for (uint32_t i : surface.near(box))
+            if (point_in_ring(p, surface_pieces[i].outer)) return &surface_pieces[i].outer;
+        return nullptr;
+    };
+    // Free ground for a trunk: off roads and buildings by kTrunkClearance, off paths, out of water.
+    auto free_ground = [&](Vec2 p) {
+        if (water.contains(p) || paths.contains(p)) return false;
+        for (Vec2 d : {Vec2{0, 0}, Vec2{kTrunkClearance, 0}, Vec2{-kTrunkClearance, 0}, Vec2{0, kTrunkClearance},
+                       Vec2{0, -kTrunkClearance}})
+            if (buildings.contains(p + d) || surface_containing(p + d)) return false;
+        return true;
+    };
+
+    // 1. Mapped trees.
+    const char* const kMapped = "mapped trees";
+    for (const OsmNode& node : osm.trees) {
+        Tree t = tree_from_tags(node.tags, report, kMapped);
+        t.osm = {OsmType::Node, node.id};
+        t.source = TreeSource::Mapped;
+        Vec2 p = round_to_stored_precision(projection.to_local(node.location.lat, node.location.lon));
+        if (const Ring* ring = surface_containing(p)) {
+            p = push_out_of(*ring, p, kTrunkClearance + 0.05);
+            report.note(kMapped, "moved off the road surface");
+        }
+        if (buildings.contains(p) || surface_containing(p) || water.contains(p)) {
+            report.dropped(kMapped, "in a building, on a road or in water");
+            continue;
+        }
+        t.position = p;
+        trees.push_back(t);
+    }
+    report.kept(kMapped, static_cast<int64_t>(trees.size()));
+
+    // 2. Tree rows: one tree every row_spacing metres along the way, half a step in from its ends.
+    const char* const kRows = "tree row trees";
+    size_t row_trees = 0;
+    for (const OsmWay& way : osm.tree_rows) {
+        Tree proto = tree_from_tags(way.tags, report, kRows);
+        proto.osm = {OsmType::Way, way.id};
+        proto.source = TreeSource::Row;
+        std::vector<Vec2> pts;
+        for (const LatLon& l : way.locations) pts.push_back(projection.to_local(l.lat, l.lon));
+        double carried = 0.5 * params.row_spacing;  // distance to the next tree
+        for (size_t i = 0; i + 1 < pts.size(); ++i) {
+            const Vec2 a = pts[i], b = pts[i + 1];
+            const double len = length(b - a);
+            double s = carried;
+            for (; s <= len; s += params.row_spacing) {
+                const Vec2 p = round_to_stored_precision(a + (b - a) * (s / len));
+                report.read(kRows);
+                if (!free_ground(p)) {
+                    report.dropped(kRows, "on a road, in a building or in water");
+                    continue;
+                }
+                Tree t = proto;
+                t.position = p;
+                trees.push_back(t);
+                ++row_trees;
+            }
+            carried = s - len;
+        }
+    }
+    report.kept(kRows, static_cast<int64_t>(row_trees));
+    if (params.mode == TreeMode::Mapped) return trees;
+
+    // 3. Forests: dart throwing with a least distance (Poisson-disk), seeded per polygon.
+    const char* const kScattered = "forest trees";
+    PointGrid placed(params.forest_spacing);
+    for (const Tree& t : trees) placed.add(t.position);
+    size_t scattered = 0;
+    for (size_t index = 0; index < scene.land_cover.size(); ++index) {
+        const LandCover& forest = scene.land_cover[index];
+        if (forest.cover != LandCoverClass::Forest) continue;
+        double area = std::fabs(signed_area(forest.outer));
+        for (const Ring& h : forest.holes) area -= std::fabs(signed_area(h));
+        const Box2 box = bounds_of(forest.outer);
+        const double r = params.forest_spacing;
+        const size_t attempts = static_cast<size_t>(std::ceil(3 * area / (r * r)));
+        Rng rng(hash_keys(seed, static_cast<uint64_t>(forest.osm.id), static_cast<uint64_t>(forest.osm.type), index));
+        for (size_t k = 0; k < attempts && scattered < params.max_scattered; ++k) {
+            const Vec2 p = round_to_stored_precision({box.min.x + rng.next_double() * (box.max.x - box.min.x),
+                                                      box.min.y + rng.next_double() * (box.max.y - box.min.y)});
+            const double u = rng.next_double(), v = rng.next_double(), w = rng.next_double();
+            if (!point_in_ring(p, forest.outer)) continue;
+            bool in_hole = false;
+            for (const Ring& h : forest.holes) in_hole = in_hole || point_in_ring(p, h);
+            if (in_hole || placed.any_within(p, r) || !free_ground(p)) continue;
+            Tree t;
+            t.osm = forest.osm;
+            t.source = TreeSource::Scattered;
+            t.position = p;
+            t.leaf_type = u < 0.5 ? LeafType::Needleleaved : LeafType::Broadleaved;
+            t.height = 12 + 10 * v;
+            t.crown_diameter = (t.leaf_type == LeafType::Needleleaved ? 4 : 6) + 3 * w;
+            trees.push_back(t);
+            placed.add(p);
+            ++scattered;
+        }
+        if (scattered >= params.max_scattered) {
+            report.note(kScattered, "cap reached: forests only partly filled");
+            break;
+        }
+    }
+    report.kept(kScattered, static_cast<int64_t>(scattered));
+    return trees;
+}
+
+}  // namespace citygen

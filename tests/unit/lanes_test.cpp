@@ -1,0 +1,123 @@
+// Lanes and markings: the lane layout from tags, width from lanes and their extras, zebra
+// crossings and stop lines placed on their road, and the painted pattern render evaluates.
+#include <gtest/gtest.h>
+
+#include "build_road_graph.h"
+#include "lay_out_lanes.h"
+#include "materials.h"
+#include "pipeline.h"
+#include "road_markings.h"
+
+using namespace citygen;
+
+namespace {
+
+OsmTags tags(std::vector<std::pair<std::string, std::string>> entries) {
+    OsmTags t;
+    t.entries = std::move(entries);
+    return t;
+}
+
+const RoadEdge* road_of_way(const Scene& s, int64_t way) {
+    for (const RoadEdge& r : s.roads)
+        if (r.osm.id == way) return &r;
+    return nullptr;
+}
+
+}  // namespace
+
+TEST(LaneLayout, FromTagsAndDefaults) {
+    LaneLayout l = lane_layout(tags({{"lanes", "4"}}), RoadClass::Primary, 12, nullptr);
+    EXPECT_EQ(l.forward, 2);
+    EXPECT_EQ(l.backward, 2);
+    EXPECT_EQ(l.centre, CentreLine::Double);
+    EXPECT_TRUE(l.edge_lines);
+    l = lane_layout(tags({{"lanes", "3"}, {"lanes:forward", "2"}}), RoadClass::Secondary, 9, nullptr);
+    EXPECT_EQ(l.forward, 2);
+    EXPECT_EQ(l.backward, 1);
+    EXPECT_EQ(l.centre, CentreLine::Solid);
+    l = lane_layout(tags({{"oneway", "yes"}, {"turn:lanes", "left|through|right"}}), RoadClass::Tertiary, 9, nullptr);
+    EXPECT_EQ(l.forward, 3);
+    EXPECT_EQ(l.backward, 0);
+    EXPECT_EQ(l.centre, CentreLine::None);
+    l = lane_layout(tags({{"oneway", "-1"}}), RoadClass::Residential, 4, nullptr);
+    EXPECT_EQ(l.forward, 0);
+    EXPECT_EQ(l.backward, 1);
+    l = lane_layout(tags({}), RoadClass::Residential, 6, nullptr);
+    EXPECT_EQ(l.centre, CentreLine::Dashed);
+    EXPECT_FALSE(l.edge_lines);
+    l = lane_layout(tags({}), RoadClass::Service, 3.5, nullptr);
+    EXPECT_EQ(l.forward + l.backward, 1);
+    EXPECT_EQ(l.centre, CentreLine::None);
+    ParseReport report;
+    l = lane_layout(tags({{"lanes", "banana"}}), RoadClass::Residential, 6, &report);
+    EXPECT_EQ(l.forward + l.backward, 2);
+    EXPECT_EQ(report.note_count("road lanes", "lanes unusable, fell back"), 1);
+}
+
+TEST(LaneLayout, CycleBusAndParkingLanesWidenAnUntaggedRoad) {
+    EXPECT_DOUBLE_EQ(lane_extras_width(tags({})), 0);
+    EXPECT_DOUBLE_EQ(lane_extras_width(tags({{"cycleway", "lane"}})), 3.0);
+    EXPECT_DOUBLE_EQ(lane_extras_width(tags({{"cycleway:right", "lane"}})), 1.5);
+    EXPECT_DOUBLE_EQ(lane_extras_width(tags({{"parking:lane:both", "parallel"}})), 4.0);
+    EXPECT_DOUBLE_EQ(lane_extras_width(tags({{"busway:left", "lane"}})), 3.0);
+    RoadParams params;
+    EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "primary"}, {"lanes", "4"}, {"cycleway", "lane"}}), params, nullptr),
+                     15.0);
+    EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "primary"}, {"width", "10"}, {"cycleway", "lane"}}), params, nullptr),
+                     10.0);  // a tagged width already holds them
+}
+
+TEST(Markings, FixtureHasLanesAZebraAndAStopLine) {
+    ParseJob job;
+    job.input = std::string(CITYGEN_SOURCE_DIR) + "/tests/data/map_lanes.osm";
+    job.quiet = true;
+    ParseReport report;
+    const Scene s = parse_osm_to_scene(job, report);
+    const RoadEdge* primary = road_of_way(s, 10);
+    ASSERT_NE(primary, nullptr);
+    EXPECT_DOUBLE_EQ(primary->width, 15.0);
+    EXPECT_EQ(primary->lanes_forward, 2);
+    EXPECT_EQ(primary->centre_line, CentreLine::Double);
+    EXPECT_TRUE(primary->cycle_lane_left && primary->cycle_lane_right);  // cycleway=lane
+    ASSERT_EQ(s.crossings.size(), 2u);  // the unmarked crossing is not painted
+    const Crossing* zebra = nullptr;
+    const Crossing* stop = nullptr;
+    for (const Crossing& c : s.crossings) (c.kind == CrossingKind::Zebra ? zebra : stop) = &c;
+    ASSERT_TRUE(zebra && stop);
+    EXPECT_EQ(s.roads[zebra->road].osm.id, 12);
+    EXPECT_EQ(s.roads[stop->road].osm.id, 10);
+    EXPECT_EQ(stop->side, RoadSide::Right);  // towards the junction at the road's `to` end
+    EXPECT_EQ(report.note_count("road lanes", "lanes unusable, fell back"), 1);
+
+    // The painted pattern: zebra stripes alternate across the road at the crossing.
+    const RoadEdge& street = s.roads[zebra->road];
+    const Vec2 d = normalize(street.centreline.back() - street.centreline.front()), n = perp_left(d);
+    const std::vector<const Crossing*> on_street{zebra};
+    int paint = 0, bare = 0;
+    for (double x = -2.6; x <= 2.6; x += 0.1) {
+        const uint16_t m = road_surface_material(street, on_street, zebra->position + n * x);
+        paint += m == kPaintWhite;
+        bare += m == kAsphalt || m == kAsphaltLight;
+    }
+    EXPECT_GT(paint, 15);
+    EXPECT_GT(bare, 15);
+    // Away from the crossing: the dashed centre line, asphalt beside it.
+    const Vec2 mid = zebra->position + d * 20;
+    bool centre_painted = false;
+    for (double t = 0; t < 9; t += 0.5)
+        centre_painted |= road_surface_material(street, on_street, mid + d * t) == kPaintWhite;
+    EXPECT_TRUE(centre_painted);
+    EXPECT_NE(road_surface_material(street, on_street, mid + n * 1.5), kPaintWhite);
+    // The primary's edge line, 0.3 m inside its edge; its stop line across the right half only.
+    const std::vector<const Crossing*> on_primary{stop};
+    const Vec2 pd = normalize(primary->centreline.back() - primary->centreline.front()), pn = perp_left(pd);
+    const Vec2 far = primary->centreline.front() + pd * 30;
+    EXPECT_EQ(road_surface_material(*primary, on_primary, far + pn * (0.5 * primary->width - 0.3)), kPaintWhite);
+    EXPECT_EQ(road_surface_material(*primary, on_primary, stop->position - pn * 4.1), kPaintWhite);
+    EXPECT_NE(road_surface_material(*primary, on_primary, stop->position + pn * 4.1), kPaintWhite);
+    // The cycle lanes' lines 1.5 m inside each edge, bare asphalt in the cycle lane.
+    EXPECT_EQ(road_surface_material(*primary, on_primary, far + pn * (0.5 * primary->width - 1.5)), kPaintWhite);
+    EXPECT_EQ(road_surface_material(*primary, on_primary, far - pn * (0.5 * primary->width - 1.5)), kPaintWhite);
+    EXPECT_NE(road_surface_material(*primary, on_primary, far - pn * (0.5 * primary->width - 0.9)), kPaintWhite);
+}
