@@ -3,6 +3,7 @@
 #include <string>
 
 #include "procedural_geometry.h"
+#include "procedural_lamps.h"
 #include "stored_geometry.h"
 
 namespace citygen {
@@ -24,6 +25,8 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     else render_scene->add(stored(build_stored_joints(scene)));
     if (procedural(GeometryClass::Sidewalks)) render_scene->add(build_procedural_sidewalks(scene));
     else render_scene->add(stored(build_stored_sidewalks(scene)));
+    if (procedural(GeometryClass::Lamps)) render_scene->add(build_procedural_lamps(scene));
+    else render_scene->add(stored(build_stored_lamps(scene)));
     geometry_progress.finish();
     render_scene->commit(progress);
     return render_scene;

@@ -34,6 +34,7 @@ const char* to_string(GeometryClass c) {
         case GeometryClass::Joints: return "joints";
         case GeometryClass::Sidewalks: return "sidewalks";
         case GeometryClass::Terrain: return "terrain";
+        case GeometryClass::Lamps: return "lamps";
     }
     return "?";
 }

@@ -17,6 +17,9 @@ MaterialTable default_materials() {
     t[kBalcony] = {"balcony", MaterialType::Diffuse, {0.5, 0.5, 0.48}, {}, 1, 1.5, {}};
     t[kFence] = {"fence", MaterialType::Glossy, {0.05, 0.05, 0.06}, {0.2, 0.2, 0.2}, 60, 1.5, {}};
     t[kShopWindow] = {"shop_window", MaterialType::Glass, {0, 0, 0}, {0.95, 0.97, 1.0}, 1, 1.5, {}};
+    t[kLampPole] = {"lamp_pole", MaterialType::Glossy, {0.04, 0.045, 0.05}, {0.15, 0.15, 0.15}, 30, 1.5, {}};
+    t[kLampGlobe] = {"lamp_globe", MaterialType::Diffuse, {0.8, 0.8, 0.8}, {}, 1, 1.5, {}};
+    t[kLampCap] = {"lamp_cap", MaterialType::Glossy, {0.04, 0.045, 0.05}, {0.15, 0.15, 0.15}, 30, 1.5, {}};
     return t;
 }
 

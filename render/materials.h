@@ -45,6 +45,10 @@ enum MaterialId : uint16_t {
     kBalcony,
     kFence,
     kShopWindow,
+    // Street lamps (lamp_shape.h); the globe's emission is set from --lamp-power/--lamp-kelvin.
+    kLampPole,
+    kLampGlobe,
+    kLampCap,
     kStockMaterialCount
 };
 
