@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "bsdf.h"
+#include "scene_lights.h"
 
 namespace citygen {
 
@@ -35,6 +36,10 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
     Color radiance{0, 0, 0}, throughput{1, 1, 1};
     bool previous_delta = true;  // the camera ray counts as delta: it sees the sun at full weight
     double previous_pdf = 0;
+    // Lamps and windows: where the previous bounce was (for the MIS weight of an emitter hit).
+    const SceneLights* lights = context.lights && !context.lights->empty() ? context.lights : nullptr;
+    const bool sample_lights = lights && settings.sample_lights;
+    Vec3 previous_position, previous_normal;
 
     for (int bounce = 0;; ++bounce) {
         Hit hit;
@@ -52,11 +57,43 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         const Vec3 wo = -ray.direction;
         const bool front = dot(hit.geometric_normal, wo) > 0;
         if (front) radiance = radiance + throughput * material.emission;
+        if (front && lights) {
+            const Color emitted = lights->emitted(hit);
+            if (emitted.x + emitted.y + emitted.z > 0) {
+                const double w = previous_delta || !sample_lights
+                                     ? 1
+                                     : power_heuristic(previous_pdf, lights->pdf(previous_position, previous_normal, hit));
+                radiance = radiance + throughput * emitted * w;
+            }
+        }
         if (bounce >= settings.max_depth) break;
 
         // Normal on the side the ray came from; glass wants the true outward normal.
         const Vec3 n = front ? hit.geometric_normal : -hit.geometric_normal;
         const bool delta = is_delta(material);
+
+        if (lights) {
+            // One lamp or window through the light sampler, MIS-weighted against BSDF sampling.
+            // Four numbers drawn whatever the material, so streams stay aligned.
+            const double u[4] = {rng.next_double(), rng.next_double(), rng.next_double(), rng.next_double()};
+            LightSample ls;
+            if (!delta && sample_lights && lights->sample(hit.position, n, u, &ls)) {
+                const double cos_i = dot(n, ls.direction);
+                const Color f = cos_i > 0 ? bsdf_eval(material, n, wo, ls.direction) : Color{0, 0, 0};
+                if (f.x + f.y + f.z > 0 && ls.pdf > 0) {
+                    const Vec3 origin = offset_origin(hit.position, n);
+                    const Vec3 to = ls.position - origin;
+                    const double distance = length(to);
+                    // Stop short of the emitter: stored lamp globes are facets around the analytic sphere.
+                    Ray shadow{origin, to * (1 / distance), 0, distance * (1 - 1e-6) - 2e-3};
+                    ++rays;
+                    if (shadow.tmax > 0 && !context.scene.occluded(shadow)) {
+                        const double w = power_heuristic(ls.pdf, bsdf_pdf(material, n, wo, ls.direction));
+                        radiance = radiance + throughput * f * ls.radiance * (cos_i * w / ls.pdf);
+                    }
+                }
+            }
+        }
 
         if (!delta && sky.has_sun() && settings.sample_sun) {
             const Vec3 wi = sample_cone(sky.sun_direction(), sky.sun_cos_radius(), rng.next_double(),
@@ -87,6 +124,8 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         if (!finite(throughput) || throughput.x + throughput.y + throughput.z <= 0) break;
         previous_delta = sample.delta;
         previous_pdf = sample.pdf;
+        previous_position = hit.position;
+        previous_normal = n;
 
         // The next ray is bounce number bounce + 1: the first rr_depth are always traced.
         if (bounce >= settings.rr_depth) {

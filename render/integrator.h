@@ -17,13 +17,17 @@ struct IntegratorSettings {
     int rr_depth = 3;        // bounces always traced; Russian roulette decides on every later one
     double rr_prob = 0.8;    // least survival probability of a roulette step (see russian_roulette_survival)
     bool sample_sun = true;  // next-event estimation; false leaves the sun to BSDF sampling alone
+    bool sample_lights = true;  // next-event estimation of lamps and windows; false: BSDF sampling alone
 };
+
+class SceneLights;
 
 struct PathContext {
     const RenderScene& scene;
     const MaterialTable& materials;
     const Sky& sky;
     IntegratorSettings settings;
+    const SceneLights* lights = nullptr;  // lamps and lit windows (lights/scene_lights.h); none if null
 };
 
 // Survival probability of a Russian roulette step: the path's largest throughput component,

@@ -32,7 +32,8 @@ std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scen
             Vec2 p, q;
             building_wall(b, w, &p, &q);
             if (p == q) continue;
-            geometry->add_wall(index, make_wall_layout(facades, building_wall_input(b, w)), wall_frame(p, q, bottom));
+            geometry->add_wall(index, make_wall_layout(facades, building_wall_input(b, w)), wall_frame(p, q, bottom),
+                               static_cast<uint32_t>(w));
         }
         geometry->add_polygon(index, b.outer, b.holes, top, kRoof, +1);
         if (b.min_height > 0) geometry->add_polygon(index, b.outer, b.holes, bottom, kFacade, -1);
