@@ -40,11 +40,73 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
     const SceneLights* lights = context.lights && !context.lights->empty() ? context.lights : nullptr;
     const bool sample_lights = lights && settings.sample_lights;
     Vec3 previous_position, previous_normal;
+    const FogSettings& fog = settings.fog;
+
+    // Light reaching a point x in the fog from the sun (or moon) and one lamp or window, scattered
+    // towards -in by the phase function; MIS-weighted against phase sampling.
+    auto light_in_fog = [&](Vec3 x, Vec3 in) {
+        Color sum{0, 0, 0};
+        const double su1 = rng.next_double(), su2 = rng.next_double();
+        if (sky.has_sun() && settings.sample_sun) {
+            const Vec3 wi = sample_cone(sky.sun_direction(), sky.sun_cos_radius(), su1, su2);
+            ++rays;
+            if (!context.scene.occluded(Ray{x, wi, 0, 1e30})) {
+                const double phase = hg_phase(fog.g, in, wi);
+                const double w = power_heuristic(sun_pdf, phase);
+                sum = sum + sky.sun_radiance() * (phase * fog.transmittance(x, wi, 1e30) * w / sun_pdf);
+            }
+        }
+        if (lights) {
+            const double u[4] = {rng.next_double(), rng.next_double(), rng.next_double(), rng.next_double()};
+            LightSample ls;
+            if (sample_lights && lights->sample(x, {0, 0, 0}, u, &ls) && ls.pdf > 0) {
+                Ray shadow{x, ls.direction, 0, ls.distance * (1 - 1e-6) - 2e-3};
+                ++rays;
+                if (shadow.tmax > 0 && !context.scene.occluded(shadow)) {
+                    const double phase = hg_phase(fog.g, in, ls.direction);
+                    const double w = power_heuristic(ls.pdf, phase);
+                    sum = sum + ls.radiance * (phase * fog.transmittance(x, ls.direction, ls.distance) * w / ls.pdf);
+                }
+            }
+        }
+        return sum;
+    };
 
     for (int bounce = 0;; ++bounce) {
         Hit hit;
         ++rays;
-        if (!context.scene.intersect(ray, hit)) {
+        const bool found = context.scene.intersect(ray, hit);
+        double t_scatter;
+        if (fog.on() && fog.sample_scatter(ray.origin, ray.direction, found ? hit.t : 1e30, rng.next_double(),
+                                           &t_scatter)) {
+            // Scattered in the fog before reaching the surface (or the sky): no absorption, so the
+            // throughput stays; next-event estimation, then a new direction from the phase function.
+            if (bounce >= settings.max_depth) break;
+            const Vec3 x = ray.origin + ray.direction * t_scatter;
+            radiance = radiance + throughput * light_in_fog(x, ray.direction);
+            const double u1 = rng.next_double(), u2 = rng.next_double();
+            const Vec3 wi = sample_hg(fog.g, ray.direction, u1, u2);
+            previous_delta = false;
+            previous_pdf = hg_phase(fog.g, ray.direction, wi);
+            previous_position = x;
+            previous_normal = {0, 0, 0};
+            if (bounce >= settings.rr_depth) {
+                const double survival = russian_roulette_survival(throughput, settings.rr_prob);
+                if (rng.next_double() >= survival) break;
+                throughput = throughput * (1 / survival);
+            }
+            ray = Ray{x, wi, 0, 1e30};
+            continue;
+        }
+        if (bounce == 0 && found && settings.haze_extinction > 0) {
+            // Aerial perspective: the surface's light dims with distance and the horizon's haze
+            // (the sky's colour low in the ray's azimuth) takes its place.
+            const double T = aerial_transmittance(settings.haze_extinction, hit.t);
+            const Vec3 horizon = normalize(Vec3{ray.direction.x, ray.direction.y, 0.06});
+            radiance = radiance + throughput * sky.radiance(horizon, false) * (1 - T);
+            throughput = throughput * T;
+        }
+        if (!found) {
             radiance = radiance + throughput * sky.radiance(ray.direction, previous_delta);
             if (sky.in_sun_disc(ray.direction)) {
                 const double w =
@@ -88,7 +150,8 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
                     Ray shadow{origin, to * (1 / distance), 0, distance * (1 - 1e-6) - 2e-3};
                     ++rays;
                     if (shadow.tmax > 0 && !context.scene.occluded(shadow)) {
-                        const double w = power_heuristic(ls.pdf, bsdf_pdf(material, n, wo, ls.direction));
+                        const double w = power_heuristic(ls.pdf, bsdf_pdf(material, n, wo, ls.direction)) *
+                                         fog.transmittance(origin, shadow.direction, distance);
                         radiance = radiance + throughput * f * ls.radiance * (cos_i * w / ls.pdf);
                     }
                 }
@@ -105,7 +168,8 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
                     Ray shadow{offset_origin(hit.position, n), wi, 0, 1e30};
                     ++rays;
                     if (!context.scene.occluded(shadow)) {
-                        const double w = power_heuristic(sun_pdf, bsdf_pdf(material, n, wo, wi));
+                        const double w = power_heuristic(sun_pdf, bsdf_pdf(material, n, wo, wi)) *
+                                         fog.transmittance(shadow.origin, wi, 1e30);
                         radiance = radiance + throughput * f * sky.sun_radiance() * (cos_i * w / sun_pdf);
                     }
                 }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "fog.h"
 #include "materials.h"
 #include "render_scene.h"
 #include "rng.h"
@@ -18,6 +19,8 @@ struct IntegratorSettings {
     double rr_prob = 0.8;    // least survival probability of a roulette step (see russian_roulette_survival)
     bool sample_sun = true;  // next-event estimation; false leaves the sun to BSDF sampling alone
     bool sample_lights = true;  // next-event estimation of lamps and windows; false: BSDF sampling alone
+    FogSettings fog;              // --fog: ground fog scattering sun, moon and lamp light (fog.h)
+    double haze_extinction = 0;   // aerial perspective on camera rays, 1/m (3.912 / visibility); 0: none
 };
 
 class SceneLights;

@@ -48,6 +48,7 @@ struct Options {
     double sun_elevation = std::nan(""), sun_azimuth = std::nan("");
     bool moon = false;
     double exposure_ev = std::nan("");
+    double fog = 0, fog_height = 60, visibility_km = 20;
 };
 
 // A number within [lo, hi]; rejects nan and inf (CLI::Range lets nan through).
@@ -153,6 +154,9 @@ int run(const Options& o) {
         want_camera ? Camera::look_at(parse_point(o.camera, "--camera"), parse_point(o.look_at, "--look-at"), o.fov,
                                       settings.width, settings.height)
                     : framing_camera(scene, o.fov, settings.width, settings.height);
+    settings.integrator.fog.density = o.fog;
+    settings.integrator.fog.top_z = scene.ground.z + o.fog_height;
+    settings.integrator.haze_extinction = o.visibility_km > 0 ? 3.912 / (o.visibility_km * 1000) : 0;
     const PathContext context{*render_scene, materials, sky, settings.integrator, &lights};
     RenderStats stats;
     const Film film = render_image(context, camera, settings, &stats);
@@ -217,6 +221,14 @@ int main(int argc, char** argv) {
         ->check(finite_within(1667, 25000))->capture_default_str();
     app.add_option("--lit-windows", o.lights.lit_windows, "share of windows lit at night (shop fronts more often)")
         ->check(finite_within(0, 1))->capture_default_str();
+    app.add_option("--fog", o.fog,
+                   "ground fog: scattering coefficient per metre (0.01 thin, 0.05 thick; 0 none); lamp haloes at night")
+        ->check(finite_within(0, 10))->capture_default_str();
+    app.add_option("--fog-height", o.fog_height, "the fog fills the air up to this many metres above the ground")
+        ->check(finite_within(0, 10000))->capture_default_str();
+    app.add_option("--visibility", o.visibility_km,
+                   "clear-air visibility in km for the aerial perspective on camera rays (0: none)")
+        ->check(finite_within(0, 1000))->capture_default_str();
     app.add_option("--light-sampler", o.light_sampler,
                    "how next-event estimation picks a lamp or window: tree (light BVH), power or uniform")
         ->capture_default_str();

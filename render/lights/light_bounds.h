@@ -28,6 +28,18 @@ struct LightBounds {
     double importance(Vec3 p, Vec3 n) const;
 };
 
+// LightBounds with what importance() needs precomputed (centre, bounding-sphere radius, sines):
+// what the light BVH keeps per node, so a descent costs a few multiplies and two square roots.
+struct CompactLightBounds {
+    float center[3], radius2, min_distance2;
+    float w[3], phi, cos_theta_o, sin_theta_o, cos_theta_e;
+    bool two_sided;
+
+    explicit CompactLightBounds(const LightBounds& b);
+    CompactLightBounds() = default;
+    double importance(Vec3 p, Vec3 n) const;  // as LightBounds::importance
+};
+
 // The bounds of two clusters together (cones joined as in pbrt-v4's DirectionCone Union).
 LightBounds union_of(const LightBounds& a, const LightBounds& b);
 

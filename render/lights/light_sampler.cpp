@@ -69,7 +69,7 @@ uint32_t LightSampler::build(std::vector<Item>& items, size_t begin, size_t end,
     const uint32_t self = static_cast<uint32_t>(nodes_.size());
     nodes_.emplace_back();
     if (end - begin == 1) {
-        nodes_[self].bounds = items[begin].bounds;
+        nodes_[self].bounds = CompactLightBounds(items[begin].bounds);
         nodes_[self].index = items[begin].light;
         nodes_[self].leaf = true;
         trails_[items[begin].light] = trail;
@@ -128,10 +128,12 @@ uint32_t LightSampler::build(std::vector<Item>& items, size_t begin, size_t end,
                              return ca < cb || (ca == cb && a.light < b.light);
                          });
     }
+    LightBounds all;
+    for (size_t i = begin; i < end; ++i) all = union_of(all, items[i].bounds);
+    nodes_[self].bounds = CompactLightBounds(all);
     build(items, begin, mid, trail, depth + 1);
     const uint32_t second = build(items, mid, end, trail | (uint64_t{1} << depth), depth + 1);
     nodes_[self].index = second;
-    nodes_[self].bounds = union_of(nodes_[self + 1].bounds, nodes_[second].bounds);
     return self;
 }
 
@@ -204,8 +206,8 @@ double LightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
 // the test its children all fail). So every descent ends at a light and the probabilities of
 // all lights sum to one; a light that cannot reach p then contributes nothing.
 double LightSampler::first_child_probability(Vec3 p, Vec3 n, uint32_t node) const {
-    const LightBounds& a = nodes_[node + 1].bounds;
-    const LightBounds& b = nodes_[nodes_[node].index].bounds;
+    const CompactLightBounds& a = nodes_[node + 1].bounds;
+    const CompactLightBounds& b = nodes_[nodes_[node].index].bounds;
     const double i0 = a.importance(p, n), i1 = b.importance(p, n);
     if (i0 + i1 > 0) return i0 / (i0 + i1);
     return double(a.phi) / (double(a.phi) + double(b.phi));

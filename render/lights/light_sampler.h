@@ -35,7 +35,7 @@ public:
 
 private:
     struct Node {
-        LightBounds bounds;
+        CompactLightBounds bounds;
         uint32_t index = 0;  // leaf: the light; interior: the second child (the first follows the node)
         bool leaf = false;
     };

@@ -111,7 +111,12 @@ double SceneLights::window_weight(const WallGeometry& g, int floor, int slot) co
     if (!window_lit(facades_, g.building_key, g.wall, g.layout, floor, slot, options_.lit_windows)) return 0;
     const bool shop = cell_kind(g.layout, floor, slot) == CellKind::Shop;
     const uint64_t key = window_key(facades_.seed, g.building_key, g.wall, floor, slot);
-    return luminance(window_base_radiance(key, shop)) * kWindowPatternMean * window_pane(g.layout, floor, slot).area();
+    // The opening's size from the rules' own rectangles (cheaper than building the cell's panes).
+    const CellKind kind = cell_kind(g.layout, floor, slot);
+    const CellRect& r = kind == CellKind::Shop      ? g.layout.shop_window
+                        : kind == CellKind::Balcony ? g.layout.door
+                                                    : g.layout.window;
+    return window_base_luminance(key, shop) * kWindowPatternMean * (r.u1 - r.u0) * (r.v1 - r.v0);
 }
 
 Color SceneLights::window_radiance(const WallGeometry& g, int floor, int slot, Vec3 position) const {

@@ -28,11 +28,15 @@ Pane window_pane(const WallLayout& layout, int floor, int slot) {
     return {pane.a0, pane.a1, pane.b0, pane.b1, pane.at};
 }
 
-Color window_base_radiance(uint64_t key, bool shop) {
-    const double kelvin = shop ? 3000 + 1500 * hash_to_unit(mix64(key + 1)) : 2300 + 1300 * hash_to_unit(mix64(key + 1));
+double window_base_luminance(uint64_t key, bool shop) {
     const double u = hash_to_unit(mix64(key + 2));
     const double nits = (shop ? kShopNits : kWindowNits) * (0.35 + 1.3 * u * u);
-    return blackbody_color(kelvin) * (nits / kNitsPerRadianceUnit);
+    return nits / kNitsPerRadianceUnit;
+}
+
+Color window_base_radiance(uint64_t key, bool shop) {
+    const double kelvin = shop ? 3000 + 1500 * hash_to_unit(mix64(key + 1)) : 2300 + 1300 * hash_to_unit(mix64(key + 1));
+    return blackbody_color(kelvin) * window_base_luminance(key, shop);
 }
 
 double perlin_noise(uint64_t key, double x, double y) {

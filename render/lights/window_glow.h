@@ -21,8 +21,9 @@ struct Pane {
 };
 Pane window_pane(const WallLayout& layout, int floor, int slot);
 
-// Mean radiance of a lit window (before its noise pattern), in render units.
+// Mean radiance of a lit window (before its noise pattern), in render units, and its luminance.
 Color window_base_radiance(uint64_t key, bool shop);
+double window_base_luminance(uint64_t key, bool shop);
 
 // The window's noise pattern at (s, t) in [0, 1]^2 across the pane: in [0.2, 1.0], mean ~0.6.
 double window_pattern(uint64_t key, double s, double t);
