@@ -10,7 +10,9 @@
 #include "light_sampler.h"
 #include "render_image.h"
 #include "rng.h"
+#include "scene_io.h"
 #include "scene_lights.h"
+#include "test_support.h"
 
 using namespace citygen;
 
@@ -164,4 +166,78 @@ TEST(SceneLights, EverySamplerAndBsdfSamplingAloneConvergeToTheSameMean) {
             << d.reference_mean << ")";
         EXPECT_LT(d.standard_error, 0.05 * d.reference_mean) << names[i] << ": too noisy to tell";
     }
+}
+
+namespace {
+
+// The bundled real extract (Neukoelln, Berlin), parsed once.
+const Scene& neukolln() {
+    static const Scene scene = [] {
+        test::TempDir dir;
+        const std::string path = dir.file("neukolln.scene");
+        const test::CommandResult r = test::run_command(test::osmparse_binary() + " -q " +
+                                                        test::quoted(test::source_path("examples/neukolln.osm.bz2")) +
+                                                        " -o " + test::quoted(path));
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return load_scene(path);
+    }();
+    return scene;
+}
+
+}  // namespace
+
+TEST(LitWindows, ShareLitIsTheOptionWithinTwoPointsOnARealExtract) {
+    const Scene& scene = neukolln();
+    const FacadeOptions facades{scene.header.seed};
+    for (double share : {0.1, 0.3, 0.7}) {
+        long windows = 0, lit = 0, shops = 0, lit_shops = 0;
+        for (const Building& b : scene.buildings) {
+            if (b.outer.size() < 3 || !(b.height > b.min_height)) continue;
+            for (size_t w = 0; w < building_wall_count(b); ++w) {
+                const WallLayout layout = make_wall_layout(facades, building_wall_input(b, w));
+                for (int floor = 0; floor < layout.floors; ++floor) {
+                    for (int slot = 0; slot < layout.slots; ++slot) {
+                        const bool on = window_lit(facades, facade_building_key(b), static_cast<uint32_t>(w), layout,
+                                                   floor, slot, share);
+                        if (cell_kind(layout, floor, slot) == CellKind::Shop) shops++, lit_shops += on;
+                        else windows++, lit += on;
+                    }
+                }
+            }
+        }
+        ASSERT_GT(windows, 1000);
+        EXPECT_NEAR(double(lit) / windows, share, 0.02) << lit << " of " << windows;
+        if (shops > 100) EXPECT_GT(double(lit_shops) / shops, share + 0.05) << "shop fronts are lit more often";
+    }
+}
+
+TEST(LitWindows, SameCellsInBothGeometryModes) {
+    // Rays from above the street onto the facades: wherever a pane is hit, both modes report the
+    // same window (building, wall, cell), lit or dark alike, and it glows the same.
+    const Scene& scene = neukolln();
+    const FacadeOptions facades{scene.header.seed};
+    const auto stored = build_render_scene(scene, GeometryModes::all(GeometryMode::Stored), facades);
+    const auto procedural = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural), facades);
+    const SceneLights lights(scene, facades, night_lights(LightSamplerKind::Tree));
+    Rng rng(3);
+    int panes = 0, same = 0, lit = 0;
+    for (int i = 0; i < 40000; ++i) {
+        const Vec3 origin{-200 + 300 * rng.next_double(), -200 + 300 * rng.next_double(), 2 + 20 * rng.next_double()};
+        const double a = 6.283185307179586 * rng.next_double();
+        const Vec3 dir = normalize(Vec3{std::cos(a), std::sin(a), -0.3 + 0.6 * rng.next_double()});
+        Hit hs, hp;
+        if (!stored->intersect(Ray{origin, dir, 0, 1e30}, hs) || hs.cell == 0) continue;
+        ++panes;
+        if (!procedural->intersect(Ray{origin, dir, 0, 1e30}, hp)) continue;
+        if (hs.object != hp.object || hs.wall != hp.wall || hs.cell != hp.cell) continue;
+        ++same;
+        const bool on = lights.lit_window_at(hs);
+        EXPECT_EQ(on, lights.lit_window_at(hp));
+        lit += on;
+        const Color es = lights.emitted(hs), ep = lights.emitted(hp);
+        EXPECT_NEAR(es.y, ep.y, 1e-3 * es.y + 1e-12);
+    }
+    EXPECT_GT(panes, 1000);
+    EXPECT_GE(same, 0.995 * panes) << "rays grazing a pane's edge may differ";
+    EXPECT_GT(lit, 0);
 }

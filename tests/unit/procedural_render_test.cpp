@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "image_output.h"
+#include "camera.h"
 #include "scene_io.h"
 #include "test_support.h"
 
@@ -47,10 +48,10 @@ Exr read_exr(const std::string& path) {
 
 // Renders `scene` with the given geometry mode flags to an EXR with AOVs.
 Exr render(const TempDir& dir, const std::string& scene, const std::string& name, const std::string& mode_flags,
-           int threads = 2, const std::string& view = "--camera=-70,-90,20 --look-at=0,0,8 --fov 45") {
+           int threads = 2, const std::string& view = "--camera=-70,-90,20 --look-at=0,0,8 --fov 45", int spp = 4) {
     const std::string out = dir.file(name + ".exr");
     CommandResult r = run_command(render_binary() + " " + quoted(scene) + " -o " + quoted(out) +
-                                  " --width 160 --height 90 --spp 4 --seed 3 --threads " + std::to_string(threads) +
+                                  " --width 160 --height 90 --spp " + std::to_string(spp) + " --seed 3 --threads " + std::to_string(threads) +
                                   " --quiet " + view + " --aovs depth,id " + mode_flags);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return read_exr(out);
@@ -174,4 +175,81 @@ TEST(ProceduralRender, SameLampsAsStored) {
     const Comparison c = compare(stored, procedural);
     EXPECT_GT(c.lamp_pixels, c.pixels / 100) << "the lamp should be in the picture";
     expect_same_picture(c);
+}
+
+TEST(ProceduralRender, SameNightPictureAsStored) {
+    // At night the picture is lamps, lit windows and their light: the same lit windows, the same
+    // lamp globes and the same light samples in both modes.
+    const std::string osm = tiny_roundabout_osm();
+    if (!std::filesystem::exists(osm)) GTEST_SKIP() << osm << " not available";
+    TempDir dir;
+    const std::string scene = parse_to_scene(dir, osm);
+    for (const std::string& view : {std::string("--camera=-70,-90,20 --look-at=0,0,8 --fov 45"), view_of_first_lamp(scene)}) {
+        const Exr stored = render(dir, scene, "stored", "--time night", 2, view);
+        const Exr procedural = render(dir, scene, "procedural", "--time night --procedural", 2, view);
+        const Comparison c = compare(stored, procedural);
+        SCOPED_TRACE(view);
+        expect_same_picture(c);
+        // Same pixels, one or two threads.
+        const Exr one_thread = render(dir, scene, "one", "--time night --procedural", 1, view);
+        EXPECT_TRUE(one_thread.pixels == procedural.pixels);
+    }
+}
+
+TEST(NightRender, RealExtractHasLampsPoolsOfLightAndADarkSky) {
+    TempDir dir;
+    const std::string scene_path = parse_to_scene(dir, source_path("examples/neukolln.osm.bz2"));
+    const citygen::Scene scene = citygen::load_scene(scene_path);
+    ASSERT_GT(scene.lamps.size(), 10u);
+    const citygen::Vec3 lamp = scene.lamps[1].position;
+    const double ground = scene.ground.z + lamp.z;
+
+    // Straight down from 50 m over a lamp: road within 4 m of a lamp's foot lies in a pool of
+    // light, several times brighter than road more than 12 m from every lamp.
+    char view[256];
+    const citygen::Vec3 eye{lamp.x, lamp.y + 0.01, ground + 50}, target{lamp.x, lamp.y, ground};
+    std::snprintf(view, sizeof view, "--camera=%.3f,%.3f,%.3f --look-at=%.3f,%.3f,%.3f --fov 70", eye.x, eye.y, eye.z,
+                  target.x, target.y, target.z);
+    const Exr down = render(dir, scene_path, "down", "--time night", 2, view, 8);
+    ASSERT_GT(down.width, 0);
+    const citygen::Camera camera = citygen::Camera::look_at(eye, target, 70, down.width, down.height);
+    const int kind = down.channel("id.kind"), depth = down.channel("Z");
+    double near_sum = 0, far_sum = 0;
+    int near_n = 0, far_n = 0, lamp_pixels = 0;
+    for (int y = 0; y < down.height; ++y) {
+        for (int x = 0; x < down.width; ++x) {
+            const int p = y * down.width + x;
+            const float k = down.at(p, kind);
+            lamp_pixels += k == 6.0f;
+            if (k != 2.0f && k != 3.0f) continue;  // asphalt only (roads, joints): one albedo near and far
+            const citygen::Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
+            const citygen::Vec3 at = ray.origin + ray.direction * down.at(p, depth);
+            double nearest = 1e30;
+            for (const citygen::Lamp& l : scene.lamps)
+                nearest = std::min(nearest, std::hypot(at.x - l.position.x, at.y - l.position.y));
+            const double luminance = 0.2126 * down.at(p, 0) + 0.7152 * down.at(p, 1) + 0.0722 * down.at(p, 2);
+            if (nearest < 4) near_sum += luminance, ++near_n;
+            if (nearest > 12) far_sum += luminance, ++far_n;
+        }
+    }
+    EXPECT_GT(lamp_pixels, 0) << "the lamp seen from above";
+    ASSERT_GT(near_n, 20);
+    ASSERT_GT(far_n, 20);
+    EXPECT_GT(near_sum / near_n, 3 * far_sum / far_n) << "pools of light under the lamps";
+
+    // Along the street at eye height: lamps in view, and a sky far darker than the lit ground.
+    const Exr street = render(dir, scene_path, "street", "--time night", 2, view_of_first_lamp(scene_path), 8);
+    ASSERT_GT(street.width, 0);
+    double sky_sum = 0;
+    int sky_n = 0, street_lamps = 0;
+    for (int p = 0; p < street.width * street.height; ++p) {
+        street_lamps += street.at(p, kind) == 6.0f;
+        if (street.at(p, kind) != 0.0f) continue;
+        sky_sum += 0.2126 * street.at(p, 0) + 0.7152 * street.at(p, 1) + 0.0722 * street.at(p, 2);
+        ++sky_n;
+    }
+    EXPECT_GT(street_lamps, 0);
+    ASSERT_GT(sky_n, 100);
+    EXPECT_LT(sky_sum / sky_n, 0.2 * near_sum / near_n) << "the night sky is dark";
+    EXPECT_LT(sky_sum / sky_n, 3e-5) << "below 0.5 cd/m^2";
 }
