@@ -69,7 +69,7 @@ double default_sun_elevation(TimeOfDay time) {
     switch (time) {
         case TimeOfDay::Day: return 48;
         case TimeOfDay::Sunset: return 4;
-        case TimeOfDay::Dusk: return -4;
+        case TimeOfDay::Dusk: return -5;
         case TimeOfDay::Night: return -30;
     }
     return 48;
@@ -164,8 +164,8 @@ Color Sky::radiance(Vec3 dir, bool seen_directly) const {
         case Model::Preetham: {
             if (!night_glow_) return preetham(dir);
             // Twilight turns blue as the sun sinks (ozone absorbs the red), over the night sky.
-            const double blue = std::clamp((1 - sun_elevation_deg_) / 7, 0.0, 1.0);
-            const Color tint = Color{1, 1, 1} * (1 - blue) + Color{0.62, 0.8, 1.35} * blue;
+            const double blue = std::clamp((1 - sun_elevation_deg_) / 5, 0.0, 1.0);
+            const Color tint = Color{1, 1, 1} * (1 - blue) + Color{0.3, 0.55, 1.6} * blue;
             return preetham(dir) * tint * twilight_scale_ + night(dir, seen_directly);
         }
         case Model::Night: return night(dir, seen_directly);

@@ -140,13 +140,15 @@ bool SceneLights::lit_window_at(const Hit& hit) const {
 
 int64_t SceneLights::strip_light(const Hit& hit) const {
     const int floor = static_cast<int>((hit.cell - 1) >> 16);
-    const uint32_t begin = building_strips_[hit.object], end = building_strips_[hit.object + 1];
-    for (uint32_t i = begin; i < end; ++i) {  // a building has a handful of strips
-        const Strip& s = strips_[i];
-        if (s.wall == hit.wall && floor >= s.first_floor && floor < s.first_floor + s.floor_count)
-            return static_cast<int64_t>(lamps_.size() + i);
-    }
-    return -1;
+    // A building's strips are ordered by (wall, first floor): the last one starting at or below.
+    const auto begin = strips_.begin() + building_strips_[hit.object], end = strips_.begin() + building_strips_[hit.object + 1];
+    auto after = std::upper_bound(begin, end, std::make_pair(hit.wall, floor), [](std::pair<uint32_t, int> key, const Strip& s) {
+        return key.first < s.wall || (key.first == s.wall && key.second < s.first_floor);
+    });
+    if (after == begin) return -1;
+    const Strip& s = *std::prev(after);
+    if (s.wall != hit.wall || floor >= s.first_floor + s.floor_count) return -1;
+    return static_cast<int64_t>(lamps_.size() + (std::prev(after) - strips_.begin()));
 }
 
 Color SceneLights::emitted(const Hit& hit) const {
