@@ -96,7 +96,18 @@ LightBounds union_of(const LightBounds& a, const LightBounds& b) {
     u.phi = a.phi + b.phi;
     u.cos_theta_e = std::min(a.cos_theta_e, b.cos_theta_e);
     u.two_sided = a.two_sided || b.two_sided;
-    // Join the normal cones.
+    // Join the normal cones (the common cases first: a whole sphere such as a lamp's globe, or
+    // two parallel walls).
+    if (a.cos_theta_o <= -1 || b.cos_theta_o <= -1) {
+        u.set_axis({0, 0, 1});
+        u.cos_theta_o = -1;
+        return u;
+    }
+    if (a.w[0] == b.w[0] && a.w[1] == b.w[1] && a.w[2] == b.w[2]) {
+        u.set_axis(a.axis());
+        u.cos_theta_o = std::min(a.cos_theta_o, b.cos_theta_o);
+        return u;
+    }
     const double theta_a = safe_acos(a.cos_theta_o), theta_b = safe_acos(b.cos_theta_o);
     const double theta_d = safe_acos(dot(a.axis(), b.axis()));
     if (std::min(theta_d + theta_b, kPi) <= theta_a) {

@@ -61,14 +61,17 @@ LightSampler::LightSampler(const std::vector<LightBounds>& lights, LightSamplerK
         for (size_t i = 0; i < lights.size(); ++i) items[i] = {lights[i], static_cast<uint32_t>(i)};
         trails_.assign(lights.size(), 0);
         nodes_.reserve(2 * lights.size());
-        build(items, 0, items.size(), 0, 0);
+        LightBounds all;
+        build(items, 0, items.size(), 0, 0, &all);
     }
 }
 
-uint32_t LightSampler::build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth) {
+uint32_t LightSampler::build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth,
+                             LightBounds* bounds) {
     const uint32_t self = static_cast<uint32_t>(nodes_.size());
     nodes_.emplace_back();
     if (end - begin == 1) {
+        *bounds = items[begin].bounds;
         nodes_[self].bounds = CompactLightBounds(items[begin].bounds);
         nodes_[self].index = items[begin].light;
         nodes_[self].leaf = true;
@@ -95,12 +98,15 @@ uint32_t LightSampler::build(std::vector<Item>& items, size_t begin, size_t end,
                 b = std::clamp(b, 0, kBuckets - 1);
                 buckets[b] = union_of(buckets[b], items[i].bounds);
             }
+            // Costs of all splits from a sweep each way: below[s] holds buckets 0..s, above[s] s+1..end.
+            LightBounds below[kBuckets], above[kBuckets];
+            below[0] = buckets[0];
+            for (int b = 1; b < kBuckets; ++b) below[b] = union_of(below[b - 1], buckets[b]);
+            above[kBuckets - 2] = buckets[kBuckets - 1];
+            for (int b = kBuckets - 3; b >= 0; --b) above[b] = union_of(above[b + 1], buckets[b + 1]);
             for (int split = 0; split < kBuckets - 1; ++split) {
-                LightBounds below, above;
-                for (int b = 0; b <= split; ++b) below = union_of(below, buckets[b]);
-                for (int b = split + 1; b < kBuckets; ++b) above = union_of(above, buckets[b]);
-                if (below.phi <= 0 && above.phi <= 0) continue;
-                const double cost = cluster_cost(below, axis) + cluster_cost(above, axis);
+                if (below[split].phi <= 0 && above[split].phi <= 0) continue;
+                const double cost = cluster_cost(below[split], axis) + cluster_cost(above[split], axis);
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_axis = axis;
@@ -128,11 +134,11 @@ uint32_t LightSampler::build(std::vector<Item>& items, size_t begin, size_t end,
                              return ca < cb || (ca == cb && a.light < b.light);
                          });
     }
-    LightBounds all;
-    for (size_t i = begin; i < end; ++i) all = union_of(all, items[i].bounds);
-    nodes_[self].bounds = CompactLightBounds(all);
-    build(items, begin, mid, trail, depth + 1);
-    const uint32_t second = build(items, mid, end, trail | (uint64_t{1} << depth), depth + 1);
+    LightBounds first_bounds, second_bounds;
+    build(items, begin, mid, trail, depth + 1, &first_bounds);
+    const uint32_t second = build(items, mid, end, trail | (uint64_t{1} << depth), depth + 1, &second_bounds);
+    *bounds = union_of(first_bounds, second_bounds);
+    nodes_[self].bounds = CompactLightBounds(*bounds);
     nodes_[self].index = second;
     return self;
 }

@@ -44,7 +44,8 @@ private:
         uint32_t light;
     };
     double first_child_probability(Vec3 p, Vec3 n, uint32_t node) const;
-    uint32_t build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth);
+    // Builds the subtree of items [begin, end); returns its node and (in bounds) its bounds.
+    uint32_t build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth, LightBounds* bounds);
 
     LightSamplerKind kind_ = LightSamplerKind::Tree;
     size_t light_count_ = 0;
