@@ -51,29 +51,30 @@ CompactLightBounds::CompactLightBounds(const LightBounds& b) {
     }
     // Rounded outwards a little: the sphere must hold the box.
     radius2 = static_cast<float>(dot(diagonal, diagonal) / 4 * (1 + 1e-5));
-    min_distance2 = static_cast<float>(length(diagonal) / 2);  // pbrt-v4: no blow-up near or inside the cluster
     phi = b.phi;
-    cos_theta_o = b.cos_theta_o;
-    sin_theta_o = static_cast<float>(safe_sqrt(1 - double(b.cos_theta_o) * b.cos_theta_o));
+    cos_theta_o = b.two_sided ? -1 : b.cos_theta_o;  // two-sided: any direction (conservative)
     cos_theta_e = b.cos_theta_e;
-    two_sided = b.two_sided;
 }
 
 double CompactLightBounds::importance(Vec3 p, Vec3 n) const {
     const Vec3 to_p = p - Vec3{center[0], center[1], center[2]};  // from the cluster towards p
     const double dist2 = dot(to_p, to_p);
-    const double d2 = std::max(dist2, double(min_distance2));
+    // pbrt-v4: no blow-up near or inside the cluster (distance^2 at least half the diagonal).
+    const double d2 = std::max(dist2, std::sqrt(double(radius2)));
     const Vec3 wi = dist2 > 0 ? to_p * (1 / std::sqrt(dist2)) : Vec3{0, 0, 1};
-    double cos_w = w[0] * wi.x + w[1] * wi.y + w[2] * wi.z;
-    if (two_sided) cos_w = std::fabs(cos_w);
-    const double sin_w = safe_sqrt(1 - cos_w * cos_w);
     // The cone of directions from p that the bounds' sphere subtends.
     const double cos_b = dist2 < radius2 ? -1 : safe_sqrt(1 - radius2 / dist2);
     const double sin_b = safe_sqrt(1 - cos_b * cos_b);
-    const double cos_x = cos_sub_clamped(sin_w, cos_w, sin_theta_o, cos_theta_o);
-    const double sin_x = sin_sub_clamped(sin_w, cos_w, sin_theta_o, cos_theta_o);
-    const double cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-    if (cos_p <= cos_theta_e) return 0;
+    double cos_p = 1;  // normals pointing everywhere (any cluster holding a lamp's globe): no bound
+    if (cos_theta_o > -1) {
+        const double cos_w = w[0] * wi.x + w[1] * wi.y + w[2] * wi.z;
+        const double sin_w = safe_sqrt(1 - cos_w * cos_w);
+        const double sin_theta_o = safe_sqrt(1 - double(cos_theta_o) * cos_theta_o);
+        const double cos_x = cos_sub_clamped(sin_w, cos_w, sin_theta_o, cos_theta_o);
+        const double sin_x = sin_sub_clamped(sin_w, cos_w, sin_theta_o, cos_theta_o);
+        cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+        if (cos_p <= cos_theta_e) return 0;
+    }
     double importance = phi * cos_p / d2;
     if (n.x != 0 || n.y != 0 || n.z != 0) {
         // Our surfaces only reflect (glass is never sampled): a cluster wholly below the

@@ -28,12 +28,12 @@ struct LightBounds {
     double importance(Vec3 p, Vec3 n) const;
 };
 
-// LightBounds with what importance() needs precomputed (centre, bounding-sphere radius, sines):
-// what the light BVH keeps per node, so a descent costs a few multiplies and two square roots.
+// LightBounds with what importance() needs precomputed (centre, bounding-sphere radius): what the
+// light BVH keeps per node, 40 bytes. Our emitters are one-sided (panes) or spheres (globes), so
+// two-sided bounds are not kept.
 struct CompactLightBounds {
-    float center[3], radius2, min_distance2;
-    float w[3], phi, cos_theta_o, sin_theta_o, cos_theta_e;
-    bool two_sided;
+    float center[3], radius2;
+    float w[3], phi, cos_theta_o, cos_theta_e;
 
     explicit CompactLightBounds(const LightBounds& b);
     CompactLightBounds() = default;

@@ -52,6 +52,7 @@ const char* to_string(LightSamplerKind kind) {
 LightSampler::LightSampler(const std::vector<LightBounds>& lights, LightSamplerKind kind)
     : kind_(kind), light_count_(lights.size()) {
     if (lights.empty()) return;
+    if (lights.size() >= kLeaf) throw Error("too many lights for the light sampler");
     if (kind == LightSamplerKind::Power) {
         cdf_.resize(lights.size());
         double sum = 0;
@@ -73,8 +74,7 @@ uint32_t LightSampler::build(std::vector<Item>& items, size_t begin, size_t end,
     if (end - begin == 1) {
         *bounds = items[begin].bounds;
         nodes_[self].bounds = CompactLightBounds(items[begin].bounds);
-        nodes_[self].index = items[begin].light;
-        nodes_[self].leaf = true;
+        nodes_[self].index = kLeaf | items[begin].light;
         trails_[items[begin].light] = trail;
         return self;
     }
@@ -167,7 +167,7 @@ bool LightSampler::sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf
     }
     uint32_t node = 0;
     double probability = 1;
-    while (!nodes_[node].leaf) {
+    while (!nodes_[node].leaf()) {
         const uint32_t first = node + 1, second = nodes_[node].index;
         const double p0 = first_child_probability(p, n, node);
         if (u < p0) {
@@ -180,7 +180,7 @@ bool LightSampler::sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf
             probability *= 1 - p0;
         }
     }
-    *light = nodes_[node].index;
+    *light = nodes_[node].light();
     *pmf = probability;
     return true;
 }
@@ -198,7 +198,7 @@ double LightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
     uint64_t trail = trails_[light];
     uint32_t node = 0;
     double probability = 1;
-    while (!nodes_[node].leaf) {
+    while (!nodes_[node].leaf()) {
         const double p0 = first_child_probability(p, n, node);
         probability *= (trail & 1) ? 1 - p0 : p0;
         node = (trail & 1) ? nodes_[node].index : node + 1;

@@ -36,9 +36,11 @@ public:
 private:
     struct Node {
         CompactLightBounds bounds;
-        uint32_t index = 0;  // leaf: the light; interior: the second child (the first follows the node)
-        bool leaf = false;
+        uint32_t index = 0;  // leaf: kLeaf | the light; interior: the second child (the first follows)
+        bool leaf() const { return index & kLeaf; }
+        uint32_t light() const { return index & ~kLeaf; }
     };
+    static constexpr uint32_t kLeaf = 0x80000000u;
     struct Item {
         LightBounds bounds;
         uint32_t light;

@@ -1,6 +1,7 @@
 #include "scene_lights.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 #include "bsdf.h"
@@ -26,6 +27,8 @@ double one_minus_cos_sphere(double r, double d) {
 
 SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const LightOptions& options)
     : scene_(&scene), facades_(facades), options_(options) {
+    static std::atomic<uint64_t> instances{0};
+    id_ = ++instances;  // never 0: an empty cache slot belongs to no instance
     std::vector<LightBounds> bounds;
     if (options.lamps && options.lamp_lumens > 0) {
         for (const citygen::Lamp& lamp : scene.lamps) {
@@ -55,7 +58,7 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
         if (!(options.lit_windows > 0)) continue;
         for (uint32_t w = 0, n = static_cast<uint32_t>(building_wall_count(building)); w < n; ++w) {
             WallGeometry g;
-            if (!wall_geometry(b, w, &g) || g.layout.plain()) continue;
+            if (!derive_wall_geometry(b, w, &g) || g.layout.plain()) continue;
             for (int first = 0; first < g.layout.floors; first += kFloorsPerStrip) {
                 const int count = std::min(kFloorsPerStrip, g.layout.floors - first);
                 double weight = 0;
@@ -93,6 +96,30 @@ size_t SceneLights::bytes() const {
 }
 
 bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {
+    // Deriving a wall's layout and frame from the rules costs about a microsecond, and the walls
+    // a pixel's paths sample or hit repeat: each thread keeps the last few (values only, so the
+    // image cannot depend on the cache or the thread count).
+    struct Cached {
+        uint64_t owner = 0;
+        uint32_t building = 0, wall = 0;
+        bool ok = false;
+        WallGeometry geometry;
+    };
+    thread_local Cached cache[64];
+    Cached& slot = cache[(building * 31u + wall) & 63u];
+    if (slot.owner == id_ && slot.building == building && slot.wall == wall) {
+        *out = slot.geometry;
+        return slot.ok;
+    }
+    slot.owner = id_;
+    slot.building = building;
+    slot.wall = wall;
+    slot.ok = derive_wall_geometry(building, wall, &slot.geometry);
+    *out = slot.geometry;
+    return slot.ok;
+}
+
+bool SceneLights::derive_wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {
     const Building& b = scene_->buildings[building];
     if (wall >= building_wall_count(b)) return false;
     Vec2 p, q;

@@ -1,7 +1,7 @@
 // The scene's emitters for next-event estimation: street-lamp globes (spheres, lamp_shape.h)
 // and lit windows, chosen through a LightSampler (tree, power or uniform).
 //
-// Lit windows store nothing per window: a light is a strip of up to kFloorsPerStrip floors of
+// Lit windows store nothing per window: a light is a strip of up to kFloorsPerStrip (8) floors of
 // one wall, carrying the summed power of its lit windows; sampling it picks one lit window from
 // the facade rules (window_lit, window_glow.h) and a point on its pane.
 // Sun, moon and sky are not here: the integrator samples them beside these.
@@ -59,7 +59,7 @@ public:
     // Whether the pane at `hit` belongs to a lit window (tests).
     bool lit_window_at(const Hit& hit) const;
     // Lit windows decided by the rules, counted over the scene: (windows, lit) per cell kind.
-    static constexpr int kFloorsPerStrip = 4;
+    static constexpr int kFloorsPerStrip = 8;
 
 private:
     struct Lamp {
@@ -77,7 +77,8 @@ private:
         uint64_t building_key;
         uint32_t wall;
     };
-    bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;
+    bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;  // cached per thread
+    bool derive_wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;
     double window_weight(const WallGeometry& g, int floor, int slot) const;
     // Light index of the strip holding a pane hit; -1 if none.
     int64_t strip_light(const Hit& hit) const;
@@ -85,6 +86,7 @@ private:
     bool sample_lamp(const Lamp& lamp, Vec3 p, double u1, double u2, LightSample* out) const;
     double lamp_pdf(const Lamp& lamp, Vec3 p) const;
 
+    uint64_t id_ = 0;  // tells this instance's entries in the per-thread wall cache from others'
     const Scene* scene_ = nullptr;
     FacadeOptions facades_;
     LightOptions options_;

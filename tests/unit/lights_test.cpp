@@ -207,7 +207,9 @@ TEST(LitWindows, ShareLitIsTheOptionWithinTwoPointsOnARealExtract) {
         }
         ASSERT_GT(windows, 1000);
         EXPECT_NEAR(double(lit) / windows, share, 0.02) << lit << " of " << windows;
-        if (shops > 100) EXPECT_GT(double(lit_shops) / shops, share + 0.05) << "shop fronts are lit more often";
+        if (shops > 100) {
+            EXPECT_GT(double(lit_shops) / shops, share + 0.05) << "shop fronts are lit more often";
+        }
     }
 }
 
