@@ -158,7 +158,7 @@ Color SceneLights::window_radiance(const WallGeometry& g, int floor, int slot, V
 
 bool SceneLights::lit_window_at(const Hit& hit) const {
     if (hit.kind != ObjectKind::Building || hit.cell == 0 || !is_pane_material(hit.material)) return false;
-    if (!(options_.lit_windows > 0) || hit.object >= scene_->buildings.size()) return false;
+    if (!scene_ || !(options_.lit_windows > 0) || hit.object >= scene_->buildings.size()) return false;
     WallGeometry g;
     if (!wall_geometry(hit.object, hit.wall, &g)) return false;
     const int floor = static_cast<int>((hit.cell - 1) >> 16), slot = static_cast<int>((hit.cell - 1) & 0xffff);
