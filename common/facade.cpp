@@ -151,6 +151,15 @@ CellKind cell_kind(const WallLayout& layout, int floor, int slot) {
     return CellKind::Window;
 }
 
+bool window_lit(const FacadeOptions& options, uint64_t building_key, uint32_t wall_index, const WallLayout& layout,
+                int floor, int slot, double lit_share) {
+    if (!(lit_share > 0)) return false;
+    const double p = cell_kind(layout, floor, slot) == CellKind::Shop ? std::sqrt(lit_share) : lit_share;
+    constexpr uint64_t kLitSalt = 0x11717;
+    const uint64_t cell = static_cast<uint64_t>(floor) << 32 | static_cast<uint32_t>(slot);
+    return hash_to_unit(hash_keys(options.seed, building_key, wall_index, cell, kLitSalt)) < p;
+}
+
 namespace {
 
 // Rectangle builders in wall-local (u, v, w). The two free axes are in increasing order:

@@ -102,6 +102,13 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
 
 CellKind cell_kind(const WallLayout& layout, int floor, int slot);
 
+// Whether the window of cell (floor, slot) is lit at night: a pure function of (seed, building
+// key, wall index, cell) and the share asked for, so both geometry modes, any thread count and
+// the light sampler see the same lit windows. Windows and balcony doors are lit with
+// probability lit_share, shop fronts (open late, lit displays) more often: sqrt(lit_share).
+bool window_lit(const FacadeOptions& options, uint64_t building_key, uint32_t wall_index, const WallLayout& layout,
+                int floor, int slot, double lit_share);
+
 // An axis-aligned rectangle in wall-local space: coordinate `axis` (0 u, 1 v, 2 w) equals `at`,
 // the other two coordinates (in increasing axis order) lie in [a0, a1] x [b0, b1]. The surface
 // normal is +/- the axis direction (normal_sign); it faces the side the surface is seen from.

@@ -5,6 +5,7 @@
 #include "land_cover_geometry.h"
 #include "path_geometry.h"
 #include "procedural_geometry.h"
+#include "procedural_lamps.h"
 #include "road_markings.h"
 #include "tree_geometry.h"
 #include "stored_geometry.h"
@@ -47,6 +48,8 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
         if (procedural(GeometryClass::Trees)) render_scene->add(build_procedural_trees(scene));
         else render_scene->add(build_stored_trees(scene));
     }
+    if (procedural(GeometryClass::Lamps)) render_scene->add(build_procedural_lamps(scene));
+    else render_scene->add(stored(build_stored_lamps(scene)));
     geometry_progress.finish();
     render_scene->commit(progress);
     return render_scene;

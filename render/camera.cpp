@@ -25,6 +25,14 @@ Camera Camera::look_at(Vec3 position, Vec3 target, double vertical_fov_deg, int 
     return c;
 }
 
+Camera Camera::resized(int width, int height) const {
+    Camera c = *this;
+    c.width_ = width;
+    c.height_ = height;
+    c.aspect_ = static_cast<double>(width) / height;
+    return c;
+}
+
 Ray Camera::generate_ray(double px, double py) const {
     const double sx = (2 * px / width_ - 1) * tan_half_fov_ * aspect_;
     const double sy = (1 - 2 * py / height_) * tan_half_fov_;

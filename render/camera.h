@@ -14,6 +14,8 @@ public:
     Ray generate_ray(double px, double py) const;
     Vec3 position() const { return position_; }
     Vec3 forward() const { return forward_; }
+    // The same view on an image of another size (e.g. a small metering image).
+    Camera resized(int width, int height) const;
 
 private:
     Vec3 position_, forward_, right_, up_;

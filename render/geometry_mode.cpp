@@ -41,6 +41,7 @@ const char* to_string(GeometryClass c) {
         case GeometryClass::LandCover: return "land-cover";
         case GeometryClass::Trees: return "trees";
         case GeometryClass::Paths: return "paths";
+        case GeometryClass::Lamps: return "lamps";
     }
     return "?";
 }

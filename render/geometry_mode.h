@@ -23,8 +23,8 @@ const char* to_string(GeometryMode mode);  // "stored" / "procedural"
 GeometryMode parse_geometry_mode(const std::string& text, const std::string& option_name);
 
 // The classes that have a selectable geometry mode.
-enum class GeometryClass : uint8_t { Buildings = 0, Roads, Joints, Sidewalks, Terrain, LandCover, Trees, Paths };
-constexpr int kGeometryClassCount = 8;
+enum class GeometryClass : uint8_t { Buildings = 0, Roads, Joints, Sidewalks, Terrain, LandCover, Trees, Paths, Lamps };
+constexpr int kGeometryClassCount = 9;
 const char* to_string(GeometryClass c);  // "buildings", "roads", ...
 
 struct GeometryModes {

@@ -24,6 +24,10 @@ struct Hit {
     uint16_t material = 0;      // index into the MaterialTable
     ObjectKind kind = ObjectKind::None;
     uint32_t object = 0;        // index of the object in the scene file's list of its kind
+    // Facade panes (glass, balcony door, shop window): the wall (building_wall index) and the
+    // cell (floor * 65536 + slot + 1; 0 elsewhere), which decide whether the window is lit.
+    uint32_t wall = 0;
+    uint32_t cell = 0;
 };
 
 }  // namespace citygen

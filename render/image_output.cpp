@@ -44,8 +44,12 @@ ImageFormat image_format_for(const std::string& path) {
 }
 
 float tone_map(float linear, double exposure) {
+    // Filmic curve (Narkowicz's fit of the ACES reference rendering): a toe that keeps shadows
+    // rich and a shoulder that rolls highlights (lamps, lit windows, the sun) off to white
+    // instead of clipping them.
     const double x = std::max(0.0, static_cast<double>(linear) * exposure);
-    return srgb_encode(static_cast<float>(1 - std::exp(-x)));
+    const double y = x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14);
+    return srgb_encode(static_cast<float>(y));
 }
 
 void write_image(const Film& film, const std::string& path, double exposure) {
@@ -73,9 +77,9 @@ void write_image(const Film& film, const std::string& path, double exposure) {
         data.resize(pixels * channels);
         for (size_t i = 0; i < pixels; ++i) {
             float* p = &data[i * channels];
-            for (int c = 0; c < 3; ++c) p[c] = static_cast<float>(film.rgb[3 * i + c] * exposure);
+            for (int c = 0; c < 3; ++c) p[c] = film.rgb[3 * i + c];  // linear and unscaled
             if (raw)
-                for (int c = 0; c < 3; ++c) p[raw_channel + c] = static_cast<float>(film.raw_rgb[3 * i + c] * exposure);
+                for (int c = 0; c < 3; ++c) p[raw_channel + c] = film.raw_rgb[3 * i + c];
             if (!aovs) continue;
             p[3] = film.depth[i];
             for (int c = 0; c < 3; ++c) p[4 + c] = film.normal[3 * i + c];

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "bsdf.h"
+#include "scene_lights.h"
 
 namespace citygen {
 
@@ -35,11 +36,77 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
     Color radiance{0, 0, 0}, throughput{1, 1, 1};
     bool previous_delta = true;  // the camera ray counts as delta: it sees the sun at full weight
     double previous_pdf = 0;
+    // Lamps and windows: where the previous bounce was (for the MIS weight of an emitter hit).
+    const SceneLights* lights = context.lights && !context.lights->empty() ? context.lights : nullptr;
+    const bool sample_lights = lights && settings.sample_lights;
+    Vec3 previous_position, previous_normal;
+    const FogSettings& fog = settings.fog;
+
+    // Light reaching a point x in the fog from the sun (or moon) and one lamp or window, scattered
+    // towards -in by the phase function; MIS-weighted against phase sampling.
+    auto light_in_fog = [&](Vec3 x, Vec3 in) {
+        Color sum{0, 0, 0};
+        const double su1 = rng.next_double(), su2 = rng.next_double();
+        if (sky.has_sun() && settings.sample_sun) {
+            const Vec3 wi = sample_cone(sky.sun_direction(), sky.sun_cos_radius(), su1, su2);
+            ++rays;
+            if (!context.scene.occluded(Ray{x, wi, 0, 1e30})) {
+                const double phase = hg_phase(fog.g, in, wi);
+                const double w = power_heuristic(sun_pdf, phase);
+                sum = sum + sky.sun_radiance() * (phase * fog.transmittance(x, wi, 1e30) * w / sun_pdf);
+            }
+        }
+        if (lights) {
+            const double u[4] = {rng.next_double(), rng.next_double(), rng.next_double(), rng.next_double()};
+            LightSample ls;
+            if (sample_lights && lights->sample(x, {0, 0, 0}, u, &ls) && ls.pdf > 0) {
+                Ray shadow{x, ls.direction, 0, ls.distance * (1 - 1e-6) - 2e-3};
+                ++rays;
+                if (shadow.tmax > 0 && !context.scene.occluded(shadow)) {
+                    const double phase = hg_phase(fog.g, in, ls.direction);
+                    const double w = power_heuristic(ls.pdf, phase);
+                    sum = sum + ls.radiance * (phase * fog.transmittance(x, ls.direction, ls.distance) * w / ls.pdf);
+                }
+            }
+        }
+        return sum;
+    };
 
     for (int bounce = 0;; ++bounce) {
         Hit hit;
         ++rays;
-        if (!context.scene.intersect(ray, hit)) {
+        const bool found = context.scene.intersect(ray, hit);
+        double t_scatter;
+        if (fog.on() && fog.sample_scatter(ray.origin, ray.direction, found ? hit.t : 1e30, rng.next_double(),
+                                           &t_scatter)) {
+            // Scattered in the fog before reaching the surface (or the sky): no absorption, so the
+            // throughput stays; next-event estimation, then a new direction from the phase function.
+            if (bounce >= settings.max_depth) break;
+            const Vec3 x = ray.origin + ray.direction * t_scatter;
+            radiance = radiance + throughput * light_in_fog(x, ray.direction);
+            const double u1 = rng.next_double(), u2 = rng.next_double();
+            const Vec3 wi = sample_hg(fog.g, ray.direction, u1, u2);
+            previous_delta = false;
+            previous_pdf = hg_phase(fog.g, ray.direction, wi);
+            previous_position = x;
+            previous_normal = {0, 0, 0};
+            if (bounce >= settings.rr_depth) {
+                const double survival = russian_roulette_survival(throughput, settings.rr_prob);
+                if (rng.next_double() >= survival) break;
+                throughput = throughput * (1 / survival);
+            }
+            ray = Ray{x, wi, 0, 1e30};
+            continue;
+        }
+        if (bounce == 0 && found && settings.haze_extinction > 0) {
+            // Aerial perspective: the surface's light dims with distance and the horizon's haze
+            // (the sky's colour low in the ray's azimuth) takes its place.
+            const double T = aerial_transmittance(settings.haze_extinction, hit.t);
+            const Vec3 horizon = normalize(Vec3{ray.direction.x, ray.direction.y, 0.06});
+            radiance = radiance + throughput * sky.radiance(horizon, false) * (1 - T);
+            throughput = throughput * T;
+        }
+        if (!found) {
             radiance = radiance + throughput * sky.radiance(ray.direction, previous_delta);
             if (sky.in_sun_disc(ray.direction)) {
                 const double w =
@@ -52,12 +119,46 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         const Vec3 wo = -ray.direction;
         const bool front = dot(hit.geometric_normal, wo) > 0;
         if (front) radiance = radiance + throughput * material.emission;
+        if (front && lights) {
+            const Color emitted = lights->emitted(hit);
+            if (emitted.x + emitted.y + emitted.z > 0) {
+                const double w = previous_delta || !sample_lights
+                                     ? 1
+                                     : power_heuristic(previous_pdf, lights->pdf(previous_position, previous_normal, hit));
+                radiance = radiance + throughput * emitted * w;
+            }
+        }
         if (bounce >= settings.max_depth) break;
 
         // Normal on the side the ray came from; glass wants the true outward normal.
         const Vec3 n = front ? hit.geometric_normal : -hit.geometric_normal;
         const Vec3 ns = front ? hit.shading_normal : -hit.shading_normal;  // bumped patterns; else n
         const bool delta = is_delta(material);
+
+        if (lights) {
+            // One lamp or window through the light sampler, MIS-weighted against BSDF sampling.
+            // Four numbers drawn whatever the material, so streams stay aligned.
+            const double u[4] = {rng.next_double(), rng.next_double(), rng.next_double(), rng.next_double()};
+            LightSample ls;
+            if (!delta && sample_lights && lights->sample(hit.position, n, u, &ls)) {
+                const double cos_i = dot(ns, ls.direction);
+                const Color f = cos_i > 0 && dot(n, ls.direction) > 0 ? bsdf_eval(material, ns, wo, ls.direction)
+                                                                      : Color{0, 0, 0};
+                if (f.x + f.y + f.z > 0 && ls.pdf > 0) {
+                    const Vec3 origin = offset_origin(hit.position, n);
+                    const Vec3 to = ls.position - origin;
+                    const double distance = length(to);
+                    // Stop short of the emitter: stored lamp globes are facets around the analytic sphere.
+                    Ray shadow{origin, to * (1 / distance), 0, distance * (1 - 1e-6) - 2e-3};
+                    ++rays;
+                    if (shadow.tmax > 0 && !context.scene.occluded(shadow)) {
+                        const double w = power_heuristic(ls.pdf, bsdf_pdf(material, ns, wo, ls.direction)) *
+                                         fog.transmittance(origin, shadow.direction, distance);
+                        radiance = radiance + throughput * f * ls.radiance * (cos_i * w / ls.pdf);
+                    }
+                }
+            }
+        }
 
         if (!delta && sky.has_sun() && settings.sample_sun) {
             const Vec3 wi = sample_cone(sky.sun_direction(), sky.sun_cos_radius(), rng.next_double(),
@@ -69,7 +170,8 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
                     Ray shadow{offset_origin(hit.position, n), wi, 0, 1e30};
                     ++rays;
                     if (!context.scene.occluded(shadow)) {
-                        const double w = power_heuristic(sun_pdf, bsdf_pdf(material, ns, wo, wi));
+                        const double w = power_heuristic(sun_pdf, bsdf_pdf(material, ns, wo, wi)) *
+                                         fog.transmittance(shadow.origin, wi, 1e30);
                         radiance = radiance + throughput * f * sky.sun_radiance() * (cos_i * w / sun_pdf);
                     }
                 }
@@ -89,6 +191,8 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         if (!finite(throughput) || throughput.x + throughput.y + throughput.z <= 0) break;
         previous_delta = sample.delta;
         previous_pdf = sample.pdf;
+        previous_position = hit.position;
+        previous_normal = n;
 
         // The next ray is bounce number bounce + 1: the first rr_depth are always traced.
         if (bounce >= settings.rr_depth) {

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "building_looks.h"
+#include "fog.h"
 #include "materials.h"
 #include "render_scene.h"
 #include "rng.h"
@@ -18,7 +19,12 @@ struct IntegratorSettings {
     int rr_depth = 3;        // bounces always traced; Russian roulette decides on every later one
     double rr_prob = 0.8;    // least survival probability of a roulette step (see russian_roulette_survival)
     bool sample_sun = true;  // next-event estimation; false leaves the sun to BSDF sampling alone
+    bool sample_lights = true;  // next-event estimation of lamps and windows; false: BSDF sampling alone
+    FogSettings fog;              // --fog: ground fog scattering sun, moon and lamp light (fog.h)
+    double haze_extinction = 0;   // aerial perspective on camera rays, 1/m (3.912 / visibility); 0: none
 };
+
+class SceneLights;
 
 struct PathContext {
     const RenderScene& scene;
@@ -26,6 +32,7 @@ struct PathContext {
     const Sky& sky;
     IntegratorSettings settings;
     const BuildingLooks* building_looks = nullptr;  // buildings' own colours and patterns (none: stock)
+    const SceneLights* lights = nullptr;  // lamps and lit windows (lights/scene_lights.h); none if null
 };
 
 // Survival probability of a Russian roulette step: the path's largest throughput component,

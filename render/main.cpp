@@ -17,6 +17,7 @@
 #include "cli_values.h"
 #include "error.h"
 #include "export_gltf.h"
+#include "exposure.h"
 #include "export_ply.h"
 #include "image_output.h"
 #include "memory_estimate.h"
@@ -25,6 +26,7 @@
 #include "render_image.h"
 #include "render_report.h"
 #include "scene_io.h"
+#include "scene_lights.h"
 #include "sky.h"
 
 using namespace citygen;
@@ -51,7 +53,29 @@ struct Options {
     std::string region, camera_path, frames;
     bool orbit = false, denoise = false, spp_given = false;
     double orbit_seconds = 12, fps = 24, time_limit = 0;
+    // The night city (lights/, sky, exposure): NaN means automatic / the time's default.
+    LightOptions lights;
+    std::string light_sampler = "tree";
+    double sun_elevation = std::nan(""), sun_azimuth = std::nan("");
+    bool moon = false;
+    double exposure_ev = std::nan("");
+    double fog = 0, fog_height = 60, visibility_km = 20;
 };
+
+// A number within [lo, hi]; rejects nan and inf (CLI::Range lets nan through).
+CLI::Validator finite_within(double lo, double hi) {
+    std::ostringstream range;
+    range << "[" << lo << " - " << hi << "]";
+    return CLI::Validator(
+        [lo, hi, range = range.str()](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double v = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0' || !(v >= lo && v <= hi))
+                return "expected a number in " + range + ", got '" + text + "'";
+            return "";
+        },
+        range.str());
+}
 
 std::string format_number(double value) {
     char text[32];
@@ -99,6 +123,8 @@ int run(const Options& o) {
             modes.mode[c] = parse_geometry_mode(
                 o.geometry[c], std::string("--geometry-") + to_string(static_cast<GeometryClass>(c)));
     const TimeOfDay time = parse_time_of_day(o.time);
+    LightOptions light_options = o.lights;
+    light_options.sampler = parse_light_sampler(o.light_sampler);
     RenderSettings settings = o.render;
     settings.aovs = parse_aovs(o.aovs);
     if (!o.region.empty()) {
@@ -160,11 +186,25 @@ int run(const Options& o) {
     const std::unique_ptr<RenderScene> render_scene = build_render_scene(scene, modes, facades, ProgressSettings{settings.quiet});
     const double build_seconds = seconds_since(build_start);
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
+    // Lamps and lit windows glow once the sun is down (dusk, night, or --sun-elevation below 1).
+    const Sky sky = Sky::for_settings(SkySettings{time, o.sun_elevation, o.sun_azimuth, o.moon});
+    const bool lights_on = sky.sun_elevation() < kLightsOnBelowElevation;
+    if (!lights_on) light_options.lamps = false, light_options.lit_windows = 0;
+    const SceneLights lights(scene, facades, light_options);
+    if (o.print_geometry_info)
+        std::printf("lights: %zu lamps, %zu window strips (%llu of %llu windows lit), %s sampler, %.1f MB\n"
+                    "light_lamps: %zu\nlight_window_strips: %zu\nlit_windows: %llu\nwindows: %llu\nlight_bytes: %zu\n",
+                    lights.lamp_count(), lights.strip_count(), static_cast<unsigned long long>(lights.lit_window_count()),
+                    static_cast<unsigned long long>(lights.window_count()), to_string(light_options.sampler),
+                    lights.bytes() / 1e6, lights.lamp_count(), lights.strip_count(),
+                    static_cast<unsigned long long>(lights.lit_window_count()),
+                    static_cast<unsigned long long>(lights.window_count()), lights.bytes());
     const MaterialTable materials = default_materials();
     if (!o.export_ply_path.empty()) export_ply(*render_scene, materials, o.export_ply_path);
     if (!o.export_gltf_path.empty()) export_gltf(scene, *render_scene, materials, o.export_gltf_path);
     if (o.output.empty()) {
         if (o.print_memory_info) print_memory_info(*render_scene, stdout);
+        if (o.print_memory_info) std::printf("light_bytes: %zu\n", lights.bytes());
         return 0;
     }
 
@@ -172,10 +212,17 @@ int run(const Options& o) {
         want_camera ? Camera::look_at(parse_point(o.camera, "--camera"), parse_point(o.look_at, "--look-at"), o.fov,
                                       settings.width, settings.height)
                     : framing_camera(scene, o.fov, settings.width, settings.height);
-    const Sky sky = Sky::daylight(time);
+    settings.integrator.fog.density = o.fog;
+    settings.integrator.fog.top_z = scene.ground.z + o.fog_height;
+    settings.integrator.haze_extinction = o.visibility_km > 0 ? 3.912 / (o.visibility_km * 1000) : 0;
     BuildingLooks building_looks(scene);
     building_looks.use_textures(textures.get());
-    const PathContext context{*render_scene, materials, sky, settings.integrator, &building_looks};
+    const PathContext context{*render_scene, materials, sky, settings.integrator, &building_looks, &lights};
+    // Automatic exposure is metered on the whole frame before rendering (exposure.h), so a
+    // region or tile gets its frame's exposure, and each frame of an animation its own.
+    auto exposure_for = [&](const Camera& view) {
+        return std::isnan(o.exposure_ev) ? metered_exposure(context, view, settings) : exposure_from_ev(o.exposure_ev);
+    };
     RenderStats stats;
     if (animate) {
         Animation animation;
@@ -191,18 +238,20 @@ int run(const Options& o) {
         } else {
             animation.view = [&](double t) { return camera_path_at(camera_path, t); };
         }
-        render_animation(context, animation, settings, o.denoise, sky.exposure());
+        render_animation(context, animation, settings, o.denoise, exposure_for);
         return 0;
     }
-    const Film film = render_view(context, camera, settings, o.denoise, sky.exposure(), &stats);
+    const double exposure = exposure_for(camera);
+    const Film film = render_view(context, camera, settings, o.denoise, exposure, &stats);
     if (o.time_limit > 0 && !settings.quiet)
         std::fprintf(stderr, "render: time limit %gs: %d passes (%d spp) in %.2fs\n", o.time_limit, stats.spp, stats.spp,
                      stats.seconds);
     const Clock::time_point write_start = Clock::now();
-    write_image(film, o.output, sky.exposure());
+    write_image(film, o.output, exposure);
     const double write_seconds = seconds_since(write_start);
 
     if (o.print_memory_info) print_memory_info(*render_scene, stdout);
+    if (o.print_memory_info) std::printf("light_bytes: %zu\n", lights.bytes());
     if (o.stats) {
         // Phases besides the tracing: loading the file, building geometry and BVH, writing.
         std::printf("load_seconds: %.3f\nbuild_seconds: %.3f\nwrite_seconds: %.3f\n", load_seconds, build_seconds,
@@ -217,6 +266,8 @@ int run(const Options& o) {
         const Vec3 sun = sky.sun_direction();
         std::printf("sun_direction: %.5f,%.5f,%.5f\nsun_irradiance: %.4f\n", sun.x, sun.y, sun.z,
                     sky.has_sun() ? luminance(sky.sun_radiance()) * sky.sun_solid_angle() : 0.0);
+        std::printf("sun_elevation: %.3f\nexposure_ev: %.3f\nlights: %zu\n", sky.sun_elevation(),
+                    ev_from_exposure(exposure), lights.sampler().size());
     }
     return 0;
 }
@@ -240,7 +291,34 @@ int main(int argc, char** argv) {
     app.add_option("--look-at", o.look_at, "point the camera looks at, X,Y,Z in scene metres");
     app.add_option("--fov", o.fov, "vertical field of view in degrees")->check(CLI::Range(1.0, 170.0))
         ->capture_default_str();
-    app.add_option("--time", o.time, "day, sunset or night")->capture_default_str();
+    app.add_option("--time", o.time, "day, sunset, dusk or night")->capture_default_str();
+    app.add_option("--sun-elevation", o.sun_elevation,
+                   "sun elevation in degrees (below 1: twilight or night, lamps and windows on); default from --time")
+        ->check(finite_within(-90, 90));
+    app.add_option("--sun-azimuth", o.sun_azimuth, "sun azimuth in degrees clockwise from north; default from --time")
+        ->check(finite_within(-360, 360));
+    app.add_flag("--moon", o.moon, "a full moon lights the night (when the sun is below the horizon)");
+    app.add_option("--exposure", o.exposure_ev,
+                   "exposure value at ISO 100 (e.g. 15 sunny day, 9 dusk, 3 street lamps); default automatic")
+        ->check(finite_within(-20, 30));
+    app.add_option("--lamp-power", o.lights.lamp_lumens, "luminous flux of each street lamp in lumens")
+        ->check(finite_within(0, 1e7))->capture_default_str();
+    app.add_option("--lamp-kelvin", o.lights.lamp_kelvin,
+                   "colour temperature of the lamps (2000 sodium orange .. 6500 cold LED)")
+        ->check(finite_within(1667, 25000))->capture_default_str();
+    app.add_option("--lit-windows", o.lights.lit_windows, "share of windows lit at night (shop fronts more often)")
+        ->check(finite_within(0, 1))->capture_default_str();
+    app.add_option("--fog", o.fog,
+                   "ground fog: scattering coefficient per metre (0.01 thin, 0.05 thick; 0 none); lamp haloes at night")
+        ->check(finite_within(0, 10))->capture_default_str();
+    app.add_option("--fog-height", o.fog_height, "the fog fills the air up to this many metres above the ground")
+        ->check(finite_within(0, 10000))->capture_default_str();
+    app.add_option("--visibility", o.visibility_km,
+                   "clear-air visibility in km for the aerial perspective on camera rays (0: none)")
+        ->check(finite_within(0, 1000))->capture_default_str();
+    app.add_option("--light-sampler", o.light_sampler,
+                   "how next-event estimation picks a lamp or window: tree (light BVH), power or uniform")
+        ->capture_default_str();
     app.add_option("--max-depth", r.integrator.max_depth, "bounces after the first hit")
         ->check(CLI::Range(0, 1000))->capture_default_str();
     app.add_option("--rr-depth", r.integrator.rr_depth, "bounces always traced before Russian roulette starts")

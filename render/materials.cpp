@@ -38,6 +38,9 @@ MaterialTable default_materials() {
     t[kRailSteel] = {"rail_steel", MaterialType::Glossy, {0.25, 0.24, 0.23}, {0.3, 0.3, 0.3}, 80, 1.5, {}};
     t[kSleeper] = {"sleeper", MaterialType::Diffuse, {0.38, 0.37, 0.35}, {}, 1, 1.5, {}};
     t[kAsphaltLight] = {"asphalt_light", MaterialType::Glossy, {0.11, 0.11, 0.115}, {0.04, 0.04, 0.04}, 40, 1.5, {}};
+    t[kLampPole] = {"lamp_pole", MaterialType::Glossy, {0.04, 0.045, 0.05}, {0.15, 0.15, 0.15}, 30, 1.5, {}};
+    t[kLampGlobe] = {"lamp_globe", MaterialType::Diffuse, {0.8, 0.8, 0.8}, {}, 1, 1.5, {}};
+    t[kLampCap] = {"lamp_cap", MaterialType::Glossy, {0.04, 0.045, 0.05}, {0.15, 0.15, 0.15}, 30, 1.5, {}};
     return t;
 }
 

@@ -68,6 +68,10 @@ enum MaterialId : uint16_t {
     kRailSteel,
     kSleeper,
     kAsphaltLight,  // asphalt grain: a lighter speckle of the same asphalt
+    // Street lamps (lamp_shape.h); the globe's emission is set from --lamp-power/--lamp-kelvin.
+    kLampPole,
+    kLampGlobe,
+    kLampCap,
     kStockMaterialCount
 };
 

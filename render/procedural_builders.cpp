@@ -33,7 +33,8 @@ std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scen
             building_wall(b, w, &p, &q);
             const WallInput input = building_wall_input(b, w);
             if (p == q || !(input.height > 0)) continue;  // no wall under a roof that starts at the bottom
-            geometry->add_wall(index, make_wall_layout(facades, input), wall_frame(p, q, bottom));
+            geometry->add_wall(index, make_wall_layout(facades, input), wall_frame(p, q, bottom),
+                               static_cast<uint32_t>(w));
         }
         if (b.roof_faces.empty()) geometry->add_polygon(index, b.outer, b.holes, top, kRoof, +1);
         for (const RoofFace& face : b.roof_faces)

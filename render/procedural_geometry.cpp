@@ -8,8 +8,9 @@
 
 namespace citygen {
 
-void ProceduralGeometry::add_wall(uint32_t object, const WallLayout& layout, const WallFrame& frame) {
-    walls_.push_back({layout, frame, object});
+void ProceduralGeometry::add_wall(uint32_t object, const WallLayout& layout, const WallFrame& frame,
+                                  uint32_t wall_index) {
+    walls_.push_back({layout, frame, object, wall_index});
 }
 
 void ProceduralGeometry::add_plain_wall(uint32_t object, Vec2 a, Vec2 b, double bottom, double height) {
@@ -289,6 +290,10 @@ void ProceduralGeometry::complete_hit(const RTCHit& embree_hit, Hit& hit) const 
     hit.kind = kind_;
     hit.object = object(embree_hit.primID);
     hit.material = static_cast<uint16_t>(embree_hit.u);
+    if (embree_hit.primID < walls_.size()) {
+        hit.wall = walls_[embree_hit.primID].wall_index;
+        hit.cell = static_cast<uint32_t>(embree_hit.v);
+    }
     hit.geometric_normal = normalize(Vec3{embree_hit.Ng_x, embree_hit.Ng_y, embree_hit.Ng_z});
     hit.shading_normal = hit.geometric_normal;
 }

@@ -36,7 +36,8 @@ public:
         : kind_(kind), wall_materials_(wall_materials) {}
 
     // `object` is the index of the scene object the primitive belongs to (reported for hits).
-    void add_wall(uint32_t object, const WallLayout& layout, const WallFrame& frame);
+    // `wall_index` is the wall's number within its building (reported for pane hits).
+    void add_wall(uint32_t object, const WallLayout& layout, const WallFrame& frame, uint32_t wall_index = 0);
     // A bare vertical rectangle over the edge a->b from z = bottom up by `height`, facing right
     // of a->b; drawn with the Wall surface's material.
     void add_plain_wall(uint32_t object, Vec2 a, Vec2 b, double bottom, double height);
@@ -86,6 +87,7 @@ private:
         WallLayout layout;
         WallFrame frame;
         uint32_t object;
+        uint32_t wall_index;
     };
     struct PlainWall {
         Vec3 origin;  // lower end of a

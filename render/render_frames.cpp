@@ -69,7 +69,7 @@ Film render_view(const PathContext& context, const Camera& camera, const RenderS
 }
 
 void render_animation(const PathContext& context, const Animation& animation, const RenderSettings& settings,
-                      bool denoise, double exposure) {
+                      bool denoise, const std::function<double(const Camera&)>& exposure_for) {
     using Clock = std::chrono::steady_clock;
     const Clock::time_point start = Clock::now();
     const int count = animation.frames.count();
@@ -78,6 +78,7 @@ void render_animation(const PathContext& context, const Animation& animation, co
         const CameraKey key = animation.view(frame / animation.fps);
         const Camera camera = Camera::look_at(key.position, key.look_at, key.fov, settings.width, settings.height);
         const std::string path = frame_file_name(animation.output_pattern, frame);
+        const double exposure = exposure_for(camera);
         const Film film = render_view(context, camera, settings, denoise, exposure);
         write_image(film, path, exposure);
         if (!settings.quiet) {

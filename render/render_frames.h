@@ -25,9 +25,10 @@ struct Animation {
     std::string output_pattern;  // out_%04d.png
 };
 
-// Renders and writes each frame (frame n at time n / fps) to its own file; unless quiet, one line
-// per frame on stderr: frame k of n, its seconds and the ETA of the whole run.
+// Renders and writes each frame (frame n at time n / fps) to its own file, exposed with
+// exposure_for(its camera); unless quiet, one line per frame on stderr: frame k of n, its
+// seconds and the ETA of the whole run.
 void render_animation(const PathContext& context, const Animation& animation, const RenderSettings& settings,
-                      bool denoise, double exposure);
+                      bool denoise, const std::function<double(const Camera&)>& exposure_for);
 
 }  // namespace citygen

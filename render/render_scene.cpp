@@ -5,6 +5,7 @@
 #include <string>
 
 #include "error.h"
+#include "materials.h"
 
 namespace citygen {
 
@@ -62,6 +63,14 @@ void StoredMeshGeometry::complete_hit(const RTCHit& embree_hit, Hit& hit) const 
     const Vec3 c = mesh_.vertex(mesh_.indices[3 * prim + 2]);
     hit.geometric_normal = normalize(cross(b - a, c - a));
     hit.shading_normal = hit.geometric_normal;
+    if (!mesh_.pane_cells.empty() && (hit.material == kGlass || hit.material == kShopWindow)) {
+        auto after = std::upper_bound(mesh_.pane_cells.begin(), mesh_.pane_cells.end(), prim,
+                                      [](uint32_t p, const TriangleMesh::PaneCell& c) { return p < c.first_triangle; });
+        if (after != mesh_.pane_cells.begin() && prim < std::prev(after)->first_triangle + 2) {
+            hit.wall = std::prev(after)->wall;
+            hit.cell = std::prev(after)->cell;
+        }
+    }
 }
 
 RenderScene::RenderScene() {

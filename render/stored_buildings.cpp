@@ -23,13 +23,27 @@ void add_facade_walls(const Building& b, uint32_t object, double bottom, const F
         const WallInput input = building_wall_input(b, w);
         if (p == q || !(input.height > 0)) continue;  // no wall under a roof that starts at the bottom
         scratch.clear();
-        append_wall_mesh(make_wall_layout(facades, input), wall_frame(p, q, bottom), scratch);
+        const WallLayout layout = make_wall_layout(facades, input);
+        const WallFrame frame = wall_frame(p, q, bottom);
+        append_wall_mesh(layout, frame, scratch);
         const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
         for (Vec3 v : scratch.vertices) mesh.add_vertex(v);
         for (size_t t = 0; t < scratch.triangles.size(); ++t) {
             const auto& tri = scratch.triangles[t];
+            const FacadeSurface surface = scratch.surfaces[t];
+            // A pane's two triangles come together; remember its cell (from its centre) for lit windows.
+            if (t % 2 == 0 && (surface == FacadeSurface::Glass || surface == FacadeSurface::BalconyDoor ||
+                               surface == FacadeSurface::ShopWindow)) {
+                const Vec3 centre = (scratch.vertices[tri[0]] + scratch.vertices[tri[1]] + scratch.vertices[tri[2]]) *
+                                    (1.0 / 3);
+                const Vec3 local = frame.point_to_local(centre);
+                const int floor = static_cast<int>(std::floor((local.y - layout.grid_v0) / layout.floor_height));
+                const int slot = static_cast<int>(std::floor((local.x - layout.grid_u0) / layout.slot_width));
+                mesh.pane_cells.push_back({static_cast<uint32_t>(mesh.triangle_count()), static_cast<uint32_t>(w),
+                                           static_cast<uint32_t>(floor) * 65536u + static_cast<uint32_t>(slot) + 1});
+            }
             mesh.add_triangle(first + tri[0], first + tri[1], first + tri[2], object,
-                              materials[static_cast<int>(scratch.surfaces[t])]);
+                              materials[static_cast<int>(surface)]);
         }
     }
 }

@@ -29,6 +29,9 @@ TriangleMesh build_stored_sidewalks(const Scene& scene);
 // looks past its edge.
 TriangleMesh build_stored_terrain(const Scene& scene);
 
+// Street lamps (lamp_shape.h): pole, glowing globe and cap as triangles.
+TriangleMesh build_stored_lamps(const Scene& scene);
+
 // A sidewalk piece as both geometry modes build it: its ring counter-clockwise, the road
 // level and the curb top. False for a degenerate piece (fewer than 3 points).
 struct SidewalkShape {

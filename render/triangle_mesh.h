@@ -16,6 +16,12 @@ struct TriangleMesh {
     std::vector<uint32_t> indices;         // 3 per triangle; counter-clockwise seen from the front
     std::vector<uint32_t> face_object;     // per triangle: index of the scene object it belongs to
     std::vector<uint16_t> face_material;   // per triangle: MaterialId
+    // Facade panes only (hit.h's wall and cell), ascending by first triangle; each pane is the
+    // two triangles from first_triangle on. Kept sparse: a few percent of a facade's triangles.
+    struct PaneCell {
+        uint32_t first_triangle, wall, cell;
+    };
+    std::vector<PaneCell> pane_cells;
 
     size_t vertex_count() const { return vertices.size() / 3; }
     size_t triangle_count() const { return face_object.size(); }
@@ -40,7 +46,8 @@ struct TriangleMesh {
     Vec3 vertex(uint32_t i) const { return {vertices[3 * i], vertices[3 * i + 1], vertices[3 * i + 2]}; }
     size_t bytes() const {
         return vertices.capacity() * sizeof(float) + indices.capacity() * sizeof(uint32_t) +
-               face_object.capacity() * sizeof(uint32_t) + face_material.capacity() * sizeof(uint16_t);
+               face_object.capacity() * sizeof(uint32_t) + face_material.capacity() * sizeof(uint16_t) +
+               pane_cells.capacity() * sizeof(PaneCell);
     }
 };
 

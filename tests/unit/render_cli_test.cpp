@@ -165,6 +165,14 @@ TEST_F(RenderCli, BadInputGivesOneLineAndNoOutput) {
         s + o + " --geometry-roads=triangles",
         s + o + " --aovs depth,colour",
         s + o + " --no-such-option",
+        s + o + " --lamp-power -1",
+        s + o + " --lit-windows 1.5",
+        s + o + " --fog nan",
+        s + o + " --light-sampler foo",
+        s + o + " --sun-elevation 200",
+        s + o + " --exposure inf",
+        s + o + " --lamp-kelvin 100",
+        s + o + " --time night --fog -0.1",
         s,  // no output at all
     };
     for (const std::string& args : cases) {

@@ -1,0 +1,46 @@
+// What the light BVH knows about a light or a cluster of lights (pbrt-v4's LightBounds, after
+// Conty & Kulla 2018): spatial bounds, emitted power, and an orientation cone (axis w, the
+// spread of emitter normals theta_o and the emission angle theta_e around each normal).
+#pragma once
+
+#include "geometry.h"
+
+namespace citygen {
+
+struct LightBounds {
+    float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+    float w[3] = {0, 0, 1};
+    float phi = 0;            // power (luminance-weighted), any consistent unit
+    float cos_theta_o = 1;    // normals lie within theta_o of w
+    float cos_theta_e = 0;    // each normal emits within theta_e of itself
+    bool two_sided = false;
+
+    Vec3 min() const { return {lo[0], lo[1], lo[2]}; }
+    Vec3 max() const { return {hi[0], hi[1], hi[2]}; }
+    Vec3 centroid() const { return (min() + max()) * 0.5; }
+    Vec3 axis() const { return {w[0], w[1], w[2]}; }
+    void set_box(Vec3 a, Vec3 b);
+    void set_axis(Vec3 v);
+
+    // How much this cluster may light point p with surface normal n (n = 0: a point in a
+    // medium, light from all directions counts). Zero only where no light of the cluster can
+    // arrive (behind every emitter, or below the surface's horizon): sampling stays unbiased.
+    double importance(Vec3 p, Vec3 n) const;
+};
+
+// LightBounds with what importance() needs precomputed (centre, bounding-sphere radius): what the
+// light BVH keeps per node, 40 bytes. Our emitters are one-sided (panes) or spheres (globes), so
+// two-sided bounds are not kept.
+struct CompactLightBounds {
+    float center[3], radius2;
+    float w[3], phi, cos_theta_o, cos_theta_e;
+
+    explicit CompactLightBounds(const LightBounds& b);
+    CompactLightBounds() = default;
+    double importance(Vec3 p, Vec3 n) const;  // as LightBounds::importance
+};
+
+// The bounds of two clusters together (cones joined as in pbrt-v4's DirectionCone Union).
+LightBounds union_of(const LightBounds& a, const LightBounds& b);
+
+}  // namespace citygen

@@ -1,0 +1,287 @@
+#include "scene_lights.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include "bsdf.h"
+#include "lamp_shape.h"
+#include "photometry.h"
+#include "window_glow.h"
+
+namespace citygen {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+bool is_pane_material(uint16_t m) { return m == kGlass || m == kShopWindow; }
+
+// 1 - cos of the half-angle a sphere of radius r subtends from distance d > r (stable when far).
+double one_minus_cos_sphere(double r, double d) {
+    const double sin2 = (r * r) / (d * d);
+    return sin2 / (1 + std::sqrt(std::max(0.0, 1 - sin2)));
+}
+
+}  // namespace
+
+SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const LightOptions& options)
+    : scene_(&scene), facades_(facades), options_(options) {
+    static std::atomic<uint64_t> instances{0};
+    id_ = ++instances;  // never 0: an empty cache slot belongs to no instance
+    std::vector<LightBounds> bounds;
+    if (options.lamps && options.lamp_lumens > 0) {
+        for (const citygen::Lamp& lamp : scene.lamps) {
+            const LampShape s = lamp_shape(lamp, scene.ground.z);
+            const Vec3 c = s.globe_center;
+            const double r = s.globe_radius;
+            lamps_.push_back({{float(c.x), float(c.y), float(c.z)}, float(r)});
+            LightBounds b;
+            b.set_box(c - Vec3{r, r, r}, c + Vec3{r, r, r});
+            b.cos_theta_o = -1;  // a sphere's normals point everywhere
+            b.cos_theta_e = 0;
+            // Luminous flux of a Lambertian sphere: pi x luminance x area.
+            b.phi = static_cast<float>(options.lamp_lumens);
+            bounds.push_back(b);
+        }
+        // Lambertian sphere of area 4 pi r^2 sending lamp_lumens: L = flux / (pi * area).
+        const double r = lamp_shape(citygen::Lamp{}, 0).globe_radius;
+        const double nits = options.lamp_lumens / (kPi * 4 * kPi * r * r);
+        lamp_radiance_ = blackbody_color(options.lamp_kelvin) * (nits / kNitsPerRadianceUnit);
+    }
+
+    building_strips_.assign(scene.buildings.size() + 1, 0);
+    for (uint32_t b = 0; b < scene.buildings.size(); ++b) {
+        building_strips_[b] = static_cast<uint32_t>(strips_.size());
+        const Building& building = scene.buildings[b];
+        if (building.outer.size() < 3 || !(building.height > building.min_height)) continue;
+        if (!(options.lit_windows > 0)) continue;
+        for (uint32_t w = 0, n = static_cast<uint32_t>(building_wall_count(building)); w < n; ++w) {
+            WallGeometry g;
+            if (!derive_wall_geometry(b, w, &g) || g.layout.plain()) continue;
+            for (int first = 0; first < g.layout.floors; first += kFloorsPerStrip) {
+                const int count = std::min(kFloorsPerStrip, g.layout.floors - first);
+                double weight = 0;
+                for (int floor = first; floor < first + count; ++floor) {
+                    for (int slot = 0; slot < g.layout.slots; ++slot) {
+                        ++windows_;
+                        const double wgt = window_weight(g, floor, slot);
+                        lit_windows_ += wgt > 0;
+                        weight += wgt;
+                    }
+                }
+                if (!(weight > 0)) continue;
+                strips_.push_back({b, w, static_cast<uint16_t>(first), static_cast<uint16_t>(count), float(weight)});
+                // Bounds: the panes' band of the wall at the pane depth, facing out of the building.
+                const WallLayout& L = g.layout;
+                const double v0 = L.grid_v0 + first * L.floor_height, v1 = v0 + count * L.floor_height;
+                const double at = L.recess;
+                LightBounds lb;
+                lb.set_box(g.frame.to_world(L.grid_u0, v0, at), g.frame.to_world(L.grid_u1(), v1, at));
+                lb.set_axis(-g.frame.w_axis);
+                lb.cos_theta_o = 1;
+                lb.cos_theta_e = 0;
+                lb.phi = static_cast<float>(kPi * weight * kNitsPerRadianceUnit);  // lumens, as the lamps
+                bounds.push_back(lb);
+            }
+        }
+    }
+    building_strips_[scene.buildings.size()] = static_cast<uint32_t>(strips_.size());
+    sampler_ = LightSampler(bounds, options.sampler);
+}
+
+size_t SceneLights::bytes() const {
+    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) +
+           building_strips_.capacity() * sizeof(uint32_t) + sampler_.bytes();
+}
+
+bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {
+    // Deriving a wall's layout and frame from the rules costs about a microsecond, and the walls
+    // a pixel's paths sample or hit repeat: each thread keeps the last few (values only, so the
+    // image cannot depend on the cache or the thread count).
+    struct Cached {
+        uint64_t owner = 0;
+        uint32_t building = 0, wall = 0;
+        bool ok = false;
+        WallGeometry geometry;
+    };
+    thread_local Cached cache[64];
+    Cached& slot = cache[(building * 31u + wall) & 63u];
+    if (slot.owner == id_ && slot.building == building && slot.wall == wall) {
+        *out = slot.geometry;
+        return slot.ok;
+    }
+    slot.owner = id_;
+    slot.building = building;
+    slot.wall = wall;
+    slot.ok = derive_wall_geometry(building, wall, &slot.geometry);
+    *out = slot.geometry;
+    return slot.ok;
+}
+
+bool SceneLights::derive_wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {
+    const Building& b = scene_->buildings[building];
+    if (wall >= building_wall_count(b)) return false;
+    Vec2 p, q;
+    building_wall(b, wall, &p, &q);
+    if (p == q) return false;
+    out->layout = make_wall_layout(facades_, building_wall_input(b, wall));
+    out->frame = wall_frame(p, q, scene_->ground.z + b.min_height);
+    out->building_key = facade_building_key(b);
+    out->wall = wall;
+    return true;
+}
+
+// A lit window's share of its strip's light: its mean radiance (luminance) times its pane
+// area; 0 when the window is dark.
+double SceneLights::window_weight(const WallGeometry& g, int floor, int slot) const {
+    if (!window_lit(facades_, g.building_key, g.wall, g.layout, floor, slot, options_.lit_windows)) return 0;
+    const bool shop = cell_kind(g.layout, floor, slot) == CellKind::Shop;
+    const uint64_t key = window_key(facades_.seed, g.building_key, g.wall, floor, slot);
+    // The opening's size from the rules' own rectangles (cheaper than building the cell's panes).
+    const CellKind kind = cell_kind(g.layout, floor, slot);
+    const CellRect& r = kind == CellKind::Shop      ? g.layout.shop_window
+                        : kind == CellKind::Balcony ? g.layout.door
+                                                    : g.layout.window;
+    return window_base_luminance(key, shop) * kWindowPatternMean * (r.u1 - r.u0) * (r.v1 - r.v0);
+}
+
+Color SceneLights::window_radiance(const WallGeometry& g, int floor, int slot, Vec3 position) const {
+    const bool shop = cell_kind(g.layout, floor, slot) == CellKind::Shop;
+    const uint64_t key = window_key(facades_.seed, g.building_key, g.wall, floor, slot);
+    const Pane pane = window_pane(g.layout, floor, slot);
+    const Vec3 local = g.frame.point_to_local(position);
+    const double s = std::clamp((local.x - pane.u0) / (pane.u1 - pane.u0), 0.0, 1.0);
+    const double t = std::clamp((local.y - pane.v0) / (pane.v1 - pane.v0), 0.0, 1.0);
+    return window_base_radiance(key, shop) * window_pattern(key, s, t);
+}
+
+bool SceneLights::lit_window_at(const Hit& hit) const {
+    if (hit.kind != ObjectKind::Building || hit.cell == 0 || !is_pane_material(hit.material)) return false;
+    if (!scene_ || !(options_.lit_windows > 0) || hit.object >= scene_->buildings.size()) return false;
+    WallGeometry g;
+    if (!wall_geometry(hit.object, hit.wall, &g)) return false;
+    const int floor = static_cast<int>((hit.cell - 1) >> 16), slot = static_cast<int>((hit.cell - 1) & 0xffff);
+    return window_lit(facades_, g.building_key, g.wall, g.layout, floor, slot, options_.lit_windows);
+}
+
+int64_t SceneLights::strip_light(const Hit& hit) const {
+    const int floor = static_cast<int>((hit.cell - 1) >> 16);
+    // A building's strips are ordered by (wall, first floor): the last one starting at or below.
+    const auto begin = strips_.begin() + building_strips_[hit.object], end = strips_.begin() + building_strips_[hit.object + 1];
+    auto after = std::upper_bound(begin, end, std::make_pair(hit.wall, floor), [](std::pair<uint32_t, int> key, const Strip& s) {
+        return key.first < s.wall || (key.first == s.wall && key.second < s.first_floor);
+    });
+    if (after == begin) return -1;
+    const Strip& s = *std::prev(after);
+    if (s.wall != hit.wall || floor >= s.first_floor + s.floor_count) return -1;
+    return static_cast<int64_t>(lamps_.size() + (std::prev(after) - strips_.begin()));
+}
+
+Color SceneLights::emitted(const Hit& hit) const {
+    if (hit.kind == ObjectKind::Lamp) return hit.material == kLampGlobe && !lamps_.empty() ? lamp_radiance_ : Color{};
+    if (!lit_window_at(hit)) return {0, 0, 0};
+    WallGeometry g;
+    wall_geometry(hit.object, hit.wall, &g);
+    const int floor = static_cast<int>((hit.cell - 1) >> 16), slot = static_cast<int>((hit.cell - 1) & 0xffff);
+    return window_radiance(g, floor, slot, hit.position);
+}
+
+bool SceneLights::sample_lamp(const Lamp& lamp, Vec3 p, double u1, double u2, LightSample* out) const {
+    const Vec3 c{lamp.center[0], lamp.center[1], lamp.center[2]};
+    const double r = lamp.radius;
+    const Vec3 to_center = c - p;
+    const double d = length(to_center);
+    if (!(d > r * 1.0001)) return false;
+    const double one_minus_cos = one_minus_cos_sphere(r, d);
+    const Vec3 dir = sample_cone(to_center * (1 / d), 1 - one_minus_cos, u1, u2);
+    // Nearest intersection with the sphere (the tangent point if rounding misses it).
+    const Vec3 oc = p - c;
+    const double b = dot(oc, dir);
+    const Vec3 f = oc - dir * b;
+    const double disc = r * r - dot(f, f);
+    const double t = disc > 0 ? -b - std::sqrt(disc) : -b;
+    if (!(t > 0)) return false;
+    out->direction = dir;
+    out->distance = t;
+    out->position = p + dir * t;
+    out->radiance = lamp_radiance_;
+    out->pdf = 1 / (2 * kPi * one_minus_cos);
+    return true;
+}
+
+double SceneLights::lamp_pdf(const Lamp& lamp, Vec3 p) const {
+    const Vec3 c{lamp.center[0], lamp.center[1], lamp.center[2]};
+    const double d = length(c - p);
+    if (!(d > lamp.radius * 1.0001)) return 0;
+    return 1 / (2 * kPi * one_minus_cos_sphere(lamp.radius, d));
+}
+
+bool SceneLights::sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) const {
+    uint32_t light;
+    double pmf;
+    if (!sampler_.sample(p, n, u[0], &light, &pmf)) return false;
+    if (light < lamps_.size()) {
+        if (!sample_lamp(lamps_[light], p, u[1], u[2], out)) return false;
+        out->pdf *= pmf;
+        return true;
+    }
+    // A strip of windows: one lit window in proportion to its weight, then a point on its pane.
+    const Strip& strip = strips_[light - lamps_.size()];
+    WallGeometry g;
+    if (!wall_geometry(strip.building, strip.wall, &g)) return false;
+    const double target = u[3] * strip.weight;
+    int floor = -1, slot = -1;
+    double weight = 0;
+    [&] {
+        double sum = 0;
+        for (int f = strip.first_floor; f < strip.first_floor + strip.floor_count; ++f) {
+            for (int s = 0; s < g.layout.slots; ++s) {
+                const double w = window_weight(g, f, s);
+                if (!(w > 0)) continue;
+                floor = f, slot = s, weight = w;  // the last lit one if rounding leaves target above the sum
+                sum += w;
+                if (target < sum) return;
+            }
+        }
+    }();
+    if (floor < 0 || !(weight > 0)) return false;
+    const Pane pane = window_pane(g.layout, floor, slot);
+    const Vec3 position = g.frame.to_world(pane.u0 + u[1] * (pane.u1 - pane.u0), pane.v0 + u[2] * (pane.v1 - pane.v0),
+                                           pane.at);
+    const Vec3 to = position - p;
+    const double distance = length(to);
+    if (!(distance > 0)) return false;
+    const Vec3 dir = to * (1 / distance);
+    const double cos_light = dot(dir, g.frame.w_axis);  // the pane faces -w: light leaves towards -w
+    if (!(cos_light > 0)) return false;
+    out->position = position;
+    out->direction = dir;
+    out->distance = distance;
+    out->radiance = window_radiance(g, floor, slot, position);
+    out->pdf = pmf * (weight / strip.weight) / pane.area() * distance * distance / cos_light;
+    return true;
+}
+
+double SceneLights::pdf(Vec3 p, Vec3 n, const Hit& hit) const {
+    if (hit.kind == ObjectKind::Lamp) {
+        if (hit.material != kLampGlobe || hit.object >= lamps_.size()) return 0;
+        return sampler_.pmf(p, n, hit.object) * lamp_pdf(lamps_[hit.object], p);
+    }
+    if (!lit_window_at(hit)) return 0;
+    const int64_t light = strip_light(hit);
+    if (light < 0) return 0;
+    const Strip& strip = strips_[light - lamps_.size()];
+    WallGeometry g;
+    wall_geometry(strip.building, strip.wall, &g);
+    const int floor = static_cast<int>((hit.cell - 1) >> 16), slot = static_cast<int>((hit.cell - 1) & 0xffff);
+    const double weight = window_weight(g, floor, slot);
+    const Vec3 to = hit.position - p;
+    const double distance2 = dot(to, to);
+    const double cos_light = dot(to * (1 / std::sqrt(distance2)), g.frame.w_axis);
+    if (!(cos_light > 0) || !(weight > 0)) return 0;
+    const double pmf = sampler_.pmf(p, n, static_cast<uint32_t>(light));
+    return pmf * (weight / strip.weight) / window_pane(g.layout, floor, slot).area() * distance2 / cos_light;
+}
+
+}  // namespace citygen

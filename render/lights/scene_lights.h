@@ -1,0 +1,101 @@
+// The scene's emitters for next-event estimation: street-lamp globes (spheres, lamp_shape.h)
+// and lit windows, chosen through a LightSampler (tree, power or uniform).
+//
+// Lit windows store nothing per window: a light is a strip of up to kFloorsPerStrip (8) floors of
+// one wall, carrying the summed power of its lit windows; sampling it picks one lit window from
+// the facade rules (window_lit, window_glow.h) and a point on its pane.
+// Sun, moon and sky are not here: the integrator samples them beside these.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "facade.h"
+#include "hit.h"
+#include "light_sampler.h"
+#include "materials.h"
+#include "scene.h"
+
+namespace citygen {
+
+struct LightOptions {
+    bool lamps = true;                // lamps glow
+    double lamp_lumens = 6000;        // --lamp-power: a typical LED street lamp
+    double lamp_kelvin = 4000;        // --lamp-kelvin
+    double lit_windows = 0.3;         // --lit-windows: share of windows lit (0: none)
+    LightSamplerKind sampler = LightSamplerKind::Tree;
+};
+
+struct LightSample {
+    Vec3 position;     // on the emitter
+    Vec3 direction;    // unit, from the shading point towards position
+    double distance = 0;
+    Color radiance;    // leaving the emitter towards the shading point
+    double pdf = 0;    // solid angle at the shading point, times the probability of the light
+};
+
+class SceneLights {
+public:
+    SceneLights() = default;  // no emitters
+    // `scene` must outlive this object (windows are re-derived from it when sampled).
+    SceneLights(const Scene& scene, const FacadeOptions& facades, const LightOptions& options);
+
+    bool empty() const { return sampler_.size() == 0; }
+    size_t lamp_count() const { return lamps_.size(); }
+    size_t strip_count() const { return strips_.size(); }
+    uint64_t lit_window_count() const { return lit_windows_; }
+    uint64_t window_count() const { return windows_; }
+    const LightSampler& sampler() const { return sampler_; }
+    size_t bytes() const;
+
+    // Next-event estimation from point p with normal n (oriented to the side light may come from;
+    // zero in a medium); u holds four uniform numbers. False when nothing was sampled.
+    bool sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) const;
+    // Radiance an emitter sends back along the ray that hit it (front side), zero for anything else.
+    Color emitted(const Hit& hit) const;
+    // The pdf sample() from (p, n) has of producing the direction to `hit` (an emitter), as in LightSample.
+    double pdf(Vec3 p, Vec3 n, const Hit& hit) const;
+
+    // Whether the pane at `hit` belongs to a lit window (tests).
+    bool lit_window_at(const Hit& hit) const;
+    // Lit windows decided by the rules, counted over the scene: (windows, lit) per cell kind.
+    static constexpr int kFloorsPerStrip = 8;
+
+private:
+    struct Lamp {
+        float center[3];
+        float radius;
+    };
+    struct Strip {
+        uint32_t building, wall;
+        uint16_t first_floor, floor_count;
+        float weight;  // sum of the lit windows' weights (window_weight)
+    };
+    struct WallGeometry {
+        WallLayout layout;
+        WallFrame frame;
+        uint64_t building_key;
+        uint32_t wall;
+    };
+    bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;  // cached per thread
+    bool derive_wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;
+    double window_weight(const WallGeometry& g, int floor, int slot) const;
+    // Light index of the strip holding a pane hit; -1 if none.
+    int64_t strip_light(const Hit& hit) const;
+    Color window_radiance(const WallGeometry& g, int floor, int slot, Vec3 position) const;
+    bool sample_lamp(const Lamp& lamp, Vec3 p, double u1, double u2, LightSample* out) const;
+    double lamp_pdf(const Lamp& lamp, Vec3 p) const;
+
+    uint64_t id_ = 0;  // tells this instance's entries in the per-thread wall cache from others'
+    const Scene* scene_ = nullptr;
+    FacadeOptions facades_;
+    LightOptions options_;
+    Color lamp_radiance_{0, 0, 0};
+    std::vector<Lamp> lamps_;             // light i < lamps_.size(): lamp i of the scene
+    std::vector<Strip> strips_;           // light lamps_.size() + j: strip j, by (building, wall, floor)
+    std::vector<uint32_t> building_strips_;  // strips of building b: [building_strips_[b], building_strips_[b + 1])
+    uint64_t lit_windows_ = 0, windows_ = 0;
+    LightSampler sampler_;
+};
+
+}  // namespace citygen

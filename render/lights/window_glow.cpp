@@ -1,0 +1,64 @@
+#include "window_glow.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "photometry.h"
+#include "rng.h"
+
+namespace citygen {
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+// Luminance of a lit window seen from the street, cd/m^2 (curtained rooms ~5-30, shops more).
+constexpr double kWindowNits = 15, kShopNits = 60;
+double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+}  // namespace
+
+uint64_t window_key(uint64_t seed, uint64_t building_key, uint32_t wall_index, int floor, int slot) {
+    return hash_keys(seed, building_key, wall_index, static_cast<uint64_t>(floor) << 32 | static_cast<uint32_t>(slot),
+                     0x6c0e);
+}
+
+Pane window_pane(const WallLayout& layout, int floor, int slot) {
+    FacadeRect rects[kMaxCellRects];
+    int layer_end[kCellLayers];
+    cell_rects(layout, floor, slot, rects, layer_end);
+    const FacadeRect& pane = rects[layer_end[2]];  // layer 3 starts with the pane
+    return {pane.a0, pane.a1, pane.b0, pane.b1, pane.at};
+}
+
+double window_base_luminance(uint64_t key, bool shop) {
+    const double u = hash_to_unit(mix64(key + 2));
+    const double nits = (shop ? kShopNits : kWindowNits) * (0.35 + 1.3 * u * u);
+    return nits / kNitsPerRadianceUnit;
+}
+
+Color window_base_radiance(uint64_t key, bool shop) {
+    const double kelvin = shop ? 3000 + 1500 * hash_to_unit(mix64(key + 1)) : 2300 + 1300 * hash_to_unit(mix64(key + 1));
+    return blackbody_color(kelvin) * window_base_luminance(key, shop);
+}
+
+double perlin_noise(uint64_t key, double x, double y) {
+    const double fx = std::floor(x), fy = std::floor(y);
+    const int64_t ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy);
+    const double dx = x - fx, dy = y - fy;
+    auto corner = [&](int64_t cx, int64_t cy, double ox, double oy) {
+        const double angle = 2 * kPi * hash_to_unit(hash_keys(key, static_cast<uint64_t>(cx), static_cast<uint64_t>(cy)));
+        return std::cos(angle) * ox + std::sin(angle) * oy;
+    };
+    const double n00 = corner(ix, iy, dx, dy), n10 = corner(ix + 1, iy, dx - 1, dy);
+    const double n01 = corner(ix, iy + 1, dx, dy - 1), n11 = corner(ix + 1, iy + 1, dx - 1, dy - 1);
+    const double sx = fade(dx), sy = fade(dy);
+    const double a = n00 + (n10 - n00) * sx, b = n01 + (n11 - n01) * sx;
+    return a + (b - a) * sy;
+}
+
+double window_pattern(uint64_t key, double s, double t) {
+    // Two octaves across the pane: a soft lamp-lit glow with darker folds.
+    const double ox = 100 * hash_to_unit(mix64(key + 3)), oy = 100 * hash_to_unit(mix64(key + 4));
+    const double n = perlin_noise(key, 2.2 * s + ox, 1.6 * t + oy) + 0.5 * perlin_noise(key + 7, 5 * s + ox, 4 * t + oy);
+    return std::clamp(kWindowPatternMean + 0.6 * n, 0.2, 1.0);
+}
+
+}  // namespace citygen

@@ -1,0 +1,245 @@
+// Lamps, lit windows and many-light sampling (render/lights/): the light sampler's
+// probabilities, and unbiased next-event estimation whichever sampler picks the light.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include <gtest/gtest.h>
+
+#include "build_render_scene.h"
+#include "light_sampler.h"
+#include "render_image.h"
+#include "rng.h"
+#include "scene_io.h"
+#include "scene_lights.h"
+#include "test_support.h"
+
+using namespace citygen;
+
+namespace {
+
+Ring rectangle(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+// A street between two blocks of flats, 48 lamps along it and around, lit windows on the facades.
+Scene lamp_street() {
+    Scene s;
+    s.header.seed = 7;
+    s.header.bounds_min = {-60, -60};
+    s.header.bounds_max = {60, 60};
+    s.ground.min = {-60, -60};
+    s.ground.max = {60, 60};
+    Building north, south;
+    north.outer = rectangle(-40, 8, 40, 20);
+    north.height = 15;
+    south.outer = rectangle(-40, -20, 40, -8);
+    south.height = 12;
+    s.buildings = {north, south};
+    RoadEdge road;
+    road.quad = rectangle(-60, -4, 60, 4);
+    s.roads.push_back(road);
+    for (int i = 0; i < 24; ++i) {
+        for (double y : {-6.0, 6.0}) {
+            Lamp lamp;
+            lamp.position = {-55 + 4.8 * i, y + (i % 3) * 0.3, 0};
+            lamp.height = 4 + (i % 4);
+            s.lamps.push_back(lamp);
+        }
+    }
+    return s;
+}
+
+LightOptions night_lights(LightSamplerKind kind) {
+    LightOptions o;
+    o.sampler = kind;
+    o.lit_windows = 0.4;
+    return o;
+}
+
+double pixel_luminance(const Film& film, size_t i) {
+    return 0.2126 * film.rgb[3 * i] + 0.7152 * film.rgb[3 * i + 1] + 0.0722 * film.rgb[3 * i + 2];
+}
+
+struct Difference {
+    double mean = 0, reference_mean = 0, standard_error = 0;
+};
+
+// Mean of (film - reference) per pixel and its standard error: the picture's content cancels,
+// what is left is the two estimators' noise (pixels are independent) and any bias.
+Difference difference(const Film& film, const Film& reference) {
+    const size_t n = film.rgb.size() / 3;
+    double sum = 0, sum2 = 0, ref = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const double d = pixel_luminance(film, i) - pixel_luminance(reference, i);
+        sum += d;
+        sum2 += d * d;
+        ref += pixel_luminance(reference, i);
+    }
+    Difference r;
+    r.mean = sum / n;
+    r.reference_mean = ref / n;
+    r.standard_error = std::sqrt(std::max(0.0, sum2 / n - r.mean * r.mean) / n);
+    return r;
+}
+
+}  // namespace
+
+TEST(LightSampler, ProbabilitiesSumToOneAndMatchWhatSamplingReports) {
+    const Scene scene = lamp_street();
+    for (LightSamplerKind kind : {LightSamplerKind::Tree, LightSamplerKind::Power, LightSamplerKind::Uniform}) {
+        const SceneLights lights(scene, FacadeOptions{scene.header.seed}, night_lights(kind));
+        ASSERT_EQ(lights.lamp_count(), scene.lamps.size());
+        ASSERT_GT(lights.strip_count(), 0u) << "lit windows should be lights";
+        const LightSampler& sampler = lights.sampler();
+        Rng rng(11);
+        for (int trial = 0; trial < 200; ++trial) {
+            // Points on the road, on facades and in the air; normals up, sideways or none.
+            const Vec3 p{-58 + 116 * rng.next_double(), -7 + 14 * rng.next_double(), 12 * rng.next_double()};
+            const Vec3 normals[3] = {{0, 0, 1}, {0, trial % 2 ? 1.0 : -1.0, 0}, {0, 0, 0}};
+            const Vec3 n = normals[trial % 3];
+            double total = 0;
+            for (uint32_t i = 0; i < sampler.size(); ++i) total += sampler.pmf(p, n, i);
+            EXPECT_NEAR(total, 1.0, 1e-9) << to_string(kind) << " at trial " << trial;
+            for (int k = 0; k < 5; ++k) {
+                uint32_t light;
+                double pmf;
+                if (!sampler.sample(p, n, rng.next_double(), &light, &pmf)) continue;
+                EXPECT_NEAR(pmf, sampler.pmf(p, n, light), 1e-12 * std::max(1.0, pmf)) << to_string(kind);
+                EXPECT_GT(pmf, 0);
+            }
+        }
+    }
+}
+
+TEST(SceneLights, PdfOfAnEmitterHitEqualsThePdfItWasSampledWith) {
+    // Procedural mode: the globes are exact spheres, so the hit is the sampled point.
+    const Scene scene = lamp_street();
+    const auto render_scene = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural), FacadeOptions{scene.header.seed});
+    const SceneLights lights(scene, FacadeOptions{scene.header.seed}, night_lights(LightSamplerKind::Tree));
+    Rng rng(5);
+    int lamps = 0, windows = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        const Vec3 p{-50 + 100 * rng.next_double(), -3.5 + 7 * rng.next_double(), 0.03};
+        const Vec3 n{0, 0, 1};
+        const double u[4] = {rng.next_double(), rng.next_double(), rng.next_double(), rng.next_double()};
+        LightSample ls;
+        if (!lights.sample(p, n, u, &ls)) continue;
+        Hit hit;
+        if (!render_scene->intersect(Ray{p, ls.direction, 1e-4, 1e30}, hit)) continue;
+        if (std::fabs(hit.t - ls.distance) > 1e-4 * ls.distance + 1e-4) continue;  // occluded
+        const Color emitted = lights.emitted(hit);
+        ASSERT_GT(emitted.x + emitted.y + emitted.z, 0) << "the sampled point emits";
+        EXPECT_NEAR(lights.pdf(p, n, hit), ls.pdf, 1e-6 * ls.pdf);
+        (hit.kind == ObjectKind::Lamp ? lamps : windows)++;
+    }
+    EXPECT_GT(lamps, 100);
+    EXPECT_GT(windows, 20);
+}
+
+TEST(SceneLights, EverySamplerAndBsdfSamplingAloneConvergeToTheSameMean) {
+    const Scene scene = lamp_street();
+    const auto render_scene = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural), FacadeOptions{scene.header.seed});
+    const MaterialTable materials = default_materials();
+    const Sky sky = Sky::daylight(TimeOfDay::Night);
+    RenderSettings r;
+    r.width = 24;
+    r.height = 16;
+    r.quiet = true;
+    r.integrator.max_depth = 3;
+    const Camera camera = Camera::look_at({-30, 0, 1.7}, {10, 0, 4}, 70, r.width, r.height);
+
+    auto render_with = [&](LightSamplerKind kind, bool next_event, int spp) {
+        const SceneLights lights(scene, FacadeOptions{scene.header.seed}, night_lights(kind));
+        RenderSettings settings = r;
+        settings.spp = spp;
+        settings.integrator.sample_lights = next_event;
+        return render_image({*render_scene, materials, sky, settings.integrator, nullptr, &lights}, camera, settings);
+    };
+    const Film reference = render_with(LightSamplerKind::Tree, true, 256);
+    const Film cases[] = {render_with(LightSamplerKind::Power, true, 256),
+                          render_with(LightSamplerKind::Uniform, true, 256),
+                          render_with(LightSamplerKind::Tree, false, 1024)};
+    const char* names[] = {"power", "uniform", "BSDF sampling alone"};
+    for (int i = 0; i < 3; ++i) {
+        const Difference d = difference(cases[i], reference);
+        EXPECT_LT(std::fabs(d.mean), 4 * d.standard_error)
+            << names[i] << " differs from the tree by " << d.mean << " +- " << d.standard_error << " (mean "
+            << d.reference_mean << ")";
+        EXPECT_LT(d.standard_error, 0.05 * d.reference_mean) << names[i] << ": too noisy to tell";
+    }
+}
+
+namespace {
+
+// The bundled real extract (Neukoelln, Berlin), parsed once.
+const Scene& neukolln() {
+    static const Scene scene = [] {
+        test::TempDir dir;
+        const std::string path = dir.file("neukolln.scene");
+        const test::CommandResult r = test::run_command(test::osmparse_binary() + " -q " +
+                                                        test::quoted(test::source_path("examples/neukolln.osm.bz2")) +
+                                                        " -o " + test::quoted(path));
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return load_scene(path);
+    }();
+    return scene;
+}
+
+}  // namespace
+
+TEST(LitWindows, ShareLitIsTheOptionWithinTwoPointsOnARealExtract) {
+    const Scene& scene = neukolln();
+    const FacadeOptions facades{scene.header.seed};
+    for (double share : {0.1, 0.3, 0.7}) {
+        long windows = 0, lit = 0, shops = 0, lit_shops = 0;
+        for (const Building& b : scene.buildings) {
+            if (b.outer.size() < 3 || !(b.height > b.min_height)) continue;
+            for (size_t w = 0; w < building_wall_count(b); ++w) {
+                const WallLayout layout = make_wall_layout(facades, building_wall_input(b, w));
+                for (int floor = 0; floor < layout.floors; ++floor) {
+                    for (int slot = 0; slot < layout.slots; ++slot) {
+                        const bool on = window_lit(facades, facade_building_key(b), static_cast<uint32_t>(w), layout,
+                                                   floor, slot, share);
+                        if (cell_kind(layout, floor, slot) == CellKind::Shop) shops++, lit_shops += on;
+                        else windows++, lit += on;
+                    }
+                }
+            }
+        }
+        ASSERT_GT(windows, 1000);
+        EXPECT_NEAR(double(lit) / windows, share, 0.02) << lit << " of " << windows;
+        if (shops > 100) {
+            EXPECT_GT(double(lit_shops) / shops, share + 0.05) << "shop fronts are lit more often";
+        }
+    }
+}
+
+TEST(LitWindows, SameCellsInBothGeometryModes) {
+    // Rays from above the street onto the facades: wherever a pane is hit, both modes report the
+    // same window (building, wall, cell), lit or dark alike, and it glows the same.
+    const Scene& scene = neukolln();
+    const FacadeOptions facades{scene.header.seed};
+    const auto stored = build_render_scene(scene, GeometryModes::all(GeometryMode::Stored), facades);
+    const auto procedural = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural), facades);
+    const SceneLights lights(scene, facades, night_lights(LightSamplerKind::Tree));
+    Rng rng(3);
+    int panes = 0, same = 0, lit = 0;
+    for (int i = 0; i < 60000; ++i) {
+        const Vec3 origin{-200 + 300 * rng.next_double(), -200 + 300 * rng.next_double(), 2 + 20 * rng.next_double()};
+        const double a = 6.283185307179586 * rng.next_double();
+        const Vec3 dir = normalize(Vec3{std::cos(a), std::sin(a), -0.3 + 0.6 * rng.next_double()});
+        Hit hs, hp;
+        if (!stored->intersect(Ray{origin, dir, 0, 1e30}, hs) || hs.cell == 0) continue;
+        ++panes;
+        if (!procedural->intersect(Ray{origin, dir, 0, 1e30}, hp)) continue;
+        if (hs.object != hp.object || hs.wall != hp.wall || hs.cell != hp.cell) continue;
+        ++same;
+        const bool on = lights.lit_window_at(hs);
+        EXPECT_EQ(on, lights.lit_window_at(hp));
+        lit += on;
+        const Color es = lights.emitted(hs), ep = lights.emitted(hp);
+        EXPECT_NEAR(es.y, ep.y, 1e-3 * es.y + 1e-12);
+    }
+    EXPECT_GT(panes, 1000);
+    EXPECT_GE(same, 0.995 * panes) << "rays grazing a pane's edge may differ";
+    EXPECT_GT(lit, 0);
+}
