@@ -8,6 +8,8 @@
 
 #include "error.h"
 #include "facade_mesh.h"
+#include "stored_geometry.h"
+#include "tree_geometry.h"
 
 namespace citygen {
 
@@ -86,6 +88,7 @@ MemoryEstimate estimate_render_memory(const Scene& scene, const GeometryModes& m
             for (size_t w = 0, n = building_wall_count(b); w < n; ++w)
                 e.stored_triangles += wall_triangle_estimate(make_wall_layout(facades, building_wall_input(b, w)));
             e.stored_triangles += 4 * ring_points(b);  // roof and underside, a bound
+            for (const RoofFace& face : b.roof_faces) e.stored_triangles += static_cast<double>(face.points.size());
         }
     } else {
         for (const Building& b : scene.buildings) e.procedural_primitives += ring_points(b) + 2;
@@ -100,6 +103,35 @@ MemoryEstimate estimate_render_memory(const Scene& scene, const GeometryModes& m
     flat(GeometryClass::Roads, road_points);
     flat(GeometryClass::Joints, joint_points);
     flat(GeometryClass::Sidewalks, sidewalk_points);
+    double cover_points = 0, path_points = 0;
+    for (const LandCover& c : scene.land_cover) {
+        cover_points += static_cast<double>(c.outer.size());
+        for (const Ring& h : c.holes) cover_points += static_cast<double>(h.size());
+    }
+    for (const PathEdge& p : scene.paths) path_points += static_cast<double>(p.quad.size());
+    for (const Joint& j : scene.path_joints) path_points += static_cast<double>(j.polygon.size());
+    flat(GeometryClass::LandCover, cover_points);
+    flat(GeometryClass::Paths, path_points);
+    // Lamps and trees: one primitive each, or the triangles of one, counted on a one-object
+    // scene by the same code that builds them (their shapes have one definition).
+    if (!scene.lamps.empty()) {
+        if (modes[GeometryClass::Lamps] == GeometryMode::Stored) {
+            Scene one;
+            one.lamps.push_back(scene.lamps.front());
+            e.stored_triangles += static_cast<double>(scene.lamps.size()) * build_stored_lamps(one).triangle_count();
+        } else {
+            e.procedural_primitives += static_cast<double>(scene.lamps.size());
+        }
+    }
+    if (!scene.trees.empty()) {
+        if (modes[GeometryClass::Trees] == GeometryMode::Stored) {
+            Scene one;
+            one.trees.push_back(scene.trees.front());
+            e.stored_triangles += static_cast<double>(scene.trees.size()) * build_stored_trees(one)->triangle_count();
+        } else {
+            e.procedural_primitives += static_cast<double>(scene.trees.size());
+        }
+    }
     const double pixels = static_cast<double>(settings.width) * settings.height;
     // rgb floats, the AOVs (10 floats), the encoded copy and OpenImageIO's conversion buffer.
     e.image_bytes = pixels * 4 * (3 + (settings.aovs ? 10 : 0)) * 3;
