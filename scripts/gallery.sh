@@ -23,7 +23,9 @@ street=(--camera 0,0,1.7 --look-at 100,20,10 --fov 60)
 closer=(--camera -40,-200,40 --look-at 0,-80,10)
 run ./render city.scene -o "$gallery/day.jpg" "${size[@]}" --spp 64 --denoise
 run ./render city.scene -o "$gallery/sunset.jpg" "${size[@]}" --spp 64 --denoise --time sunset
+run ./render city.scene -o "$gallery/dusk.jpg" "${size[@]}" --spp 64 --denoise --time dusk
 run ./render city.scene -o "$gallery/night.jpg" "${size[@]}" --spp 64 --denoise --time night
+run ./render city.scene -o "$gallery/night_street.jpg" "${size[@]}" --spp 128 --denoise --time night "${street[@]}"
 run ./render city.scene -o "$gallery/street.jpg" "${size[@]}" --spp 64 --denoise "${street[@]}"
 run ./render city.scene -o "$gallery/stored.jpg" "${size[@]}" --spp 32 "${closer[@]}"
 run ./render city.scene -o "$gallery/procedural.jpg" "${size[@]}" --spp 32 "${closer[@]}" --procedural
