@@ -97,7 +97,7 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     // At an acute corner the neighbouring wall runs in behind the end cells at w = u * tan(angle):
     // keep the room boxes (which start edge_margin + inset from the corner) in front of it.
     const double corner = std::min(wall.start_angle, wall.end_angle);
-    if (corner < 0.5 * 3.141592653589793) {
+    if (corner < 0.5 * kPi) {
         const double deepest = 0.9 * (edge_margin + kRoomInset) * std::tan(corner);  // 10% to spare
         layout.room_depth = std::clamp(deepest - layout.recess, kMinRoomDepth, layout.room_depth);
     }
@@ -329,7 +329,7 @@ namespace {
 double interior_angle(Vec2 behind, Vec2 corner, Vec2 ahead) {
     const Vec2 out = ahead - corner, back = behind - corner;
     double angle = std::atan2(cross(out, back), dot(out, back));
-    if (angle <= 0) angle += 2 * 3.141592653589793;
+    if (angle <= 0) angle += 2 * kPi;
     return angle;
 }
 

@@ -56,7 +56,7 @@ struct WallInput {
     int levels = 0;             // tagged building:levels, 0 when unknown
     // Interior angles (radians) of the footprint at the wall's two ends; below a right angle
     // the neighbouring wall cuts in behind this one, so room boxes must be shallower.
-    double start_angle = 3.141592653589793, end_angle = 3.141592653589793;
+    double start_angle = kPi, end_angle = kPi;
     FacadeStyle style = FacadeStyle::Normal;
 };
 

@@ -6,6 +6,8 @@
 
 namespace citygen {
 
+constexpr double kPi = 3.14159265358979323846;  // the one definition (C++17 has no std::numbers)
+
 struct Vec2 {
     double x = 0, y = 0;
     Vec2() = default;

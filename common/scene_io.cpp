@@ -194,6 +194,9 @@ void decode_building_look(const fb::Building* x, const Checker& check, Building&
             for (const fb::Vec3* p : *f->points())
                 face.points.push_back({check.coordinate(p->x(), "roof face"), check.coordinate(p->y(), "roof face"),
                                        check.coordinate(p->z(), "roof face")});
+            std::vector<Vec2> footprint;
+            for (const Vec3& p : face.points) footprint.push_back({p.x, p.y});
+            check.extent(footprint, "roof face");
             bld.roof_faces.push_back(std::move(face));
         }
     if (x->height_rule() > fb::HeightRule::MAX) check.fail("invalid height rule");
@@ -502,8 +505,10 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             c.outer = check.ring(x->outer(), "land cover outline", kMaxLandCoverPoints, kMaxLandCoverExtent);
             check.area_ring(c.outer, "land cover outline");
             if (x->holes())
-                for (const fb::Ring* r : *x->holes())
+                for (const fb::Ring* r : *x->holes()) {
                     c.holes.push_back(check.ring(r, "land cover hole", kMaxLandCoverPoints, kMaxLandCoverExtent));
+                    check.area_ring(c.holes.back(), "land cover hole");
+                }
             s.land_cover.push_back(std::move(c));
         }
 

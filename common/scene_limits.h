@@ -18,8 +18,9 @@ constexpr double kMaxHeight = 1000;
 constexpr size_t kMaxRingPoints = 10000;
 
 // Land cover (the sea, a forest) may span a whole region: its own, looser limits on one
-// polygon's points and size (a coastline of a large extract has many points).
-constexpr size_t kMaxLandCoverPoints = 1000000;
+// polygon's points and size (a coastline of a large extract has many points; the procedural
+// mode's tiling costs about points^2 / 32, a second or two at this limit).
+constexpr size_t kMaxLandCoverPoints = 100000;
 constexpr double kMaxLandCoverExtent = 2 * kMaxCoordinate;
 
 }  // namespace citygen

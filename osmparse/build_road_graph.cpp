@@ -190,7 +190,7 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
         }
 
     // 3. Merge runs of nearly collinear pieces of the same way through degree-2 nodes.
-    const double max_turn = params.merge_angle_deg * M_PI / 180;
+    const double max_turn = params.merge_angle_deg * kPi / 180;
     auto within_merge = [&](const std::vector<Piece>& run, const Piece& next) {
         const Vec2 start = run.front().pa, end = next.pb;
         if (run.front().a == next.b) return false;  // would close a loop

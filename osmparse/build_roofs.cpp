@@ -17,7 +17,6 @@ namespace citygen {
 namespace {
 
 const char* const kRoofs = "roofs";
-constexpr double kPi = 3.141592653589793;
 constexpr double kMinRoofHeight = 0.3;  // lower than this, a roof is drawn flat
 
 enum Salt : uint64_t { kPitchedOrFlat = 101, kWhichPitched, kPitch };

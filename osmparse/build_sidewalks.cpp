@@ -253,8 +253,8 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             const Vec2 pj = ej.origin - perp_left(dj) * half_of(ej, false);
             const std::pair<Vec2, Vec2> beyond_i{pi, pi + di}, beyond_j{pj, pj - dj};
             double gap = std::atan2(cross(di, dj), dot(di, dj));
-            if (gap <= 0) gap += 2 * M_PI;
-            if (gap < M_PI - 1e-3) {
+            if (gap <= 0) gap += 2 * kPi;
+            if (gap < kPi - 1e-3) {
                 emit(SidewalkKind::Corner, clean_piece(clip_to_half_planes(no.joint, {beyond_i, beyond_j})), -1, joint,
                      false);
             } else {

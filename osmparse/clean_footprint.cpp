@@ -9,7 +9,6 @@ namespace citygen {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Angle in radians between two directions, in [0, pi]; pi for a zero vector.
 double angle_between(Vec2 a, Vec2 b) {

@@ -98,8 +98,8 @@ double joint_demand(const std::vector<EndGeometry>& geo, size_t end) {
         const size_t j = (i + 1) % k;
         const EndGeometry &gi = geo[i], &gj = geo[j];
         double gap = std::atan2(cross(gi.dir, gj.dir), dot(gi.dir, gj.dir));
-        if (gap <= 0) gap += 2 * M_PI;
-        if (gap >= M_PI - 1e-3) continue;
+        if (gap <= 0) gap += 2 * kPi;
+        if (gap >= kPi - 1e-3) continue;
         double s, u;
         if (!intersect_lines(gi.left_at(0), gi.dir, gj.right_at(0), gj.dir, s, u))
             continue;
@@ -120,8 +120,8 @@ std::vector<Ring> layout_joint(NodeLayout& node, const std::vector<EndGeometry>&
         const EndGeometry &gi = geo[i], &gj = geo[j];
         node.ends[i].gap_points.clear();
         double gap = std::atan2(cross(gi.dir, gj.dir), dot(gi.dir, gj.dir));
-        if (gap <= 0) gap += 2 * M_PI;
-        if (k == 1 || gap >= M_PI - 1e-3) continue;  // open or straight side: a plain bevel
+        if (gap <= 0) gap += 2 * kPi;
+        if (k == 1 || gap >= kPi - 1e-3) continue;  // open or straight side: a plain bevel
         double s, u;
         if (!intersect_lines(gi.left_at(0), gi.dir, gj.right_at(0), gj.dir, s, u))
             continue;

@@ -9,7 +9,6 @@ namespace citygen {
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
 // A footprint filling at least this share of its minimum-area rectangle takes ridge roofs over
 // that rectangle; a more bent one is built hipped from its straight skeleton.
 constexpr double kNearRectangle = 0.85;

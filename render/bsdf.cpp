@@ -7,7 +7,6 @@ namespace citygen {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Any orthonormal basis around n (Duff et al. 2017), taken in a fixed tilted frame. Duff's basis
 // jumps where the normal's third coordinate changes sign; in world coordinates that is every

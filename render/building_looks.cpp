@@ -60,7 +60,7 @@ double wall_pattern(WallMaterial material, double u, double v) {
             if (f < 0.06) return 0.55;
             return 1 + 0.1 * (2 * cell_unit(static_cast<int64_t>(std::floor(board)), 0, 17) - 1);
         }
-        case WallMaterial::Metal: return 0.9 + 0.1 * std::sin(2 * 3.141592653589793 * u / 0.1);
+        case WallMaterial::Metal: return 0.9 + 0.1 * std::sin(2 * kPi * u / 0.1);
         case WallMaterial::Glass: return 1;
     }
     return 1;

@@ -7,7 +7,6 @@
 namespace citygen {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 }
 
 Camera Camera::look_at(Vec3 position, Vec3 target, double vertical_fov_deg, int width, int height) {

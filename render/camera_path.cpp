@@ -6,12 +6,12 @@
 #include <sstream>
 
 #include "error.h"
+#include "scene_limits.h"
 
 namespace citygen {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // Splits a CSV line into numbers; false unless it is exactly `count` finite numbers.
 bool parse_numbers(const std::string& line, size_t count, std::vector<double>& out) {
@@ -65,6 +65,12 @@ CameraPath parse_camera_path(const std::string& text, const std::string& name) {
             throw Error(where + "times must increase from key to key");
         if (key.fov < 1 || key.fov > 170) throw Error(where + "fov must be between 1 and 170 degrees");
         if (length(key.look_at - key.position) < 1e-6) throw Error(where + "camera and look-at coincide");
+        if (!(key.time >= 0 && key.time <= kMaxPathSeconds))
+            throw Error(where + "time must be between 0 and " + std::to_string(static_cast<long>(kMaxPathSeconds)) + " s");
+        for (double c : {key.position.x, key.position.y, key.position.z, key.look_at.x, key.look_at.y, key.look_at.z})
+            if (std::fabs(c) > kMaxCoordinate)  // as for --camera: beyond, Embree's arithmetic overflows
+                throw Error(where + "a coordinate is more than " + std::to_string(static_cast<long>(kMaxCoordinate)) +
+                            " m from the scene origin");
         path.keys.push_back(key);
     }
     if (path.keys.size() < 2) throw Error(name + ": a camera path needs at least two keyframes");

@@ -14,6 +14,10 @@
 
 namespace citygen {
 
+// The longest camera path or orbit, seconds: frame numbers (time x fps, fps <= 1000) stay
+// far inside int.
+constexpr double kMaxPathSeconds = 1e6;
+
 struct CameraKey {
     double time = 0;  // seconds
     Vec3 position, look_at;

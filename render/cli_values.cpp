@@ -29,4 +29,15 @@ void check_view(Vec3 camera, Vec3 look_at) {
         throw Error("--camera and --look-at are the same point; the camera needs a direction to look in");
 }
 
+PixelRegion parse_region(const std::string& text) {
+    std::stringstream in(text);
+    PixelRegion r;
+    char c1 = 0, c2 = 0, c3 = 0;
+    in >> r.x0 >> c1 >> r.y0 >> c2 >> r.x1 >> c3 >> r.y1;
+    if (in.fail() || c1 != ',' || c2 != ',' || c3 != ',' || !(in >> std::ws).eof())
+        throw Error("--region: expected X0,Y0,X1,Y1 in pixels, got '" + text + "'");
+    if (r.empty()) throw Error("--region " + text + ": must be a non-empty rectangle (X0 < X1, Y0 < Y1)");
+    return r;
+}
+
 }  // namespace citygen

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "geometry.h"
+#include "render_image.h"
 
 namespace citygen {
 
@@ -13,5 +14,8 @@ Vec3 parse_point(const std::string& text, const std::string& option);
 
 // Refuses a camera that sits on the point it looks at (no direction to look in).
 void check_view(Vec3 camera, Vec3 look_at);
+
+// --region "X0,Y0,X1,Y1" in pixels, a non-empty rectangle (render_region checks it lies in the frame).
+PixelRegion parse_region(const std::string& text);
 
 }  // namespace citygen

@@ -8,7 +8,6 @@
 namespace citygen {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 // The parameter interval of the ray inside the half-space z <= top: [enter, leave].
 void inside_interval(double top, Vec3 origin, Vec3 direction, double t_max, double* enter, double* leave) {

@@ -154,7 +154,7 @@ Vec3 water_normal(Vec2 p, bool sea) {
     const double scale = sea ? 0.6 : 0.3;
     double gx = 0, gy = 0;
     for (const Train& t : trains) {
-        const double k = 2 * M_PI / t.wavelength;
+        const double k = 2 * kPi / t.wavelength;
         const double phase = k * (t.dx * p.x + t.dy * p.y);
         const double d = t.slope * std::cos(phase + 1.7 * std::sin(0.31 * phase));
         gx += d * t.dx;

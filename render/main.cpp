@@ -83,17 +83,6 @@ std::string format_number(double value) {
     return text;
 }
 
-PixelRegion parse_region(const std::string& text) {
-    std::stringstream in(text);
-    PixelRegion r;
-    char c1 = 0, c2 = 0, c3 = 0;
-    in >> r.x0 >> c1 >> r.y0 >> c2 >> r.x1 >> c3 >> r.y1;
-    if (in.fail() || c1 != ',' || c2 != ',' || c3 != ',' || !(in >> std::ws).eof())
-        throw Error("--region: expected X0,Y0,X1,Y1 in pixels, got '" + text + "'");
-    if (r.empty()) throw Error("--region " + text + ": must be a non-empty rectangle (X0 < X1, Y0 < Y1)");
-    return r;
-}
-
 bool parse_aovs(const std::string& text) {
     if (text.empty()) return false;
     std::stringstream in(text);
@@ -175,7 +164,7 @@ int run(const Options& o) {
     // User textures are read before the long geometry build, so a bad --texture-dir fails fast.
     std::unique_ptr<BuildingTextures> textures;
     if (!o.texture_dir.empty()) {
-        const double pixel_angle = 2 * std::tan(0.5 * o.fov * 3.141592653589793 / 180) / settings.height;
+        const double pixel_angle = 2 * std::tan(0.5 * o.fov * kPi / 180) / settings.height;
         textures = std::make_unique<BuildingTextures>(o.texture_dir, pixel_angle);
     }
     FacadeOptions facades;
@@ -357,13 +346,13 @@ int main(int argc, char** argv) {
                    "like out_%04d.png");
     app.add_flag("--orbit", o.orbit, "animate one turn around the automatic view's centre (see --orbit-seconds)");
     app.add_option("--orbit-seconds", o.orbit_seconds, "duration of the --orbit turn")
-        ->check(CLI::Range(0.01, 1e6))->capture_default_str();
+        ->check(finite_within(0.01, kMaxPathSeconds))->capture_default_str();
     app.add_option("--frames", o.frames, "frames A-B (or N) of the animation; default: all");
     app.add_option("--fps", o.fps, "frames per second of the animation (frame n shows time n / fps)")
-        ->check(CLI::Range(0.01, 1000.0))->capture_default_str();
+        ->check(finite_within(0.01, 1000.0))->capture_default_str();
     app.add_option("--time-limit", o.time_limit,
                    "render whole passes (1 spp each) while the next fits in SECONDS; --spp, if given, caps them")
-        ->check(CLI::Range(0.0, 1e9));
+        ->check(finite_within(0.0, 1e9));
     app.add_flag("--denoise", o.denoise,
                  "edge-avoiding a-trous filter guided by normal, depth, albedo and id (EXR keeps raw.R/G/B)");
 

@@ -20,14 +20,22 @@ namespace {
 
 constexpr int kTileSize = 16;
 
+// The albedo the AOV shows and the denoiser divides by: the surface's own colour (a building's
+// colour and pattern included), the specular colour for mirrors and glass. Patterns also tilt
+// hit.shading_normal (bump), so call this before reading the normal.
+Color albedo_at(const PathContext& context, Hit& hit) {
+    const Material m = surface_material(context.materials, context.building_looks, hit);
+    return m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy || m.type == MaterialType::Water ? m.albedo
+                                                                                                           : m.specular;
+}
+
 // `x`, `y` in the full frame; `i` indexes the film.
 void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, size_t i, Film& film) {
     const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
     Hit hit;
     if (!context.scene.intersect(ray, hit)) return;  // AOVs stay zero for the sky
-    const Material m = surface_material(context.materials, context.building_looks, hit);
+    const Color albedo = albedo_at(context, hit);
     const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
-    const Color albedo = m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy || m.type == MaterialType::Water ? m.albedo : m.specular;
     film.depth[i] = static_cast<float>(hit.t);
     for (int c = 0; c < 3; ++c) {
         film.normal[3 * i + c] = static_cast<float>(n[c]);
@@ -50,9 +58,8 @@ void fill_guides(const PathContext& context, const Camera& camera, int x, int y,
             Hit hit;
             ++rays;
             if (!context.scene.intersect(ray, hit)) continue;
-            const Material& m = context.materials[hit.material];
+            const Color a = albedo_at(context, hit);
             const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
-            const Color a = m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy ? m.albedo : m.specular;
             for (int c = 0; c < 3; ++c) albedo[c] += a[c], normal[c] += n[c];
             depth += hit.t;
         }

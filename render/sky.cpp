@@ -10,7 +10,6 @@ namespace citygen {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kSunAngularRadius = 0.265 * kPi / 180;
 
 Vec3 direction_from(double azimuth_deg, double elevation_deg) {  // azimuth clockwise from north (+y)
@@ -103,8 +102,6 @@ Sky Sky::for_settings(const SkySettings& settings) {
     sky.sun_elevation_deg_ = elevation;
     sky.sun_cos_radius_ = std::cos(kSunAngularRadius);
     sky.model_ = Model::Preetham;
-    // Legacy fixed exposures (the film now picks its own, see exposure.h).
-    sky.exposure_ = elevation >= 30 ? 1.0 : (elevation > 0 ? 2.2 : 20);
     if (elevation > 0) {
         // Daylight: from the sunset's red, dim sun at 4 degrees to the day's at 30 and above.
         const double t = std::clamp((elevation - 4) / (30 - 4), 0.0, 1.0);

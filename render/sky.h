@@ -50,7 +50,6 @@ public:
     bool in_sun_disc(Vec3 dir) const { return has_sun_ && dot(dir, sun_direction_) >= sun_cos_radius_; }
     double sun_solid_angle() const;
     // Exposure the film applies before tone mapping, so day and night both land mid-grey.
-    double exposure() const { return exposure_; }
 
 private:
     enum class Model { Uniform, Preetham, Night } model_ = Model::Uniform;
@@ -59,7 +58,6 @@ private:
     Vec3 sun_direction_{0, 0, 1};
     double sun_cos_radius_ = 1;
     Color sun_radiance_{0, 0, 0};
-    double exposure_ = 1;
     // Preetham: Perez coefficients A..E for Y, x, y and the zenith values.
     double perez_[3][5] = {};
     double zenith_[3] = {};

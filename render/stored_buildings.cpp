@@ -37,8 +37,11 @@ void add_facade_walls(const Building& b, uint32_t object, double bottom, const F
                 const Vec3 centre = (scratch.vertices[tri[0]] + scratch.vertices[tri[1]] + scratch.vertices[tri[2]]) *
                                     (1.0 / 3);
                 const Vec3 local = frame.point_to_local(centre);
-                const int floor = static_cast<int>(std::floor((local.y - layout.grid_v0) / layout.floor_height));
-                const int slot = static_cast<int>(std::floor((local.x - layout.grid_u0) / layout.slot_width));
+                // The centre lies inside its cell; the clamp only guards rounding at the grid's edge.
+                const int floor = std::clamp(
+                    static_cast<int>(std::floor((local.y - layout.grid_v0) / layout.floor_height)), 0, layout.floors - 1);
+                const int slot = std::clamp(
+                    static_cast<int>(std::floor((local.x - layout.grid_u0) / layout.slot_width)), 0, layout.slots - 1);
                 mesh.pane_cells.push_back({static_cast<uint32_t>(mesh.triangle_count()), static_cast<uint32_t>(w),
                                            static_cast<uint32_t>(floor) * 65536u + static_cast<uint32_t>(slot) + 1});
             }

@@ -10,7 +10,6 @@ namespace citygen {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kPoleSides = 20, kCapSides = 40, kGlobeSides = 40, kGlobeRings = 20;
 
 // Radius for the vertices of an n-sided polygon around a circle of radius r such that the

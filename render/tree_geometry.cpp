@@ -252,13 +252,13 @@ void add_ellipsoid(TriangleMesh& mesh, std::vector<uint8_t>& cut_out, uint8_t cu
                    int segments, int rings, uint32_t object, uint16_t material) {
     const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
     // Vertices a little outside the surface, so the facets straddle it instead of lying inside.
-    const double out = 0.5 * (1 + 1 / std::cos(M_PI / segments));
+    const double out = 0.5 * (1 + 1 / std::cos(kPi / segments));
     r *= out;
-    h *= 0.5 * (1 + 1 / std::cos(M_PI / (2 * rings)));
+    h *= 0.5 * (1 + 1 / std::cos(kPi / (2 * rings)));
     for (int k = 0; k <= rings; ++k) {
-        const double theta = M_PI * k / rings;  // from the top
+        const double theta = kPi * k / rings;  // from the top
         for (int j = 0; j < segments; ++j) {
-            const double phi = 2 * M_PI * j / segments;
+            const double phi = 2 * kPi * j / segments;
             mesh.add_vertex({c.x + r * std::sin(theta) * std::cos(phi), c.y + r * std::sin(theta) * std::sin(phi),
                              c.z + h * std::cos(theta)});
         }
@@ -318,7 +318,7 @@ std::unique_ptr<RenderGeometry> build_stored_trees(const Scene& scene) {
         // Trunk: an 8-sided prism (walls only).
         constexpr int kSides = 8;
         for (int j = 0; j < kSides; ++j) {
-            const double a0 = 2 * M_PI * j / kSides, a1 = 2 * M_PI * (j + 1) / kSides;
+            const double a0 = 2 * kPi * j / kSides, a1 = 2 * kPi * (j + 1) / kSides;
             const Vec3 p0{s.base.x + s.trunk_radius * std::cos(a0), s.base.y + s.trunk_radius * std::sin(a0), s.base.z};
             const Vec3 p1{s.base.x + s.trunk_radius * std::cos(a1), s.base.y + s.trunk_radius * std::sin(a1), s.base.z};
             const Vec3 up{0, 0, s.trunk_top};

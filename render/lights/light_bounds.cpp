@@ -7,7 +7,6 @@ namespace citygen {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 double safe_sqrt(double x) { return std::sqrt(std::max(0.0, x)); }
 double safe_acos(double x) { return std::acos(std::clamp(x, -1.0, 1.0)); }

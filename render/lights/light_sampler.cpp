@@ -9,7 +9,6 @@ namespace citygen {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kBuckets = 12;
 constexpr int kMaxSahDepth = 40;  // below this, plain median splits keep the trail within 64 bits
 

@@ -13,7 +13,6 @@ namespace citygen {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 bool is_pane_material(uint16_t m) { return m == kGlass || m == kShopWindow; }
 

@@ -9,7 +9,6 @@
 namespace citygen {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 // Luminance of a lit window seen from the street, cd/m^2 (curtained rooms ~5-30, shops more).
 constexpr double kWindowNits = 15, kShopNits = 60;
 double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "camera_path.h"
 #include "cli_values.h"
 #include "error.h"
 #include "geometry_mode.h"
@@ -18,7 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size == 0) return 0;
     const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
     try {
-        switch (data[0] % 5) {
+        switch (data[0] % 8) {
             case 0: {
                 const Vec3 p = parse_point(text, "--camera");
                 if (!(std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate &&
@@ -39,6 +40,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                 if (v && !std::isfinite(*v)) std::abort();
                 break;
             }
+            case 5: {
+                const PixelRegion r = parse_region(text);
+                if (r.empty()) std::abort();
+                break;
+            }
+            case 6: {  // a camera path file's text: every key within the limits, times increasing
+                const CameraPath path = parse_camera_path(text, "path.csv");
+                if (path.keys.size() < 2) std::abort();
+                for (const CameraKey& k : path.keys)
+                    if (!(k.time >= 0 && k.time <= kMaxPathSeconds) || std::fabs(k.position.x) > kMaxCoordinate ||
+                        std::fabs(k.look_at.z) > kMaxCoordinate)
+                        std::abort();
+                camera_path_at(path, path.keys.front().time + 0.5 * (path.keys.back().time - path.keys.front().time));
+                break;
+            }
+            case 7: parse_frame_range(text); break;
         }
     } catch (const Error&) {
     }

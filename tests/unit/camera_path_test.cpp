@@ -82,6 +82,9 @@ TEST(CameraPath, MalformedFilesNameTheLine) {
         {"0,0,0,0,1,1,1,50\n1,0,0,0,1,1,1,0.5\n", "bad:2:"},
         {"0,0,0,0,0,0,0,50\n1,0,0,0,1,1,1,50\n", "bad:1:"},
         {"0,0,0,0,1,1,1,nan\n1,0,0,0,1,1,1,50\n", "bad:1:"},
+        {"0,0,0,0,1,1,1,50\n1,1e9,0,0,1,1,1,50\n", "bad:2:"},  // beyond the scene limits
+        {"0,0,0,0,1,1,1,50\n1e12,0,0,0,1,1,1,50\n", "bad:2:"}, // frame numbers would overflow
+        {"-1,0,0,0,1,1,1,50\n1,0,0,0,1,1,1,50\n", "bad:1:"},
         {"0,0,0,0,1,1,1,50\n", "bad: a camera path needs at least two"},
         {"", "bad: a camera path needs at least two"},
     };

@@ -57,7 +57,7 @@ TEST(CleanFootprint, DropsCollinearRunsAndSpikes) {
 
 TEST(CleanFootprint, MergesSmallTurnsButKeepsRealCorners) {
     // A 2-degree kink in the bottom edge, then real corners.
-    const double kink = 5 * std::tan(2 * M_PI / 180);
+    const double kink = 5 * std::tan(2 * kPi / 180);
     const Ring ring{{0, 0}, {5, kink}, {10, 0}, {10, 10}, {0, 10}};
     EXPECT_EQ(merge_small_turns(ring, 5).size(), 4u);
     EXPECT_EQ(merge_small_turns(ring, 3).size(), 5u);  // 4 degree turn: kept
@@ -68,16 +68,16 @@ TEST(CleanFootprint, MergesSmallTurnsButKeepsRealCorners) {
 TEST(CleanFootprint, GentleCurveIsNotFlattened) {
     // A round tower drawn with 360 vertices turning 1 degree each.
     Ring circle;
-    for (int i = 0; i < 360; ++i) circle.push_back({10 * std::cos(i * M_PI / 180), 10 * std::sin(i * M_PI / 180)});
+    for (int i = 0; i < 360; ++i) circle.push_back({10 * std::cos(i * kPi / 180), 10 * std::sin(i * kPi / 180)});
     const Ring merged = merge_small_turns(circle, 5);
     // Runs whose directions spread less than 5 degrees: at most 6 one-degree edges each.
     EXPECT_GE(merged.size(), 60u);
     EXPECT_LE(merged.size(), 90u);
-    EXPECT_NEAR(signed_area(merged), M_PI * 100, 0.005 * M_PI * 100);
+    EXPECT_NEAR(signed_area(merged), kPi * 100, 0.005 * kPi * 100);
 }
 
 TEST(CleanFootprint, MergeDoesNotDependOnStartVertex) {
-    const double kink = 5 * std::tan(2 * M_PI / 180);
+    const double kink = 5 * std::tan(2 * kPi / 180);
     Ring ring{{0, 0}, {5, kink}, {10, 0}, {10, 10}, {0, 10}};
     const Ring a = merge_small_turns(ring, 5);
     std::rotate(ring.begin(), ring.begin() + 1, ring.end());  // now starts at the kink

@@ -94,7 +94,7 @@ TEST(Hardening, DecodeRefusesValuesBeyondTheSceneLimits) {
     Building many = box_building(0, 0, 10, 10);
     many.outer.clear();
     for (size_t i = 0; i <= kMaxRingPoints; ++i) {
-        const double a = 2 * M_PI * static_cast<double>(i) / (kMaxRingPoints + 1);
+        const double a = 2 * kPi * static_cast<double>(i) / (kMaxRingPoints + 1);
         many.outer.push_back({100 * std::cos(a), 100 * std::sin(a)});
     }
     EXPECT_NE(decode_error(scene_with(many)).find("points (limit"), std::string::npos);
@@ -184,7 +184,7 @@ TEST(Hardening, RingIsSimpleAgreesWithTheSweep) {
     EXPECT_FALSE(ring_is_simple({{0, 0}, {1, 0}, {2, 0}}));          // collinear
     EXPECT_TRUE(ring_is_simple({{0, 0}, {1, 0}, {2, 0}, {1, 1}}));   // collinear neighbours are fine
     Ring circle;
-    for (int i = 0; i < 100000; ++i) circle.push_back({std::cos(i * 2 * M_PI / 100000), std::sin(i * 2 * M_PI / 100000)});
+    for (int i = 0; i < 100000; ++i) circle.push_back({std::cos(i * 2 * kPi / 100000), std::sin(i * 2 * kPi / 100000)});
     EXPECT_TRUE(ring_is_simple(circle));
     std::swap(circle[10], circle[50000]);
     EXPECT_FALSE(ring_is_simple(circle));

@@ -63,7 +63,7 @@ OsmTags tags(std::vector<std::pair<std::string, std::string>> entries) {
 // scene's coordinates (whose origin is the centre of the data).
 Vec2 at(const Scene& s, double x, double y) {
     const Projection projection(s.header.origin_lat, s.header.origin_lon);
-    const double m_lat = 111320.0, m_lon = 111320.0 * std::cos(43.7 * M_PI / 180);
+    const double m_lat = 111320.0, m_lon = 111320.0 * std::cos(43.7 * kPi / 180);
     return projection.to_local(43.7 + y / m_lat, 7.4 + x / m_lon);
 }
 

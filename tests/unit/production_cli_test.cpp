@@ -215,6 +215,9 @@ TEST_F(ProductionCli, BadProductionInputGivesOneLineAndWritesNothing) {
         s + " -o " + quoted(file("never.png")) + " --region 10,10,10,20",   // empty
         s + " -o " + quoted(file("never.png")) + " --region 1,2,3",
         s + " -o " + quoted(file("never.png")) + " --time-limit -1",
+        s + " -o " + quoted(file("never.png")) + " --time-limit nan",
+        s + pattern + " --orbit --fps nan",
+        s + pattern + " --orbit --orbit-seconds inf",
     };
     for (const std::string& args : cases) {
         const CommandResult r = render(args + " --width 48 --height 30 --spp 1 -q");

@@ -22,14 +22,14 @@ TEST(Projection, AxesPointEastAndNorthInMetres) {
     EXPECT_NEAR(north.x, 0, 1e-6);
     EXPECT_NEAR(north.y, 1113.0, 2.0);  // one hundredth of a degree of latitude
     EXPECT_NEAR(east.y, 0, 0.1);
-    EXPECT_NEAR(east.x, 1113.2 * std::cos(52.48 * M_PI / 180), 2.0);
+    EXPECT_NEAR(east.x, 1113.2 * std::cos(52.48 * kPi / 180), 2.0);
 }
 
 TEST(Projection, RoundTripWithinOneCentimetreAtTenKilometres) {
     for (const auto& [lat, lon] : {std::pair{43.7376, 7.4225}, {47.64, -122.30}, {-33.9, 151.2}, {69.6, 18.9}}) {
         const Projection p(lat, lon);
         for (int k = 0; k < 16; ++k) {
-            const double angle = k * M_PI / 8;
+            const double angle = k * kPi / 8;
             const Vec2 local(10000 * std::cos(angle), 10000 * std::sin(angle));
             double la = 0, lo = 0;
             p.to_wgs84(local, la, lo);

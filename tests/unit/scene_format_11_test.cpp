@@ -86,6 +86,18 @@ TEST(SceneFormat11, BadIndicesAndSizesAreRefused) {
     s.crossings[0].road = 5;
     refused(s, "crossing road index out of range");
     s = sample();
+    s.land_cover[0].holes[0] = {{2, 2}, {3, 3}, {4, 4}};  // collinear: no area
+    refused(s, "land cover hole has zero area");
+    s = sample();
+    Building b;
+    b.outer = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+    b.height = 10;
+    RoofFace face;
+    face.points = {{0, 0, 10}, {20000, 0, 10}, {0, 10, 10}};  // 20 km across
+    b.roof_faces.push_back(face);
+    s.buildings.push_back(b);
+    refused(s, "roof face is over");
+    s = sample();
     s.trees[0].height = -1;
     refused(s, "tree height");
     s = sample();
