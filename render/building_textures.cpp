@@ -22,22 +22,22 @@ double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c 
 BuildingTextures::BuildingTextures(const std::string& dir, double pixel_angle) : pixel_angle_(pixel_angle) {
     std::error_code ec;
     if (!std::filesystem::is_directory(dir, ec)) throw Error("--texture-dir: " + dir + " is not a directory");
-    OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
+    // The process-wide shared texture system, never destroyed by us: OpenImageIO 2.4's
+    // TextureSystem::destroy deletes through the base class with a sized delete, which
+    // AddressSanitizer reports as a new/delete type mismatch inside the library.
+    OIIO::TextureSystem* ts = OIIO::TextureSystem::create(true);
     ts->attribute("automip", 1);  // plain PNG/JPEG tiles get their MIP levels on first use
     system_ = ts;
     for (int i = 0; i < kWallMaterialCount; ++i) walls_[i] = load(dir, to_string(static_cast<WallMaterial>(i)));
     for (int i = 0; i < kRoofMaterialCount; ++i)
         roofs_[i] = load(dir, std::string("roof_") + to_string(static_cast<RoofMaterial>(i)));
     if (count() == 0) {
-        OIIO::TextureSystem::destroy(ts);
         system_ = nullptr;
         throw Error("--texture-dir: " + dir + " holds no texture named after a material (e.g. brick.png, roof_slate.png)");
     }
 }
 
-BuildingTextures::~BuildingTextures() {
-    if (system_) OIIO::TextureSystem::destroy(texture_system(system_));
-}
+BuildingTextures::~BuildingTextures() = default;  // the shared texture system lives until exit
 
 int BuildingTextures::count() const {
     int n = 0;
