@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 #include "osm_units.h"
+#include "point_placement.h"
 #include "polygon_overlap.h"
 #include "rng.h"
 #include "scene_limits.h"
@@ -15,47 +15,6 @@ namespace {
 
 constexpr double kKerbOffset = 0.5;  // metres beyond the carriageway edge
 constexpr double kMinTaggedHeight = 2, kMaxTaggedHeight = 30;
-
-// Lamps already placed, bucketed for "is one within r metres" queries.
-class LampGrid {
-public:
-    explicit LampGrid(double cell) : cell_(std::max(cell, 1.0)) {}
-    void add(Vec2 p) { cells_[key(cell_of(p.x), cell_of(p.y))].push_back(p); }
-    bool any_within(Vec2 p, double r) const {
-        const int64_t cx = cell_of(p.x), cy = cell_of(p.y), reach = static_cast<int64_t>(std::ceil(r / cell_));
-        for (int64_t x = cx - reach; x <= cx + reach; ++x)
-            for (int64_t y = cy - reach; y <= cy + reach; ++y) {
-                auto it = cells_.find(key(x, y));
-                if (it == cells_.end()) continue;
-                for (Vec2 q : it->second)
-                    if (length(q - p) < r) return true;
-            }
-        return false;
-    }
-
-private:
-    int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
-    static int64_t key(int64_t x, int64_t y) { return x * 73856093 ^ y * 19349663; }
-    double cell_;
-    std::unordered_map<int64_t, std::vector<Vec2>> cells_;
-};
-
-// Nearest point on a ring's boundary and the outward direction there.
-Vec2 push_out_of(const Ring& ring, Vec2 p, double margin) {
-    double best = 1e300;
-    Vec2 out = p;
-    for (size_t i = 0, n = ring.size(); i < n; ++i) {
-        const Vec2 a = ring[i], b = ring[(i + 1) % n], ab = b - a;
-        const double t = std::clamp(dot(p - a, ab) / std::max(dot(ab, ab), 1e-12), 0.0, 1.0);
-        const Vec2 c = a + ab * t;
-        if (length(p - c) < best) {
-            best = length(p - c);
-            // CCW ring: the outside is on the right of each edge.
-            out = c + normalize(Vec2(ab.y, -ab.x)) * margin;
-        }
-    }
-    return out;
-}
 
 }  // namespace
 
@@ -80,7 +39,7 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
     auto ground_z = [&](Vec2 p) { return sidewalks.contains(p) ? scene.sidewalks.front().curb_height : 0.0; };
 
     std::vector<Lamp> lamps;
-    LampGrid tagged(params.min_distance_to_tagged);
+    PointGrid tagged(std::max(params.min_distance_to_tagged, 1.0));
     for (const OsmNode& node : osm.street_lamps) {
         Vec2 p = projection.to_local(node.location.lat, node.location.lon);
         if (std::max(std::fabs(p.x), std::fabs(p.y)) > kMaxCoordinate) {
@@ -108,7 +67,7 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
     }
     report.kept("tagged street lamps", static_cast<int64_t>(lamps.size()));
 
-    LampGrid generated(0.5 * params.spacing);
+    PointGrid generated(std::max(0.5 * params.spacing, 1.0));
     int64_t placed = 0;
     for (const RoadEdge& road : scene.roads) {
         const Vec2 from = road.centreline.front(), to = road.centreline.back();

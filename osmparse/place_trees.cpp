@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <unordered_map>
 
 #include "clean_footprint.h"
 #include "osm_units.h"
+#include "point_placement.h"
 #include "polygon_overlap.h"
 #include "rng.h"
 
@@ -22,46 +22,6 @@ Building as_polygon(const Ring& outer, const std::vector<Ring>& holes = {}) {
     b.outer = outer;
     b.holes = holes;
     return b;
-}
-
-// Points already placed, bucketed for "is one within r" queries.
-class PointGrid {
-public:
-    explicit PointGrid(double cell) : cell_(std::max(cell, 0.5)) {}
-    void add(Vec2 p) { cells_[key(cell_of(p.x), cell_of(p.y))].push_back(p); }
-    bool any_within(Vec2 p, double r) const {
-        const int64_t cx = cell_of(p.x), cy = cell_of(p.y), reach = static_cast<int64_t>(std::ceil(r / cell_));
-        for (int64_t x = cx - reach; x <= cx + reach; ++x)
-            for (int64_t y = cy - reach; y <= cy + reach; ++y) {
-                auto it = cells_.find(key(x, y));
-                if (it == cells_.end()) continue;
-                for (Vec2 q : it->second)
-                    if (length(q - p) < r) return true;
-            }
-        return false;
-    }
-
-private:
-    int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
-    static int64_t key(int64_t x, int64_t y) { return x * 73856093 ^ y * 19349663; }
-    double cell_;
-    std::unordered_map<int64_t, std::vector<Vec2>> cells_;
-};
-
-// The point moved just outside the nearest edge of a CCW ring.
-Vec2 push_out_of(const Ring& ring, Vec2 p, double margin) {
-    double best = 1e300;
-    Vec2 out = p;
-    for (size_t i = 0, n = ring.size(); i < n; ++i) {
-        const Vec2 a = ring[i], b = ring[(i + 1) % n], ab = b - a;
-        const double t = std::clamp(dot(p - a, ab) / std::max(dot(ab, ab), 1e-12), 0.0, 1.0);
-        const Vec2 c = a + ab * t;
-        if (length(p - c) < best) {
-            best = length(p - c);
-            out = c + normalize(Vec2(ab.y, -ab.x)) * margin;
-        }
-    }
-    return out;
 }
 
 }  // namespace
@@ -183,7 +143,7 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
 
     // 3. Forests: dart throwing with a least distance (Poisson-disk), seeded per polygon.
     const char* const kScattered = "forest trees";
-    PointGrid placed(params.forest_spacing);
+    PointGrid placed(std::max(params.forest_spacing, 0.5));
     for (const Tree& t : trees) placed.add(t.position);
     size_t scattered = 0;
     for (size_t index = 0; index < scene.land_cover.size(); ++index) {
