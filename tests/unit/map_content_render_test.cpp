@@ -13,36 +13,12 @@
 #include <vector>
 
 #include "image_output.h"
+#include "test_exr.h"
 #include "test_support.h"
 
 using namespace citygen::test;
 
 namespace {
-
-struct Exr {
-    int width = 0, height = 0, channels = 0;
-    std::vector<std::string> names;
-    std::vector<float> pixels;
-    int channel(const std::string& name) const {
-        for (size_t i = 0; i < names.size(); ++i)
-            if (names[i] == name) return static_cast<int>(i);
-        return -1;
-    }
-    float at(int pixel, int c) const { return pixels[static_cast<size_t>(pixel) * channels + c]; }
-};
-
-Exr read_exr(const std::string& path) {
-    OIIO::ImageBuf buf(path);
-    Exr exr;
-    if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return exr;
-    exr.width = buf.spec().width;
-    exr.height = buf.spec().height;
-    exr.channels = buf.spec().nchannels;
-    exr.names = buf.spec().channelnames;
-    exr.pixels.resize(static_cast<size_t>(exr.width) * exr.height * exr.channels);
-    buf.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, exr.pixels.data());
-    return exr;
-}
 
 Exr render(const TempDir& dir, const std::string& scene, const std::string& name, const std::string& view,
            const std::string& flags) {

@@ -13,6 +13,7 @@
 #include "image_output.h"
 #include "camera.h"
 #include "scene_io.h"
+#include "test_exr.h"
 #include "test_support.h"
 
 using namespace citygen::test;
@@ -20,32 +21,6 @@ using namespace citygen::test;
 namespace {
 
 std::string render_binary() { return std::string(CITYGEN_BIN_DIR) + "/render"; }
-
-struct Exr {
-    int width = 0, height = 0, channels = 0;
-    std::vector<std::string> names;
-    std::vector<float> pixels;
-    int channel(const std::string& name) const {
-        for (size_t i = 0; i < names.size(); ++i)
-            if (names[i] == name) return static_cast<int>(i);
-        return -1;
-    }
-    float at(int pixel, int c) const { return pixels[static_cast<size_t>(pixel) * channels + c]; }
-};
-
-Exr read_exr(const std::string& path) {
-    OIIO::ImageBuf buf(path);
-    Exr exr;
-    if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return exr;
-    const OIIO::ImageSpec& spec = buf.spec();
-    exr.width = spec.width;
-    exr.height = spec.height;
-    exr.channels = spec.nchannels;
-    exr.names = spec.channelnames;
-    exr.pixels.resize(static_cast<size_t>(exr.width) * exr.height * exr.channels);
-    buf.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, exr.pixels.data());
-    return exr;
-}
 
 // Renders `scene` with the given geometry mode flags to an EXR with AOVs.
 Exr render(const TempDir& dir, const std::string& scene, const std::string& name, const std::string& mode_flags,
