@@ -14,6 +14,8 @@ seconds=${FUZZ_SECONDS:-60}
 jobs=$(nproc)
 
 sanitize="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+# Third-party code UBSan skips, each with its reason (tests/fuzz/ubsan_ignore.txt).
+sanitize="$sanitize -fsanitize-ignorelist=$PWD/tests/fuzz/ubsan_ignore.txt"
 # Coverage instrumentation for the fuzzers' benefit; harmless in the other binaries.
 coverage="-fsanitize=fuzzer-no-link"
 cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
