@@ -159,11 +159,12 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     const RoadGraph road_graph = timed(report, "road graph", [&] {
         return build_road_graph(osm, projection, job.params.roads, report);
     });
-    const RoadGraph narrowed_graph = timed(report, "roads vs buildings", [&] {
+    NarrowedRoads narrowed = timed(report, "roads vs buildings", [&] {
         return narrow_roads(road_graph, scene.buildings, job.params.roads, report);
     });
+    const RoadGraph& narrowed_graph = narrowed.graph;
     RoadSurface surface = timed(report, "road polygons", [&] {
-        return build_road_polygons(narrowed_graph, job.params.roads, report);
+        return build_road_polygons(narrowed_graph, std::move(narrowed.layout), report);
     });
     scene.roads = surface.roads;
     scene.joints = surface.joints;

@@ -73,12 +73,12 @@ bool is_oneway(const OsmTags& tags) {
 
 std::optional<std::string> carriageway_exclusion(const OsmTags& tags, const RoadParams& params) {
     const char* highway = tags.get("highway");
-    if (!highway) return std::string("not a highway");
+    if (!highway) return std::string(kNotAHighway);
     if (std::find(params.classes.begin(), params.classes.end(), highway) == params.classes.end())
-        return std::string("not a carriageway class");
-    if (tags.has("area", "yes")) return std::string("area=yes");
+        return std::string(kNotACarriagewayClass);
+    if (tags.has("area", "yes")) return std::string(kAreaYes);
     const char* tunnel = tags.get("tunnel");
-    if (tunnel && std::strcmp(tunnel, "no") != 0) return std::string("tunnel");
+    if (tunnel && std::strcmp(tunnel, "no") != 0) return std::string(kTunnel);
     return std::nullopt;
 }
 
@@ -86,13 +86,13 @@ double road_width(const OsmTags& tags, const RoadParams& params, ParseReport* re
     if (const char* w = tags.get("width")) {
         std::optional<double> width = parse_osm_length(w);
         if (width && *width >= kMinTaggedWidth && *width <= params.max_width) return *width;
-        if (report) report->note("road edges", "width tag unusable, fell back");
+        if (report) report->note(kRoadEdges, kWidthTagUnusable);
     }
     if (const char* l = tags.get("lanes")) {
         std::optional<double> lanes = parse_osm_count(l);
         if (lanes && *lanes >= 1 && *lanes <= kMaxLanes)
             return std::floor(*lanes) * params.lane_width + lane_extras_width(tags);
-        if (report) report->note("road edges", "lanes tag unusable, fell back");
+        if (report) report->note(kRoadEdges, kLanesTagUnusable);
     }
     const char* highway = tags.get("highway");
     return default_road_width(highway ? highway : "", is_oneway(tags)) + lane_extras_width(tags);
@@ -140,10 +140,10 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
     std::set<std::pair<int64_t, int64_t>> seen_pairs;
     for (const OsmWay& way : osm.highways) {
         const std::optional<std::string> why = carriageway_exclusion(way.tags, params);
-        if (why && (*why == "not a carriageway class" || *why == "not a highway")) continue;
-        report.read("road ways");
+        if (why && (*why == kNotACarriagewayClass || *why == kNotAHighway)) continue;
+        report.read(kRoadWays);
         if (why) {
-            report.dropped("road ways", *why);
+            report.dropped(kRoadWays, *why);
             continue;
         }
         WayPieces wp{&way, {}};
@@ -155,31 +155,31 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
             if (a == b) continue;  // repeated node: not a piece at all
             const Vec2 pa = points[i], pb = points[i + 1];
             if (length(pb - pa) < kMinEdgeLength) {
-                report.dropped("road edges", "zero length");
+                report.dropped(kRoadEdges, kZeroLength);
                 continue;
             }
             // A mapping mistake (a node moved across the map); later stages' cost grows with it.
             if (length(pb - pa) > kMaxRoadEdgeLength) {
-                report.dropped("road edges", "over 5 km long");
+                report.dropped(kRoadEdges, kOver5Km);
                 continue;
             }
             if (std::max({std::fabs(pa.x), std::fabs(pa.y), std::fabs(pb.x), std::fabs(pb.y)}) > kMaxCoordinate) {
-                report.dropped("road edges", "over 1000 km from the scene origin");
+                report.dropped(kRoadEdges, kFarFromOrigin);
                 continue;
             }
             if (!seen_pairs.insert({std::min(a, b), std::max(a, b)}).second) {
-                report.dropped("road edges", "duplicate of another way's piece");
+                report.dropped(kRoadEdges, kDuplicatePiece);
                 continue;
             }
             wp.pieces.push_back({a, b, pa, pb});
         }
         if (wp.pieces.empty()) {
-            report.dropped("road ways", "no piece left");
+            report.dropped(kRoadWays, kNoPieceLeft);
             continue;
         }
         ways.push_back(std::move(wp));
     }
-    report.kept("road ways", static_cast<int64_t>(ways.size()));
+    report.kept(kRoadWays, static_cast<int64_t>(ways.size()));
 
     // 2. Degree of every node: how many piece ends meet there.
     std::unordered_map<int64_t, int> degree;
@@ -235,7 +235,7 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
             e.from = run.front().pa;
             e.to = run.back().pb;
             graph.edges.push_back(e);
-            if (run.size() > 1) report.note("road edges", "merged collinear pieces", run.size() - 1);
+            if (run.size() > 1) report.note(kRoadEdges, kMergedCollinear, run.size() - 1);
             run.clear();
         };
         for (const Piece& p : wp.pieces) {
@@ -249,7 +249,7 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
         }
         flush();
     }
-    report.read("road edges", static_cast<int64_t>(graph.edges.size()));
+    report.read(kRoadEdges, static_cast<int64_t>(graph.edges.size()));
     return graph;
 }
 

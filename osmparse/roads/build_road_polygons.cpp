@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "polygon_overlap.h"
+#include "road_geometry.h"
 
 namespace citygen {
 
@@ -11,12 +12,8 @@ namespace {
 // The widest hole (metres) just beyond the end of `roads[r]` at joint `j`: ground
 // covered by neither the joint nor another of its quads.
 double hole_beyond_end(const std::vector<RoadEdge>& roads, const Joint& joint, uint32_t r, bool at_from) {
-    const Ring& q = roads[r].quad;
-    const Vec2 c1 = at_from ? q[0] : q[1], c2 = at_from ? q[3] : q[2];
-    const Vec2 beyond = normalize((c1 + c2) * 0.5 - (q[0] + q[1] + q[2] + q[3]) * 0.25) * 0.01;
     double hole = 0;
-    for (int k = 1; k < 10; ++k) {
-        const Vec2 p = c1 + (c2 - c1) * (k / 10.0) + beyond;
+    for (Vec2 p : points_beyond_quad_end(roads[r].quad, at_from)) {
         if (point_in_ring(p, joint.polygon)) continue;
         double nearest = distance_to_boundary(p, joint.polygon);
         for (uint32_t other : joint.edges) {
@@ -41,18 +38,18 @@ std::vector<SideWidths> carriageway_widths(const RoadGraph& graph) {
     return w;
 }
 
-RoadSurface build_road_polygons(const RoadGraph& graph, const RoadParams& params, ParseReport& report) {
+RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, ParseReport& report) {
     RoadSurface out;
-    out.layout = layout_road_polygons(graph, carriageway_widths(graph), params.miter_limit);
+    out.layout = std::move(layout);
     out.road_of_edge.assign(graph.edges.size(), -1);
     for (size_t e = 0; e < graph.edges.size(); ++e) {
         const RoadGraphEdge& g = graph.edges[e];
         if (out.layout.absorbed[e]) {
-            report.dropped("road edges", "absorbed into a merged junction");
+            report.dropped(kRoadEdges, kAbsorbedIntoMergedJunction);
             continue;
         }
         if (out.layout.quads[e].empty()) {
-            report.dropped("road edges", "too short for its junctions");
+            report.dropped(kRoadEdges, kTooShortForJunctions);
             continue;
         }
         RoadEdge r;
@@ -71,17 +68,17 @@ RoadSurface build_road_polygons(const RoadGraph& graph, const RoadParams& params
         out.road_of_edge[e] = static_cast<int>(out.roads.size());
         out.roads.push_back(std::move(r));
     }
-    report.kept("road edges", static_cast<int64_t>(out.roads.size()));
+    report.kept(kRoadEdges, static_cast<int64_t>(out.roads.size()));
 
     for (const NodeLayout& node : out.layout.nodes) {
         if (node.kind != JoinKind::Joint) continue;
-        report.read("road joints");
+        report.read(kRoadJoints);
         if (node.joint.empty()) {
-            report.dropped("road joints", "nothing left of the polygon");
+            report.dropped(kRoadJoints, kNothingLeftOfJoint);
             continue;
         }
-        if (!node.members.empty()) report.note("road joints", "merged from nearby junctions");
-        if (node.joint_is_hull) report.note("road joints", "star or hull polygon stands in for a tangled one");
+        if (!node.members.empty()) report.note(kRoadJoints, kMergedFromNearbyJunctions);
+        if (node.joint_is_hull) report.note(kRoadJoints, kStarOrHullJoint);
         Joint j;
         j.osm = {OsmType::Node, node.node};
         j.polygon = node.joint;
@@ -98,13 +95,13 @@ RoadSurface build_road_polygons(const RoadGraph& graph, const RoadParams& params
             const int road = out.road_of_edge[end.edge];
             if (road < 0) continue;
             if (hole_beyond_end(out.roads, j, static_cast<uint32_t>(road), end.at_from) > kJoinTolerance)
-                report.note("road joints", "a quad end leaves a hole over 1 cm");
+                report.note(kRoadJoints, kHoleBeyondQuadEnd);
             if (clipped_area(j.polygon, out.roads[road].quad) > kJoinOverlapTolerance)
-                report.note("road joints", "a quad overlaps its joint by over 0.01 m2");
+                report.note(kRoadJoints, kQuadOverlapsJoint);
         }
         out.joints.push_back(std::move(j));
     }
-    report.kept("road joints", static_cast<int64_t>(out.joints.size()));
+    report.kept(kRoadJoints, static_cast<int64_t>(out.joints.size()));
     return out;
 }
 

@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "build_road_graph.h"
-#include "params.h"
 #include "report.h"
 #include "road_layout.h"
 #include "scene.h"
@@ -17,6 +16,16 @@ namespace citygen {
 constexpr double kJoinTolerance = 0.01;
 constexpr double kJoinOverlapTolerance = 0.01;
 
+// Report kind and reasons (road edges are kRoadEdges, build_road_graph.h).
+inline constexpr char kRoadJoints[] = "road joints";
+inline constexpr char kAbsorbedIntoMergedJunction[] = "absorbed into a merged junction";
+inline constexpr char kTooShortForJunctions[] = "too short for its junctions";
+inline constexpr char kNothingLeftOfJoint[] = "nothing left of the polygon";
+inline constexpr char kMergedFromNearbyJunctions[] = "merged from nearby junctions";
+inline constexpr char kStarOrHullJoint[] = "star or hull polygon stands in for a tangled one";
+inline constexpr char kHoleBeyondQuadEnd[] = "a quad end leaves a hole over 1 cm";
+inline constexpr char kQuadOverlapsJoint[] = "a quad overlaps its joint by over 0.01 m2";
+
 struct RoadSurface {
     std::vector<RoadEdge> roads;
     std::vector<Joint> joints;
@@ -27,8 +36,9 @@ struct RoadSurface {
 // Half widths of every edge's carriageway.
 std::vector<SideWidths> carriageway_widths(const RoadGraph& graph);
 
-// Quads CCW and convex, joints CCW and simple, each quad's end lying on its joint's
+// The scene's roads and joints from the graph's carriageway layout (narrow_roads makes it):
+// quads CCW and convex, joints CCW and simple, each quad's end lying on its joint's
 // boundary. Edges whose quad would fold are dropped and counted.
-RoadSurface build_road_polygons(const RoadGraph& graph, const RoadParams& params, ParseReport& report);
+RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, ParseReport& report);
 
 }  // namespace citygen

@@ -6,6 +6,7 @@
 
 #include "narrow_roads.h"
 #include "polygon_overlap.h"
+#include "road_geometry.h"
 #include "road_layout.h"
 
 namespace citygen {
@@ -18,10 +19,6 @@ constexpr double kMaxRoadOverlap = 0.5;     // square metres of another road a p
 constexpr double kMinPieceArea = 0.01;
 constexpr double kMinTrimmedArea = 0.5;     // square metres: a piece trimmed smaller is dropped
 constexpr int kMaxTrims = 4;
-
-void push_distinct(Ring& ring, Vec2 p) {
-    if (ring.empty() || length(ring.back() - p) > 1e-4) ring.push_back(p);
-}
 
 // A strip [a, b, c, d] has its end cuts a-d and b-c. On the inside of a tight curve (a
 // small roundabout's island) the outline's cuts cross before the strip ends: the strip
@@ -36,24 +33,9 @@ Ring untwist_strip(const Ring& q, bool carriageway_first) {
     return carriageway_first ? Ring{a, b, x} : Ring{x, c, d};
 }
 
-// A clipped ring without repeated points or spikes (where clipping ran along an edge).
-Ring clean_piece(Ring ring) {
-    Ring out;
-    for (Vec2 p : ring) push_distinct(out, p);
-    while (out.size() > 1 && length(out.front() - out.back()) <= 1e-4) out.pop_back();
-    for (bool removed = true; removed && out.size() > 3;) {
-        removed = false;
-        for (size_t i = 0, m = out.size(); i < m; ++i) {
-            const Vec2 a = out[(i + m - 1) % m], b = out[i], c = out[(i + 1) % m];
-            if (std::fabs(cross(b - a, c - b)) <= 1e-9 * (1 + length(b - a) * length(c - b))) {
-                out.erase(out.begin() + static_cast<long>(i));  // collinear or a spike
-                removed = true;
-                break;
-            }
-        }
-    }
-    return out;
-}
+// A clipped ring without repeated points, spikes or collinear points (where clipping
+// ran along an edge).
+Ring clean_piece(const Ring& ring) { return clean_ring(ring, RingCleaning::SpikesAndCollinear); }
 
 // The part of `piece` off the road pieces it lies on: for the road piece it overlaps
 // most, the piece is cut along whichever edge of that road piece (or of its convex hull,
@@ -119,18 +101,18 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
                 if (largest <= kRoadBuildingOverlapTolerance) break;
             }
             if (w < kMinSidewalkWidth) {
-                report.dropped("sidewalk sides", "no room beside a building");
+                report.dropped(kSidewalkSides, kNoRoomBesideBuilding);
                 continue;
             }
-            if (w < params.width) report.note("sidewalk sides", "narrowed beside a building");
-            report.kept("sidewalk sides");
+            if (w < params.width) report.note(kSidewalkSides, kSidewalkNarrowedBesideBuilding);
+            report.kept(kSidewalkSides);
             (side == 0 ? walk[e].left : walk[e].right) = w;
         }
     }
     std::vector<SideWidths> outer(n);
     for (size_t e = 0; e < n; ++e) outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
     const RoadLayout& in = surface.layout;
-    const RoadLayout out = layout_road_polygons(graph, outer, miter_limit, &in);
+    const RoadLayout out = lay_out_outline(graph, in, outer, miter_limit);
 
     // Other roads, to keep sidewalks off them (a polygon index reuses the footprint grid).
     std::vector<Building> road_pieces;
@@ -143,19 +125,19 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
     std::vector<Sidewalk> result;
     // `in_cleared_band`: a strip within the side's band, already cleared of buildings.
     auto emit = [&](SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band) {
-        const char* what = kind == SidewalkKind::Strip ? "sidewalk strips" : "sidewalk corners";
+        const char* what = kind == SidewalkKind::Strip ? kSidewalkStrips : kSidewalkCorners;
         // Nothing between carriageway and outline (e.g. where a road without sidewalks
         // cuts through): not a piece at all.
         if (polygon.size() < 3 || std::fabs(signed_area(polygon)) < kMinPieceArea) return;
         report.read(what);
         if (signed_area(polygon) < 0 || !ring_is_simple(polygon)) {
-            report.dropped(what, "degenerate (tangled junction)");
+            report.dropped(what, kDegenerateTangledJunction);
             return;
         }
         double largest = 0;
         if (!in_cleared_band) building_index.overlap(polygon, &largest);
         if (largest > kRoadBuildingOverlapTolerance) {
-            report.dropped(what, "overlaps a building");
+            report.dropped(what, kOverlapsBuilding);
             return;
         }
         road_index.overlap(polygon, &largest);
@@ -164,13 +146,13 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
         if (largest > kRoadBuildingOverlapTolerance) {
             Ring trimmed = trim_off_roads(polygon, road_index, road_pieces);
             if (trimmed.size() >= 3 && signed_area(trimmed) >= kMinTrimmedArea && ring_is_simple(trimmed)) {
-                report.note(what, "trimmed off another road");
+                report.note(what, kTrimmedOffRoad);
                 polygon = std::move(trimmed);
                 road_index.overlap(polygon, &largest);
             }
         }
         if (largest > kMaxRoadOverlap) {
-            report.dropped(what, "lies on another road");
+            report.dropped(what, kLiesOnAnotherRoad);
             return;
         }
         report.kept(what);
@@ -252,9 +234,8 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             const Vec2 pi = ei.origin + perp_left(di) * half_of(ei, true);
             const Vec2 pj = ej.origin - perp_left(dj) * half_of(ej, false);
             const std::pair<Vec2, Vec2> beyond_i{pi, pi + di}, beyond_j{pj, pj - dj};
-            double gap = std::atan2(cross(di, dj), dot(di, dj));
-            if (gap <= 0) gap += 2 * kPi;
-            if (gap < kPi - 1e-3) {
+            const double gap = gap_angle(di, dj);
+            if (gap < kStraightGap) {
                 emit(SidewalkKind::Corner, clean_piece(clip_to_half_planes(no.joint, {beyond_i, beyond_j})), -1, joint,
                      false);
             } else {

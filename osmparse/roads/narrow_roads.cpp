@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <set>
 
+#include "build_road_polygons.h"
+#include "layout_state.h"
 #include "polygon_overlap.h"
-#include "road_layout.h"
 
 namespace citygen {
 
@@ -20,10 +21,53 @@ bool overlaps(const BuildingIndex& index, const Ring& piece) {
     return largest > kRoadBuildingOverlapTolerance;
 }
 
+// Step 2: the edges whose laid-out quad or joint overlaps a building, among the pieces
+// `needs_check` accepts (a quad by either end node, a joint by its key or a member).
+template <typename NeedsCheck>
+std::set<uint32_t> offending_edges(LayoutState& layout, const BuildingIndex& index, NeedsCheck needs_check) {
+    const RoadGraph& graph = layout.graph;
+    std::set<uint32_t> offending;
+    for (uint32_t e = 0; e < graph.edges.size(); ++e) {
+        // A quad with no negative cut lies inside its rectangle, cleared in step 1.
+        const EdgeEndCut &a = layout.out.from_cut[e], &b = layout.out.to_cut[e];
+        const bool within_rectangle = std::min({a.t_left, a.t_right, b.t_left, b.t_right}) >= 0;
+        if (!layout.out.quads[e].empty() && !within_rectangle &&
+            (needs_check(graph.edges[e].from_node) || needs_check(graph.edges[e].to_node)) &&
+            overlaps(index, layout.out.quads[e]))
+            offending.insert(e);
+    }
+    layout.for_each_junction([&](const NodeLayout& node) {
+        bool check = needs_check(node.node);
+        for (int64_t m : node.members) check = check || needs_check(m);
+        if (check && !node.joint.empty() && overlaps(index, node.joint))
+            for (const NodeLayout::End& end : node.ends) offending.insert(end.edge);
+    });
+    return offending;
+}
+
+// The graph and layout without the edges `keep` leaves out, indices renumbered.
+NarrowedRoads without_dropped(const RoadGraph& graph, RoadLayout layout, const std::vector<bool>& keep) {
+    NarrowedRoads out;
+    std::vector<uint32_t> index(graph.edges.size(), 0);
+    for (size_t e = 0; e < graph.edges.size(); ++e) {
+        if (!keep[e]) continue;
+        index[e] = static_cast<uint32_t>(out.graph.edges.size());
+        out.graph.edges.push_back(graph.edges[e]);
+        out.layout.from_cut.push_back(layout.from_cut[e]);
+        out.layout.to_cut.push_back(layout.to_cut[e]);
+        out.layout.quads.push_back(std::move(layout.quads[e]));
+        out.layout.absorbed.push_back(layout.absorbed[e]);
+    }
+    out.layout.nodes = std::move(layout.nodes);
+    for (NodeLayout& node : out.layout.nodes)
+        for (NodeLayout::End& end : node.ends) end.edge = index[end.edge];
+    return out;
+}
+
 }  // namespace
 
-RoadGraph narrow_roads(RoadGraph graph, const std::vector<Building>& buildings,
-                       const RoadParams& params, ParseReport& report) {
+NarrowedRoads narrow_roads(RoadGraph graph, const std::vector<Building>& buildings,
+                           const RoadParams& params, ParseReport& report) {
     const BuildingIndex index(buildings);
     std::vector<bool> keep(graph.edges.size(), true), narrowed(graph.edges.size(), false);
     auto narrow = [&](size_t e) {
@@ -41,71 +85,57 @@ RoadGraph narrow_roads(RoadGraph graph, const std::vector<Building>& buildings,
             narrow(e);
         }
     }
-    auto compact = [&] {
+    {
         RoadGraph kept;
         std::vector<bool> kept_narrowed;
         for (size_t e = 0; e < graph.edges.size(); ++e) {
-            if (keep[e]) {
-                kept.edges.push_back(graph.edges[e]);
-                kept_narrowed.push_back(narrowed[e]);
-            } else {
-                report.dropped("road edges", "narrower than road-min-width beside a building");
-            }
+            if (!keep[e]) continue;
+            kept.edges.push_back(graph.edges[e]);
+            kept_narrowed.push_back(narrowed[e]);
         }
+        for (bool k : keep)
+            if (!k) report.dropped(kRoadEdges, kNarrowerThanMinWidth);
         graph = std::move(kept);
         narrowed = std::move(kept_narrowed);
         keep.assign(graph.edges.size(), true);
-    };
-    compact();
+    }
 
-    // 2. Miters and joints reach beyond the rectangles: check the laid-out pieces. After
-    // the first round only pieces at nodes whose edges were narrowed can have changed.
+    // 2. Miters and joints reach beyond the rectangles: the layout, made once, is checked
+    // piece by piece. After the first round only pieces at nodes whose edges were
+    // narrowed are checked again, and only what those edges change is laid out again.
+    LayoutState layout(graph, carriageway_widths(graph), params.miter_limit);
+    lay_out_all(layout);
     std::set<int64_t> dirty;
     for (int round = 0; round < kLayoutRounds; ++round) {
-        auto needs_check = [&](int64_t node) { return round == 0 || dirty.count(node) > 0; };
-        std::vector<SideWidths> widths;
-        for (const RoadGraphEdge& e : graph.edges) widths.push_back({0.5 * e.width, 0.5 * e.width});
-        const RoadLayout layout =
-            round == 0 ? layout_road_polygons(graph, widths, params.miter_limit)
-                       : layout_road_polygons(graph, widths, params.miter_limit, nullptr,
-                                              [&](int64_t node) { return dirty.count(node) > 0; });
-        std::set<size_t> offending;
-        for (size_t e = 0; e < graph.edges.size(); ++e) {
-            // A quad with no negative cut lies inside its rectangle, cleared above.
-            const EdgeEndCut &a = layout.from_cut[e], &b = layout.to_cut[e];
-            const bool within_rectangle = std::min({a.t_left, a.t_right, b.t_left, b.t_right}) >= 0;
-            if (!layout.quads[e].empty() && !within_rectangle &&
-                (needs_check(graph.edges[e].from_node) || needs_check(graph.edges[e].to_node)) &&
-                overlaps(index, layout.quads[e]))
-                offending.insert(e);
-        }
-        for (const NodeLayout& node : layout.nodes) {
-            bool check = needs_check(node.node);
-            for (int64_t m : node.members) check = check || needs_check(m);
-            if (check && !node.joint.empty() && overlaps(index, node.joint))
-                for (const NodeLayout::End& end : node.ends) offending.insert(end.edge);
-        }
+        const std::set<uint32_t> offending =
+            offending_edges(layout, index, [&](int64_t node) { return round == 0 || dirty.count(node) > 0; });
         if (offending.empty()) break;
         dirty.clear();
-        for (size_t e : offending) {
+        for (uint32_t e : offending) {
             narrow(e);
+            const double h = 0.5 * graph.edges[e].width;
+            layout.widths[e] = {h, h};
+            layout.removed[e] = !keep[e];
             dirty.insert(graph.edges[e].from_node);
             dirty.insert(graph.edges[e].to_node);
         }
         // A narrowed edge also changes the merged junction its node belongs to.
-        for (const NodeLayout& node : layout.nodes) {
+        layout.for_each_junction([&](const NodeLayout& node) {
             bool touched = dirty.count(node.node) > 0;
             for (int64_t m : node.members) touched = touched || dirty.count(m) > 0;
-            if (!touched) continue;
+            if (!touched) return;
             dirty.insert(node.node);
             dirty.insert(node.members.begin(), node.members.end());
-        }
-        compact();
+        });
+        update_layout(layout, std::vector<uint32_t>(offending.begin(), offending.end()));
     }
     int64_t count = 0;
-    for (bool n : narrowed) count += n;
-    if (count) report.note("road edges", "narrowed beside a building", count);
-    return graph;
+    for (size_t e = 0; e < graph.edges.size(); ++e) {
+        if (!keep[e]) report.dropped(kRoadEdges, kNarrowerThanMinWidth);
+        count += narrowed[e] && keep[e];
+    }
+    if (count) report.note(kRoadEdges, kNarrowedBesideBuilding, count);
+    return without_dropped(graph, assemble_layout(layout), keep);
 }
 
 }  // namespace citygen

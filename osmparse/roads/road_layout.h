@@ -4,7 +4,6 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <vector>
 
 #include "build_road_graph.h"
@@ -57,8 +56,8 @@ struct RoadLayout {
     std::vector<NodeLayout> nodes;              // sorted by node id
 };
 
-// Lays out every edge of `graph` with the given half widths. With `follow`, every node
-// keeps the join kind `follow` chose (sidewalk outlines follow their carriageway).
+// Lays out every edge of `graph` with the given half widths (osmparse/roads/ has one file
+// per case: dead_end.cpp, miter.cpp, junction.cpp, merged_junction.cpp, finish_joint.cpp).
 // A degree-2 node gets a miter when both offset-line intersections lie within
 // miter_limit half widths of the node and cut neither edge beyond 45% of its length;
 // otherwise it is treated like a junction. Each edge's length is shared between the cuts
@@ -69,20 +68,16 @@ struct RoadLayout {
 // Joints are finished once every quad is known: the quads of a joint's ends are cut out
 // of it, so quad and joint meet edge to edge; what a tangle of short edges still leaves
 // (a hole or overlap) is counted by build_road_polygons.
-// With `only`, just the pieces around the nodes it accepts are built: the joint of each
-// accepted node (or merged junction with an accepted member) and the quads of its edges;
-// other joints and quads are left empty. Joins and merges are still chosen over the whole
-// graph, so every piece built is exactly the one the full layout has (narrow_roads
-// rechecks only what its last narrowing can have changed).
-RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWidths>& widths,
-                                double miter_limit, const RoadLayout* follow = nullptr,
-                                const std::function<bool(int64_t)>& only = nullptr);
+RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWidths>& widths, double miter_limit);
+
+// An outline around a finished layout (sidewalks follow their carriageway): the same
+// nodes, ends, joins and merged junctions as `carriageway`, shaped again with the wider
+// `widths` (a miter is kept, clamped to fit).
+RoadLayout lay_out_outline(const RoadGraph& graph, const RoadLayout& carriageway,
+                           const std::vector<SideWidths>& widths, double miter_limit);
 
 // The four corners of edge `e`'s quad for the given cuts, CCW: right side from -> to,
 // then the left side back.
 Ring quad_for_cuts(const RoadGraphEdge& e, SideWidths w, EdgeEndCut from, EdgeEndCut to);
-
-// Convex hull (CCW, no collinear points) of a point set.
-Ring convex_hull(std::vector<Vec2> points);
 
 }  // namespace citygen
