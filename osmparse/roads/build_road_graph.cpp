@@ -30,6 +30,146 @@ struct Piece {
     Vec2 pa, pb;
 };
 
+// A way's pieces, in order along it.
+struct WayPieces {
+    const OsmWay* way;
+    std::vector<Piece> pieces;
+};
+
+// Step 1: included ways, as node-to-node pieces; duplicate pieces (overlapping ways) dropped.
+std::vector<WayPieces> cut_into_pieces(const OsmData& osm, const Projection& projection, const RoadParams& params,
+                                       ParseReport& report) {
+    std::vector<WayPieces> ways;
+    std::set<std::pair<int64_t, int64_t>> seen_pairs;
+    for (const OsmWay& way : osm.highways) {
+        const std::optional<std::string> why = carriageway_exclusion(way.tags, params);
+        if (why && (*why == kNotACarriagewayClass || *why == kNotAHighway)) continue;
+        report.read(kRoadWays);
+        if (why) {
+            report.dropped(kRoadWays, *why);
+            continue;
+        }
+        WayPieces wp{&way, {}};
+        std::vector<Vec2> points;  // each node projected once (projecting is costly)
+        points.reserve(way.locations.size());
+        for (const LatLon& l : way.locations) points.push_back(projection.to_local(l.lat, l.lon));
+        for (size_t i = 0; i + 1 < way.nodes.size(); ++i) {
+            const int64_t a = way.nodes[i], b = way.nodes[i + 1];
+            if (a == b) continue;  // repeated node: not a piece at all
+            const Vec2 pa = points[i], pb = points[i + 1];
+            if (length(pb - pa) < kMinEdgeLength) {
+                report.dropped(kRoadEdges, kZeroLength);
+                continue;
+            }
+            // A mapping mistake (a node moved across the map); later stages' cost grows with it.
+            if (length(pb - pa) > kMaxRoadEdgeLength) {
+                report.dropped(kRoadEdges, kOver5Km);
+                continue;
+            }
+            if (std::max({std::fabs(pa.x), std::fabs(pa.y), std::fabs(pb.x), std::fabs(pb.y)}) > kMaxCoordinate) {
+                report.dropped(kRoadEdges, kFarFromOrigin);
+                continue;
+            }
+            if (!seen_pairs.insert({std::min(a, b), std::max(a, b)}).second) {
+                report.dropped(kRoadEdges, kDuplicatePiece);
+                continue;
+            }
+            wp.pieces.push_back({a, b, pa, pb});
+        }
+        if (wp.pieces.empty()) {
+            report.dropped(kRoadWays, kNoPieceLeft);
+            continue;
+        }
+        ways.push_back(std::move(wp));
+    }
+    report.kept(kRoadWays, static_cast<int64_t>(ways.size()));
+    return ways;
+
+}
+
+// Step 2: degree of every node: how many piece ends meet there.
+std::unordered_map<int64_t, int> node_degrees(const std::vector<WayPieces>& ways) {
+    std::unordered_map<int64_t, int> degree;
+    for (const WayPieces& wp : ways)
+        for (const Piece& p : wp.pieces) {
+            ++degree[p.a];
+            ++degree[p.b];
+        }
+    return degree;
+}
+
+// What every edge of a way shares: its width, class, lanes and sides.
+RoadGraphEdge edge_template(const OsmWay& way, const RoadParams& params, ParseReport& report) {
+    const OsmTags& tags = way.tags;
+    const std::string highway = tags.get("highway");
+    RoadGraphEdge proto;
+    proto.way_id = way.id;
+    proto.road_class = road_class_of(highway);
+    proto.width = road_width(tags, params, &report);
+    if (std::optional<double> lanes = parse_osm_count(tags.get("lanes")); lanes && *lanes <= kMaxLanes)
+        proto.lanes = static_cast<int>(*lanes);
+    proto.oneway = is_oneway(tags);
+    proto.bridge = tags.get("bridge") && !tags.has("bridge", "no");
+    const SidewalkSides sides = sidewalk_sides(tags);
+    proto.sidewalk_left = sides.left;
+    proto.sidewalk_right = sides.right;
+    return proto;
+}
+
+// Step 3: merge runs of nearly collinear pieces of the same way through degree-2 nodes
+// into edges.
+RoadGraph merge_collinear_runs(const std::vector<WayPieces>& ways, const std::unordered_map<int64_t, int>& degree,
+                               const RoadParams& params, ParseReport& report) {
+    const double max_turn = params.merge_angle_deg * kPi / 180;
+    auto within_merge = [&](const std::vector<Piece>& run, const Piece& next) {
+        const Vec2 start = run.front().pa, end = next.pb;
+        if (run.front().a == next.b) return false;  // would close a loop
+        const Vec2 chord = end - start;
+        const double chord_len = length(chord);
+        if (chord_len < kMinEdgeLength || chord_len > kMaxRoadEdgeLength) return false;
+        const Vec2 dir = chord * (1.0 / chord_len);
+        auto check = [&](const Piece& p) {
+            const Vec2 d = normalize(p.pb - p.pa);
+            if (std::acos(std::clamp(dot(d, dir), -1.0, 1.0)) >= max_turn) return false;
+            return std::fabs(cross(dir, p.pb - start)) <= kMergeDeviation;
+        };
+        const Vec2 last = normalize(run.back().pb - run.back().pa), nd = normalize(next.pb - next.pa);
+        if (std::acos(std::clamp(dot(last, nd), -1.0, 1.0)) >= max_turn) return false;
+        for (const Piece& p : run)
+            if (!check(p)) return false;
+        return check(next);
+    };
+
+    RoadGraph graph;
+    for (const WayPieces& wp : ways) {
+        const RoadGraphEdge proto = edge_template(*wp.way, params, report);
+
+        std::vector<Piece> run;
+        auto flush = [&] {
+            if (run.empty()) return;
+            RoadGraphEdge e = proto;
+            e.from_node = run.front().a;
+            e.to_node = run.back().b;
+            e.from = run.front().pa;
+            e.to = run.back().pb;
+            graph.edges.push_back(e);
+            if (run.size() > 1) report.note(kRoadEdges, kMergedCollinear, run.size() - 1);
+            run.clear();
+        };
+        for (const Piece& p : wp.pieces) {
+            const bool continues = !run.empty() && run.back().b == p.a && degree.at(p.a) == 2;
+            if (continues && within_merge(run, p)) {
+                run.push_back(p);
+                continue;
+            }
+            flush();
+            run.push_back(p);
+        }
+        flush();
+    }
+    return graph;
+}
+
 }  // namespace
 
 RoadClass road_class_of(const std::string& highway) {
@@ -131,124 +271,9 @@ SidewalkSides sidewalk_sides(const OsmTags& tags) {
 
 RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
                            const RoadParams& params, ParseReport& report) {
-    // 1. Included ways, as node-to-node pieces; duplicate pieces (overlapping ways) dropped.
-    struct WayPieces {
-        const OsmWay* way;
-        std::vector<Piece> pieces;
-    };
-    std::vector<WayPieces> ways;
-    std::set<std::pair<int64_t, int64_t>> seen_pairs;
-    for (const OsmWay& way : osm.highways) {
-        const std::optional<std::string> why = carriageway_exclusion(way.tags, params);
-        if (why && (*why == kNotACarriagewayClass || *why == kNotAHighway)) continue;
-        report.read(kRoadWays);
-        if (why) {
-            report.dropped(kRoadWays, *why);
-            continue;
-        }
-        WayPieces wp{&way, {}};
-        std::vector<Vec2> points;  // each node projected once (projecting is costly)
-        points.reserve(way.locations.size());
-        for (const LatLon& l : way.locations) points.push_back(projection.to_local(l.lat, l.lon));
-        for (size_t i = 0; i + 1 < way.nodes.size(); ++i) {
-            const int64_t a = way.nodes[i], b = way.nodes[i + 1];
-            if (a == b) continue;  // repeated node: not a piece at all
-            const Vec2 pa = points[i], pb = points[i + 1];
-            if (length(pb - pa) < kMinEdgeLength) {
-                report.dropped(kRoadEdges, kZeroLength);
-                continue;
-            }
-            // A mapping mistake (a node moved across the map); later stages' cost grows with it.
-            if (length(pb - pa) > kMaxRoadEdgeLength) {
-                report.dropped(kRoadEdges, kOver5Km);
-                continue;
-            }
-            if (std::max({std::fabs(pa.x), std::fabs(pa.y), std::fabs(pb.x), std::fabs(pb.y)}) > kMaxCoordinate) {
-                report.dropped(kRoadEdges, kFarFromOrigin);
-                continue;
-            }
-            if (!seen_pairs.insert({std::min(a, b), std::max(a, b)}).second) {
-                report.dropped(kRoadEdges, kDuplicatePiece);
-                continue;
-            }
-            wp.pieces.push_back({a, b, pa, pb});
-        }
-        if (wp.pieces.empty()) {
-            report.dropped(kRoadWays, kNoPieceLeft);
-            continue;
-        }
-        ways.push_back(std::move(wp));
-    }
-    report.kept(kRoadWays, static_cast<int64_t>(ways.size()));
-
-    // 2. Degree of every node: how many piece ends meet there.
-    std::unordered_map<int64_t, int> degree;
-    for (const WayPieces& wp : ways)
-        for (const Piece& p : wp.pieces) {
-            ++degree[p.a];
-            ++degree[p.b];
-        }
-
-    // 3. Merge runs of nearly collinear pieces of the same way through degree-2 nodes.
-    const double max_turn = params.merge_angle_deg * kPi / 180;
-    auto within_merge = [&](const std::vector<Piece>& run, const Piece& next) {
-        const Vec2 start = run.front().pa, end = next.pb;
-        if (run.front().a == next.b) return false;  // would close a loop
-        const Vec2 chord = end - start;
-        const double chord_len = length(chord);
-        if (chord_len < kMinEdgeLength || chord_len > kMaxRoadEdgeLength) return false;
-        const Vec2 dir = chord * (1.0 / chord_len);
-        auto check = [&](const Piece& p) {
-            const Vec2 d = normalize(p.pb - p.pa);
-            if (std::acos(std::clamp(dot(d, dir), -1.0, 1.0)) >= max_turn) return false;
-            return std::fabs(cross(dir, p.pb - start)) <= kMergeDeviation;
-        };
-        const Vec2 last = normalize(run.back().pb - run.back().pa), nd = normalize(next.pb - next.pa);
-        if (std::acos(std::clamp(dot(last, nd), -1.0, 1.0)) >= max_turn) return false;
-        for (const Piece& p : run)
-            if (!check(p)) return false;
-        return check(next);
-    };
-
-    RoadGraph graph;
-    for (const WayPieces& wp : ways) {
-        const OsmTags& tags = wp.way->tags;
-        const std::string highway = tags.get("highway");
-        RoadGraphEdge proto;
-        proto.way_id = wp.way->id;
-        proto.road_class = road_class_of(highway);
-        proto.width = road_width(tags, params, &report);
-        if (std::optional<double> lanes = parse_osm_count(tags.get("lanes")); lanes && *lanes <= kMaxLanes)
-            proto.lanes = static_cast<int>(*lanes);
-        proto.oneway = is_oneway(tags);
-        proto.bridge = tags.get("bridge") && !tags.has("bridge", "no");
-        const SidewalkSides sides = sidewalk_sides(tags);
-        proto.sidewalk_left = sides.left;
-        proto.sidewalk_right = sides.right;
-
-        std::vector<Piece> run;
-        auto flush = [&] {
-            if (run.empty()) return;
-            RoadGraphEdge e = proto;
-            e.from_node = run.front().a;
-            e.to_node = run.back().b;
-            e.from = run.front().pa;
-            e.to = run.back().pb;
-            graph.edges.push_back(e);
-            if (run.size() > 1) report.note(kRoadEdges, kMergedCollinear, run.size() - 1);
-            run.clear();
-        };
-        for (const Piece& p : wp.pieces) {
-            const bool continues = !run.empty() && run.back().b == p.a && degree[p.a] == 2;
-            if (continues && within_merge(run, p)) {
-                run.push_back(p);
-                continue;
-            }
-            flush();
-            run.push_back(p);
-        }
-        flush();
-    }
+    const std::vector<WayPieces> ways = cut_into_pieces(osm, projection, params, report);
+    const std::unordered_map<int64_t, int> degree = node_degrees(ways);
+    RoadGraph graph = merge_collinear_runs(ways, degree, params, report);
     report.read(kRoadEdges, static_cast<int64_t>(graph.edges.size()));
     return graph;
 }

@@ -73,19 +73,11 @@ Frame frame_of(const RoadGraphEdge& e) {
     return {e.from, e.to, d, perp_left(d)};
 }
 
-}  // namespace
-
-std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface& surface,
-                                      const std::vector<Building>& buildings,
-                                      const SidewalkParams& params, double miter_limit,
-                                      ParseReport& report) {
-    const BuildingIndex building_index(buildings);
-    const std::vector<SideWidths> inner = carriageway_widths(graph);
-    const size_t n = graph.edges.size();
-
-    // 1. Sidewalk width per side, narrowed where the band would reach into a building.
-    std::vector<SideWidths> walk(n);
-    for (size_t e = 0; e < n; ++e) {
+// Step 1: sidewalk width per side, narrowed where the band would reach into a building.
+std::vector<SideWidths> sidewalk_widths(const RoadGraph& graph, const BuildingIndex& buildings,
+                                        const SidewalkParams& params, ParseReport& report) {
+    std::vector<SideWidths> walk(graph.edges.size());
+    for (size_t e = 0; e < graph.edges.size(); ++e) {
         const RoadGraphEdge& edge = graph.edges[e];
         for (int side = 0; side < 2; ++side) {
             if (!(side == 0 ? edge.sidewalk_left : edge.sidewalk_right)) continue;
@@ -97,7 +89,7 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
                 Ring band{f.from + off * h, f.to + off * h, f.to + off * (h + w), f.from + off * (h + w)};
                 if (signed_area(band) < 0) band = {band[3], band[2], band[1], band[0]};
                 double largest = 0;
-                building_index.overlap(band, &largest);
+                buildings.overlap(band, &largest);
                 if (largest <= kRoadBuildingOverlapTolerance) break;
             }
             if (w < kMinSidewalkWidth) {
@@ -109,63 +101,84 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             (side == 0 ? walk[e].left : walk[e].right) = w;
         }
     }
-    std::vector<SideWidths> outer(n);
-    for (size_t e = 0; e < n; ++e) outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
-    const RoadLayout& in = surface.layout;
-    const RoadLayout out = lay_out_outline(graph, in, outer, miter_limit);
+    return walk;
+}
 
-    // Other roads, to keep sidewalks off them (a polygon index reuses the footprint grid).
-    std::vector<Building> road_pieces;
-    for (const RoadEdge& r : surface.roads) road_pieces.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
-    for (const Joint& j : surface.joints) road_pieces.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
-    const BuildingIndex road_index(road_pieces);
-    std::map<int64_t, int> joint_of_node;
-    for (size_t j = 0; j < surface.joints.size(); ++j) joint_of_node[surface.joints[j].osm.id] = static_cast<int>(j);
+// The surface's quads and joints as polygons to keep sidewalks off (a polygon index
+// reuses the footprint grid).
+std::vector<Building> road_pieces_of(const RoadSurface& surface) {
+    std::vector<Building> pieces;
+    for (const RoadEdge& r : surface.roads) pieces.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
+    for (const Joint& j : surface.joints) pieces.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
+    return pieces;
+}
 
+// What steps 2 and 3 share: the carriageway (`in`) and its outline (`out`), and where
+// finished pieces go.
+struct SidewalkWork {
+    const RoadGraph& graph;
+    const RoadSurface& surface;
+    const SidewalkParams& params;
+    ParseReport& report;
+    const BuildingIndex& buildings;
+    std::vector<SideWidths> inner, walk, outer;
+    const RoadLayout& in;
+    RoadLayout out;
+    const std::vector<Building>& road_pieces;
+    const BuildingIndex& road_index;
     std::vector<Sidewalk> result;
-    // `in_cleared_band`: a strip within the side's band, already cleared of buildings.
-    auto emit = [&](SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band) {
-        const char* what = kind == SidewalkKind::Strip ? kSidewalkStrips : kSidewalkCorners;
-        // Nothing between carriageway and outline (e.g. where a road without sidewalks
-        // cuts through): not a piece at all.
-        if (polygon.size() < 3 || std::fabs(signed_area(polygon)) < kMinPieceArea) return;
-        report.read(what);
-        if (signed_area(polygon) < 0 || !ring_is_simple(polygon)) {
-            report.dropped(what, kDegenerateTangledJunction);
-            return;
-        }
-        double largest = 0;
-        if (!in_cleared_band) building_index.overlap(polygon, &largest);
-        if (largest > kRoadBuildingOverlapTolerance) {
-            report.dropped(what, kOverlapsBuilding);
-            return;
-        }
-        road_index.overlap(polygon, &largest);
-        // Where roads lie closer than their sidewalks are wide (close or overlapping
-        // roads, the inside of a hairpin), the piece keeps only its part off them.
-        if (largest > kRoadBuildingOverlapTolerance) {
-            Ring trimmed = trim_off_roads(polygon, road_index, road_pieces);
-            if (trimmed.size() >= 3 && signed_area(trimmed) >= kMinTrimmedArea && ring_is_simple(trimmed)) {
-                report.note(what, kTrimmedOffRoad);
-                polygon = std::move(trimmed);
-                road_index.overlap(polygon, &largest);
-            }
-        }
-        if (largest > kMaxRoadOverlap) {
-            report.dropped(what, kLiesOnAnotherRoad);
-            return;
-        }
-        report.kept(what);
-        result.push_back({kind, std::move(polygon), road, joint, params.curb_height});
-    };
 
+    // Checks a piece and keeps it. `in_cleared_band`: a strip within the side's band,
+    // already cleared of buildings.
+    void emit(SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band);
+};
+
+void SidewalkWork::emit(SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band) {
+    const char* what = kind == SidewalkKind::Strip ? kSidewalkStrips : kSidewalkCorners;
+    // Nothing between carriageway and outline (e.g. where a road without sidewalks
+    // cuts through): not a piece at all.
+    if (polygon.size() < 3 || std::fabs(signed_area(polygon)) < kMinPieceArea) return;
+    report.read(what);
+    if (signed_area(polygon) < 0 || !ring_is_simple(polygon)) {
+        report.dropped(what, kDegenerateTangledJunction);
+        return;
+    }
+    double largest = 0;
+    if (!in_cleared_band) buildings.overlap(polygon, &largest);
+    if (largest > kRoadBuildingOverlapTolerance) {
+        report.dropped(what, kOverlapsBuilding);
+        return;
+    }
+    road_index.overlap(polygon, &largest);
+    // Where roads lie closer than their sidewalks are wide (close or overlapping
+    // roads, the inside of a hairpin), the piece keeps only its part off them.
+    if (largest > kRoadBuildingOverlapTolerance) {
+        Ring trimmed = trim_off_roads(polygon, road_index, road_pieces);
+        if (trimmed.size() >= 3 && signed_area(trimmed) >= kMinTrimmedArea && ring_is_simple(trimmed)) {
+            report.note(what, kTrimmedOffRoad);
+            polygon = std::move(trimmed);
+            road_index.overlap(polygon, &largest);
+        }
+    }
+    if (largest > kMaxRoadOverlap) {
+        report.dropped(what, kLiesOnAnotherRoad);
+        return;
+    }
+    report.kept(what);
+    result.push_back({kind, std::move(polygon), road, joint, params.curb_height});
+}
+
+// Step 2: strips along every edge side with a sidewalk, between the carriageway's side
+// line and the outline's.
+void add_strips(SidewalkWork& w) {
+    const size_t n = w.graph.edges.size();
     // Where a strip ends: at a joint both its lines stop at the outline's square cut.
     std::vector<const NodeLayout*> node_of_from(n, nullptr), node_of_to(n, nullptr);
-    for (const NodeLayout& node : in.nodes)
+    for (const NodeLayout& node : w.in.nodes)
         for (const NodeLayout::End& end : node.ends) (end.at_from ? node_of_from : node_of_to)[end.edge] = &node;
     auto strip_cut = [&](size_t e, bool at_from, bool left_of_leaving, double& t_in, double& t_out) {
-        const EdgeEndCut& ci = at_from ? in.from_cut[e] : in.to_cut[e];
-        const EdgeEndCut& co = at_from ? out.from_cut[e] : out.to_cut[e];
+        const EdgeEndCut& ci = at_from ? w.in.from_cut[e] : w.in.to_cut[e];
+        const EdgeEndCut& co = at_from ? w.out.from_cut[e] : w.out.to_cut[e];
         t_in = left_of_leaving ? ci.t_left : ci.t_right;
         t_out = left_of_leaving ? co.t_left : co.t_right;
         const NodeLayout* node = at_from ? node_of_from[e] : node_of_to[e];
@@ -174,43 +187,54 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
         // where the carriageway's cut reaches further.
         if (node && node->kind == JoinKind::Joint) t_in = t_out;
     };
-
-    // 2. Strips along every edge side with a sidewalk.
+    const std::vector<SideWidths> &inner = w.inner, &outer = w.outer;
     for (size_t e = 0; e < n; ++e) {
-        const int road = surface.road_of_edge[e];
+        const int road = w.surface.road_of_edge[e];
         if (road < 0) continue;
-        const Frame f = frame_of(graph.edges[e]);
-        if (walk[e].left > 0) {
+        const Frame f = frame_of(w.graph.edges[e]);
+        if (w.walk[e].left > 0) {
             double s_in, s_out, e_in, e_out;
             strip_cut(e, true, true, s_in, s_out);
             strip_cut(e, false, false, e_in, e_out);
             const bool in_band = std::min({s_in, s_out, e_in, e_out}) >= 0;
-            emit(SidewalkKind::Strip,
-                 untwist_strip({f.from + f.n * inner[e].left + f.d * s_in, f.to + f.n * inner[e].left - f.d * e_in,
-                                f.to + f.n * outer[e].left - f.d * e_out, f.from + f.n * outer[e].left + f.d * s_out},
-                               true),
-                 road, -1, in_band);
+            w.emit(SidewalkKind::Strip,
+                   untwist_strip({f.from + f.n * inner[e].left + f.d * s_in, f.to + f.n * inner[e].left - f.d * e_in,
+                                  f.to + f.n * outer[e].left - f.d * e_out, f.from + f.n * outer[e].left + f.d * s_out},
+                                 true),
+                   road, -1, in_band);
         }
-        if (walk[e].right > 0) {
+        if (w.walk[e].right > 0) {
             double s_in, s_out, e_in, e_out;
             strip_cut(e, true, false, s_in, s_out);
             strip_cut(e, false, true, e_in, e_out);
             const bool in_band = std::min({s_in, s_out, e_in, e_out}) >= 0;
-            emit(SidewalkKind::Strip,
-                 untwist_strip({f.from - f.n * outer[e].right + f.d * s_out, f.to - f.n * outer[e].right - f.d * e_out,
-                                f.to - f.n * inner[e].right - f.d * e_in, f.from - f.n * inner[e].right + f.d * s_in},
-                               false),
-                 road, -1, in_band);
+            w.emit(SidewalkKind::Strip,
+                   untwist_strip({f.from - f.n * outer[e].right + f.d * s_out, f.to - f.n * outer[e].right - f.d * e_out,
+                                  f.to - f.n * inner[e].right - f.d * e_in, f.from - f.n * inner[e].right + f.d * s_in},
+                                 false),
+                   road, -1, in_band);
         }
     }
+}
 
-    // 3. Corner pieces: in each gap of a joint, the part of the outline's joint polygon
-    // outside both carriageways, i.e. beyond the left line of one road and the right
-    // line of the next. Where the gap is wider than a half turn that region is not
-    // convex, so it is cut in two along the gap's bisector.
-    for (size_t k = 0; k < in.nodes.size(); ++k) {
-        const NodeLayout& ni = in.nodes[k];
-        const NodeLayout& no = out.nodes[k];
+// Step 3: corner pieces. In each gap of a joint, the part of the outline's joint polygon
+// outside both carriageways, i.e. beyond the left line of one road and the right line
+// of the next. Where the gap is wider than a half turn that region is not convex, so it
+// is cut in two along the gap's bisector.
+void add_corners(SidewalkWork& w) {
+    std::map<int64_t, int> joint_of_node;
+    for (size_t j = 0; j < w.surface.joints.size(); ++j) joint_of_node[w.surface.joints[j].osm.id] = static_cast<int>(j);
+    auto dir_of = [&](const NodeLayout::End& end) {
+        const RoadGraphEdge& g = w.graph.edges[end.edge];
+        return normalize(end.at_from ? g.to - g.from : g.from - g.to);
+    };
+    auto half_of = [&](const NodeLayout::End& end, bool left) {
+        const SideWidths& s = w.inner[end.edge];
+        return end.at_from == left ? s.left : s.right;
+    };
+    for (size_t k = 0; k < w.in.nodes.size(); ++k) {
+        const NodeLayout& ni = w.in.nodes[k];
+        const NodeLayout& no = w.out.nodes[k];
         if (ni.kind != JoinKind::Joint || no.joint.empty()) continue;
         auto it = joint_of_node.find(ni.node);
         const int joint = it == joint_of_node.end() ? -1 : it->second;
@@ -219,37 +243,51 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
             const size_t j = (i + 1) % m;
             const NodeLayout::End &ei = ni.ends[i], &ej = ni.ends[j];
             // The gap lies on i's left and j's right (relative to leaving the node).
-            const double walk_i = ei.at_from ? walk[ei.edge].left : walk[ei.edge].right;
-            const double walk_j = ej.at_from ? walk[ej.edge].right : walk[ej.edge].left;
+            const double walk_i = ei.at_from ? w.walk[ei.edge].left : w.walk[ei.edge].right;
+            const double walk_j = ej.at_from ? w.walk[ej.edge].right : w.walk[ej.edge].left;
             if (walk_i <= 0 && walk_j <= 0) continue;
-            auto dir_of = [&](const NodeLayout::End& end) {
-                const RoadGraphEdge& g = graph.edges[end.edge];
-                return normalize(end.at_from ? g.to - g.from : g.from - g.to);
-            };
-            auto half_of = [&](const NodeLayout::End& end, bool left) {
-                const SideWidths& w = inner[end.edge];
-                return end.at_from == left ? w.left : w.right;
-            };
             const Vec2 di = dir_of(ei), dj = dir_of(ej);
             const Vec2 pi = ei.origin + perp_left(di) * half_of(ei, true);
             const Vec2 pj = ej.origin - perp_left(dj) * half_of(ej, false);
             const std::pair<Vec2, Vec2> beyond_i{pi, pi + di}, beyond_j{pj, pj - dj};
             const double gap = gap_angle(di, dj);
             if (gap < kStraightGap) {
-                emit(SidewalkKind::Corner, clean_piece(clip_to_half_planes(no.joint, {beyond_i, beyond_j})), -1, joint,
-                     false);
+                w.emit(SidewalkKind::Corner, clean_piece(clip_to_half_planes(no.joint, {beyond_i, beyond_j})), -1, joint,
+                       false);
             } else {
                 const double half = 0.5 * gap;
                 const Vec2 bisector{di.x * std::cos(half) - di.y * std::sin(half), di.x * std::sin(half) + di.y * std::cos(half)};
                 const Vec2 centre = ni.position;
-                emit(SidewalkKind::Corner,
-                     clean_piece(clip_to_half_planes(no.joint, {beyond_i, {centre + bisector, centre}})), -1, joint, false);
-                emit(SidewalkKind::Corner,
-                     clean_piece(clip_to_half_planes(no.joint, {beyond_j, {centre, centre + bisector}})), -1, joint, false);
+                w.emit(SidewalkKind::Corner,
+                       clean_piece(clip_to_half_planes(no.joint, {beyond_i, {centre + bisector, centre}})), -1, joint, false);
+                w.emit(SidewalkKind::Corner,
+                       clean_piece(clip_to_half_planes(no.joint, {beyond_j, {centre, centre + bisector}})), -1, joint, false);
             }
         }
     }
-    return result;
+}
+
+}  // namespace
+
+std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface& surface,
+                                      const std::vector<Building>& buildings,
+                                      const SidewalkParams& params, double miter_limit,
+                                      ParseReport& report) {
+    const BuildingIndex building_index(buildings);
+    const std::vector<SideWidths> inner = carriageway_widths(graph);
+    std::vector<SideWidths> walk = sidewalk_widths(graph, building_index, params, report);
+    std::vector<SideWidths> outer(graph.edges.size());
+    for (size_t e = 0; e < graph.edges.size(); ++e)
+        outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
+    // The outline is shaped on the carriageway layout's nodes, joins and merged junctions.
+    RoadLayout out = lay_out_outline(graph, surface.layout, outer, miter_limit);
+    const std::vector<Building> road_pieces = road_pieces_of(surface);
+    const BuildingIndex road_index(road_pieces);
+    SidewalkWork work{graph, surface, params, report, building_index, inner, std::move(walk), std::move(outer),
+                      surface.layout, std::move(out), road_pieces, road_index, {}};
+    add_strips(work);
+    add_corners(work);
+    return std::move(work.result);
 }
 
 }  // namespace citygen

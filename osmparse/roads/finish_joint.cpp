@@ -1,8 +1,5 @@
-// Finishing a junction's joint against its quads: once every quad is known, the parts of
-// the joint's ring inside the quads of its own ends are cut away, so quads and joint meet
-// edge to edge. Where that fails (rare tangles of short edges), the fallback ring, then
-// the points sorted by angle around the node (a star-shaped polygon), then their convex
-// hull are tried, and the one overlapping its quads least is kept.
+// Finishing joints against their quads: the last pass of the layout, once every quad
+// is known (finish_joint below).
 #include <algorithm>
 #include <cmath>
 
@@ -12,6 +9,8 @@
 namespace citygen {
 
 namespace {
+
+constexpr double kMinJointArea = 1e-3;  // square metres
 
 // The part of the CCW ring outside the convex CCW quad `q` into `out`, where the ring
 // only dips into the quad (a joint beside a neighbour's short quad, or a corner cut short

@@ -13,8 +13,6 @@ namespace citygen {
 
 inline constexpr double kMaxCutFraction = 0.45;  // no cut reaches past this share of an edge
 inline constexpr double kJointsTake = 0.9;       // share of an edge the joints at its two ends may take (the rest is its quad)
-inline constexpr double kMinJointArea = 1e-3;    // square metres
-inline constexpr double kMaxJunctionSpan = 25;   // metres: junctions merged into one joint stay this small
 
 // One edge as seen from the node it leaves (its origin).
 struct EndGeometry {
@@ -70,8 +68,11 @@ struct LayoutState {
     // Calls f(junction) for every junction in id order (what RoadLayout::nodes will hold).
     template <typename F>
     void for_each_junction(F&& f) {
-        for (auto& [id, node] : nodes)
-            if (NodeLayout* j = junction_keyed(id)) f(*j);
+        for (auto& [id, node] : nodes) {
+            auto m = merged_into.find(id);
+            if (m == merged_into.end()) f(node);
+            else if (m->second == id) f(merged.at(id));
+        }
     }
 };
 
@@ -109,8 +110,9 @@ void note_junction_demand(LayoutState& state, NodeLayout& node);
 void shape_junction(LayoutState& state, NodeLayout& node);
 
 // merged_junction.cpp: junctions closer together than their roads are wide become one
-// junction; the short edges between them are absorbed. Returns the members of every
-// merged junction that was built or dissolved (unchanged ones are left as they are).
+// junction; the short edges between them are absorbed. A merged junction none of whose
+// members is in `touched` and whose members are the same is kept as it is; the others are
+// dissolved and built again. Returns the members of those.
 std::set<int64_t> merge_close_junctions(LayoutState& state, const std::set<int64_t>& touched);
 
 // Shares edge `e`'s length between the joints at its two ends.

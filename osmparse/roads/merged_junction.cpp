@@ -10,6 +10,8 @@ namespace citygen {
 
 namespace {
 
+constexpr double kMaxJunctionSpan = 25;  // metres: junctions merged into one joint stay this small
+
 // Which nodes belong together: an edge whose two junctions would cut away more of it
 // than the joints may take joins its ends, as long as the merged junction stays within
 // kMaxJunctionSpan. Sets every edge's `absorbed` flag.
