@@ -209,13 +209,15 @@ RoadLayout lay_out_outline(const RoadGraph& graph, const RoadLayout& carriageway
     return assemble_layout(state);
 }
 
-std::set<int64_t> update_layout(LayoutState& state, const std::vector<uint32_t>& changed) {
-    const RoadGraph& graph = state.graph;
-    // 1. The nodes at the changed edges: their ends and their own join.
+namespace {
+
+// Update step 1: the nodes at the changed edges get their ends (less removed edges) and
+// their own join again. Returns those nodes.
+std::set<int64_t> rejoin_nodes_at(LayoutState& state, const std::vector<uint32_t>& changed) {
     std::set<int64_t> touched;
     for (uint32_t e : changed) {
-        touched.insert(graph.edges[e].from_node);
-        touched.insert(graph.edges[e].to_node);
+        touched.insert(state.graph.edges[e].from_node);
+        touched.insert(state.graph.edges[e].to_node);
     }
     for (int64_t v : touched) {
         auto it = state.nodes.find(v);
@@ -231,14 +233,19 @@ std::set<int64_t> update_layout(LayoutState& state, const std::vector<uint32_t>&
         sort_ends(state, it->second);
         choose_join(state, it->second);
     }
-    // 2. Merged junctions: those that changed are dissolved and rebuilt.
-    const std::set<int64_t> regrouped = merge_close_junctions(state, touched);
-    std::set<int64_t> reshaped;  // junction keys whose own layout is redone
-    for (const std::set<int64_t>& nodes : {touched, regrouped})
-        for (int64_t v : nodes)
-            if (NodeLayout* j = state.junction_of(v)) reshaped.insert(j->node);
-    // 3. The length of every edge at those junctions is shared out again; where an
-    // edge's share changes, the junction at its other end is reshaped too.
+    return touched;
+}
+
+// The junctions at the two ends of edge `e` into `keys`.
+void add_junctions_at(LayoutState& state, uint32_t e, std::set<int64_t>& keys) {
+    for (int64_t v : {state.graph.edges[e].from_node, state.graph.edges[e].to_node})
+        if (NodeLayout* j = state.junction_of(v)) keys.insert(j->node);
+}
+
+// Update step 3: the length of every edge at the `reshaped` junctions is shared out
+// again; where an edge's share changes, the junction at its other end is added (its
+// joint may reach further along that edge now).
+void reshare_lengths(LayoutState& state, std::set<int64_t>& reshaped) {
     std::set<uint32_t> shared;
     for (int64_t key : reshaped)
         for (const NodeLayout::End& end : state.junction_keyed(key)->ends) shared.insert(end.edge);
@@ -247,29 +254,39 @@ std::set<int64_t> update_layout(LayoutState& state, const std::vector<uint32_t>&
         const double before[4] = {state.allowed.from[e], state.allowed.to[e], state.fixed.from[e], state.fixed.to[e]};
         share_edge_length(state, e);
         const double after[4] = {state.allowed.from[e], state.allowed.to[e], state.fixed.from[e], state.fixed.to[e]};
-        if (std::equal(before, before + 4, after)) continue;
-        for (int64_t v : {graph.edges[e].from_node, graph.edges[e].to_node})
-            if (NodeLayout* j = state.junction_of(v)) neighbours.insert(j->node);
+        if (!std::equal(before, before + 4, after)) add_junctions_at(state, e, neighbours);
     }
     reshaped.insert(neighbours.begin(), neighbours.end());
+}
+
+}  // namespace
+
+std::set<int64_t> update_layout(LayoutState& state, const std::vector<uint32_t>& changed) {
+    const std::set<int64_t> touched = rejoin_nodes_at(state, changed);
+    // 2. Merged junctions that changed are dissolved and built again.
+    const std::set<int64_t> regrouped = merge_close_junctions(state, touched);
+    std::set<int64_t> reshaped;  // junction keys whose own layout is redone
+    for (const std::set<int64_t>& nodes : {touched, regrouped})
+        for (int64_t v : nodes)
+            if (NodeLayout* j = state.junction_of(v)) reshaped.insert(j->node);
+    reshare_lengths(state, reshaped);
+    // 4. Those junctions are shaped again; the quads at them (and those of edges absorbed
+    // or freed by a merged junction) are cut again; every junction whose ring or quads
+    // changed is finished again.
     std::set<uint32_t> recut(changed.begin(), changed.end());
     for (int64_t key : reshaped) {
         NodeLayout& node = *state.junction_keyed(key);
         if (node.kind == JoinKind::Joint) shape_junction(state, node);
         for (const NodeLayout::End& end : node.ends) recut.insert(end.edge);
     }
-    for (int64_t v : regrouped)  // edges absorbed or freed by a merged junction
+    for (int64_t v : regrouped)
         if (auto it = state.nodes.find(v); it != state.nodes.end())
             for (const NodeLayout::End& end : it->second.ends) recut.insert(end.edge);
-    // 4. Quads whose cuts changed, and the joints of every junction whose ring or
-    // quads changed.
     std::set<int64_t> refinish = reshaped;
     for (uint32_t e : recut) {
         const Ring before = state.out.quads[e];
         cut_quad(state, e);
-        if (state.out.quads[e] == before) continue;
-        for (int64_t v : {graph.edges[e].from_node, graph.edges[e].to_node})
-            if (NodeLayout* j = state.junction_of(v)) refinish.insert(j->node);
+        if (state.out.quads[e] != before) add_junctions_at(state, e, refinish);
     }
     for (int64_t key : refinish) {
         NodeLayout& node = *state.junction_keyed(key);

@@ -8,6 +8,7 @@
 
 #include "narrow_roads.h"
 #include "polygon_overlap.h"
+#include "road_geometry.h"
 #include "scene.h"
 
 namespace citygen {
@@ -48,13 +49,8 @@ inline RoadCheckCounts check_road_network(const Scene& scene, bool strict_joins)
             // No hole: just beyond the quad's end at this joint, the ground must be the
             // joint's (or another road's where near-parallel roads overlap).
             const bool at_from = road.from_joint == static_cast<int>(j);
-            const Vec2 c1 = at_from ? road.quad[0] : road.quad[1];
-            const Vec2 c2 = at_from ? road.quad[3] : road.quad[2];
-            const Vec2 inward = (road.quad[0] + road.quad[1] + road.quad[2] + road.quad[3]) * 0.25 - (c1 + c2) * 0.5;
-            const Vec2 beyond = normalize(inward) * -0.01;
             double gap = 0;
-            for (int k = 1; k < 10; ++k) {
-                const Vec2 p = c1 + (c2 - c1) * (k / 10.0) + beyond;
+            for (Vec2 p : points_beyond_quad_end(road.quad, at_from)) {
                 bool covered = point_in_ring(p, joint.polygon);
                 for (uint32_t other : joint.edges)
                     covered = covered || (other != r && point_in_ring(p, scene.roads[other].quad));
