@@ -50,7 +50,7 @@ struct LayoutState {
     PerEnd fixed;       // what a miter needs of the edge
     PerEnd allowed;     // what the joint gets once each edge's length is shared out
     std::map<int64_t, std::vector<Ring>> raw_rings;  // per junction: its unfinished rings
-    RoadLayout out;     // cuts, quads and absorbed edges per edge; `nodes` filled by assemble_nodes
+    RoadLayout out;     // cuts, quads and absorbed edges per edge; `nodes` filled by assemble_layout
 
     LayoutState(const RoadGraph& g, std::vector<SideWidths> w, double limit);
 
