@@ -94,6 +94,10 @@ int main(int argc, char** argv) {
                    "benchmark aid: ignore height, building:levels, min_height, roof:height, ... on this "
                    "fraction of buildings (seeded; 1 = all)")
         ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--threads", job.threads,
+                   "at most this many threads for the stages after reading (0: every core); the scene "
+                   "is the same whatever the number")
+        ->check(CLI::Range(0, 1024))->capture_default_str();
     app.add_flag("-q,--quiet", job.quiet, "no progress and no report on stderr");
 
     try {

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <chrono>
 
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
+
 #include "assemble_sea.h"
 #include "build_buildings.h"
 #include "build_land_cover.h"
@@ -131,9 +134,8 @@ void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
     }
 }
 
-}  // namespace
-
-Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
+// The stages in order; parse_osm_to_scene runs them on job.threads threads.
+Scene run_pipeline(const ParseJob& job, ParseReport& report) {
     OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
     if (job.hide_height_tags > 0) hide_height_tags(osm, job.hide_height_tags, job.params.seed);
     const Projection projection = projection_for(osm);
@@ -147,15 +149,13 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
         infer_heights(scene.buildings, job.params.buildings, report);
         return 0;
     });
-    const BuildingTagIndex building_tags(osm);
-    timed(report, "roofs", [&] {
-        build_roofs(scene.buildings, building_tags, job.params.buildings, report);
-        return 0;
-    });
-    timed(report, "colours", [&] {
-        choose_colours_and_materials(scene.buildings, building_tags, job.params.buildings, report);
-        return 0;
-    });
+    // Roofs and colours change only the heights, roofs and colours of the buildings; the roads
+    // read only footprints (outer and holes), and the paths only the OSM data. So the roads and
+    // the paths are laid out beside the roofs, each with a report of its own that is merged in
+    // its place in the pipeline: neither the scene nor the report depends on the threads.
+    ParseReport roads_report, paths_report;
+    PathSurface paths;
+    auto lay_out_roads = [&](ParseReport& report) {  // the road section, run below
     const RoadGraph road_graph = timed(report, "road graph", [&] {
         return build_road_graph(osm, projection, job.params.roads, report);
     });
@@ -172,9 +172,26 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
         return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
                                job.params.roads.miter_limit, report);
     });
-    PathSurface paths = timed(report, "paths and rails", [&] {
-        return build_paths(osm, projection, job.params.roads, report);
+    };  // end of the road section
+    tbb::task_group beside_roofs;
+    beside_roofs.run([&] { lay_out_roads(roads_report); });
+    beside_roofs.run([&] {
+        paths = timed(paths_report, "paths and rails", [&] {
+            return build_paths(osm, projection, job.params.roads, paths_report);
+        });
     });
+    const BuildingTagIndex building_tags(osm);
+    timed(report, "roofs", [&] {
+        build_roofs(scene.buildings, building_tags, job.params.buildings, report);
+        return 0;
+    });
+    timed(report, "colours", [&] {
+        choose_colours_and_materials(scene.buildings, building_tags, job.params.buildings, report);
+        return 0;
+    });
+    beside_roofs.wait();
+    report.merge(roads_report);
+    report.merge(paths_report);
     scene.sidewalks = drop_doubled_sidewalks(std::move(scene.sidewalks), paths.paths, report);
     scene.paths = std::move(paths.paths);
     scene.path_joints = std::move(paths.joints);
@@ -200,6 +217,13 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
     set_bounds_and_ground(scene);
     return scene;
+}
+
+}  // namespace
+
+Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
+    tbb::task_arena arena(job.threads > 0 ? job.threads : tbb::task_arena::automatic);
+    return arena.execute([&] { return run_pipeline(job, report); });
 }
 
 }  // namespace citygen
