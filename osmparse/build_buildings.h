@@ -1,4 +1,4 @@
-// Stage 3: buildings. OSM building areas (WGS84) -> clean footprints in local metres
+// Stage 2: buildings. OSM building areas (WGS84) -> clean footprints in local metres
 // with heights.
 #pragma once
 
