@@ -4,7 +4,6 @@
 #include <cstring>
 #include <iterator>
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "building_heights.h"
@@ -128,19 +127,23 @@ std::vector<Building> build_area(const OsmArea& area, const Projection& projecti
 
 std::vector<Building> build_buildings(const OsmData& osm, const Projection& projection,
                                       const BuildingParams& params, ParseReport& report) {
-    // Areas are independent (the footprint clean-up is most of the stage's time): in parallel,
-    // each with a report of its own, merged in area order so the report does not depend on threads.
-    const size_t n = osm.building_areas.size();
-    std::vector<std::vector<Building>> per_area(n);
-    std::vector<ParseReport> area_reports(n);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i)
-            per_area[i] = build_area(osm.building_areas[i], projection, params, area_reports[i]);
+    // Areas are independent (the footprint clean-up is most of the stage's time): in parallel, in
+    // fixed blocks of areas, each block with a report of its own, merged in block order so that
+    // neither the buildings nor the report depend on the threads.
+    constexpr size_t kBlock = 256;
+    const size_t n = osm.building_areas.size(), blocks = (n + kBlock - 1) / kBlock;
+    std::vector<std::vector<Building>> per_block(blocks);
+    std::vector<ParseReport> block_reports(blocks);
+    tbb::parallel_for(size_t{0}, blocks, [&](size_t block) {
+        for (size_t i = block * kBlock; i < std::min(n, (block + 1) * kBlock); ++i) {
+            std::vector<Building> built = build_area(osm.building_areas[i], projection, params, block_reports[block]);
+            std::move(built.begin(), built.end(), std::back_inserter(per_block[block]));
+        }
     });
     std::vector<Building> buildings;
-    for (size_t i = 0; i < n; ++i) {
-        report.merge(area_reports[i]);
-        std::move(per_area[i].begin(), per_area[i].end(), std::back_inserter(buildings));
+    for (size_t block = 0; block < blocks; ++block) {
+        report.merge(block_reports[block]);
+        std::move(per_block[block].begin(), per_block[block].end(), std::back_inserter(buildings));
     }
     // Same identity keeps assembly order (ring by ring), which libosmium makes stable.
     std::stable_sort(buildings.begin(), buildings.end(), [](const Building& a, const Building& b) {
