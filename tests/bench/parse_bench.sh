@@ -35,7 +35,7 @@ inputs=(monaco.osm monaco.osm.pbf kaiserslautern.osm kaiserslautern.osm.pbf)
 tools=(osmium new)
 [ -n "$old" ] && tools+=(old)
 
-# One timed run of `tool` on `input`: appends "seconds peak_kb" to $work/<tool>.<input>.runs and
+# One timed run of `tool` on `input`: appends "seconds peak_kb user_s system_s" to $work/<tool>.<input>.runs and
 # keeps osmparse's report (stage times) in $work/<tool>.<input>.report.<run>.
 run_once() {
     local tool=$1 input=$2 run=$3 start end
@@ -46,7 +46,7 @@ run_once() {
         old) cmd=("$old" "$work/$input" -o "$work/out.scene") ;;
     esac
     start=$(date +%s.%N)
-    /usr/bin/time -f %M -o "$work/rss" "${cmd[@]}" > /dev/null 2> "$work/$tool.$input.report.$run"
+    /usr/bin/time -f "%M %U %S" -o "$work/rss" "${cmd[@]}" > /dev/null 2> "$work/$tool.$input.report.$run"
     end=$(date +%s.%N)
     echo "$(awk -v a="$start" -v b="$end" 'BEGIN { print b - a }') $(tail -1 "$work/rss")" >> "$work/$tool.$input.runs"
 }
@@ -61,25 +61,27 @@ for input in "${inputs[@]}"; do
 done
 
 seconds() { awk '{ print $1 }' "$work/$1.$2.runs" | median; }
+cpu_seconds() { awk '{ print $3 + $4 }' "$work/$1.$2.runs" | median; }
 peak_mb() { awk '{ if ($2 > m) m = $2 } END { printf "%.1f", m / 1024 }' "$work/$1.$2.runs"; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }'; }
 
 echo "$runs runs each (after one warm-up), median wall time; osmparse --threads $threads; $(nproc) cores,"
 echo "load average at the end: $(cut -d' ' -f1-3 /proc/loadavg) (the machine may be shared: compare ratios of one run)"
 echo
-header="| input | MB | osmium s | osmium MB | osmparse s | x osmium | MB | x osmium MB |"
-rule="|---|---|---|---|---|---|---|---|"
-[ -n "$old" ] && header="$header old s | old x osmium | old MB |" && rule="$rule---|---|---|"
+# CPU seconds (user + system) move less than wall time when other jobs share the cores.
+header="| input | MB | osmium s | osmium cpu s | osmium MB | osmparse s | x osmium | cpu s | MB | x osmium MB |"
+rule="|---|---|---|---|---|---|---|---|---|---|"
+[ -n "$old" ] && header="$header old s | old x osmium | old cpu s | old MB |" && rule="$rule---|---|---|---|"
 echo "$header"
 echo "$rule"
 for input in "${inputs[@]}"; do
     mb=$(awk -v n="$(stat -c %s "$work/$input")" 'BEGIN { printf "%.1f", n / 1048576 }')
     o_s=$(seconds osmium "$input"); o_mb=$(peak_mb osmium "$input")
     n_s=$(seconds new "$input"); n_mb=$(peak_mb new "$input")
-    line="| $input | $mb | $(printf %.3f "$o_s") | $o_mb | $(printf %.3f "$n_s") | $(ratio "$n_s" "$o_s") | $n_mb | $(ratio "$n_mb" "$o_mb") |"
+    line="| $input | $mb | $(printf %.3f "$o_s") | $(printf %.2f "$(cpu_seconds osmium "$input")") | $o_mb | $(printf %.3f "$n_s") | $(ratio "$n_s" "$o_s") | $(printf %.2f "$(cpu_seconds new "$input")") | $n_mb | $(ratio "$n_mb" "$o_mb") |"
     if [ -n "$old" ]; then
         d_s=$(seconds old "$input"); d_mb=$(peak_mb old "$input")
-        line="$line $(printf %.3f "$d_s") | $(ratio "$d_s" "$o_s") | $d_mb |"
+        line="$line $(printf %.3f "$d_s") | $(ratio "$d_s" "$o_s") | $(printf %.2f "$(cpu_seconds old "$input")") | $d_mb |"
     fi
     echo "$line"
 done
