@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
@@ -41,6 +42,17 @@ auto timed(ParseReport& report, const char* stage, F&& f) {
     auto result = f();
     report.stage_time(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     return result;
+}
+
+// Runs groups of stages side by side (TBB), each reporting into a report of its own, merged into
+// `report` in the order given: the printed report is the one a run on one thread prints.
+void side_by_side(ParseReport& report, const std::vector<std::function<void(ParseReport&)>>& groups) {
+    std::vector<ParseReport> reports(groups.size());
+    tbb::task_group tasks;
+    for (size_t i = 1; i < groups.size(); ++i) tasks.run([&, i] { groups[i](reports[i]); });
+    groups.front()(reports.front());  // on this thread
+    tasks.wait();
+    for (const ParseReport& r : reports) report.merge(r);
 }
 
 std::string base_name(const std::string& path) {
@@ -154,8 +166,8 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
     });
     // Roofs and colours change only the heights, roofs and colours of the buildings; the roads
     // read only their footprints (outer and holes), and the paths only the OSM data. So these
-    // three groups of stages run side by side, each with a report of its own, merged in pipeline
-    // order: neither the scene nor the printed report depends on the threads.
+    // three groups of stages run side by side: neither the scene nor the printed report depends
+    // on the threads.
     auto roofs_and_colours = [&](ParseReport& report) {
         const BuildingTagIndex building_tags(osm);
         timed(report, "roofs", [&] {
@@ -189,14 +201,7 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
     auto lay_out_paths = [&](ParseReport& report) {
         paths = timed(report, "paths and rails", [&] { return build_paths(osm, projection, job.params.roads, report); });
     };
-    ParseReport roofs_report, roads_report, paths_report;
-    tbb::task_group side_by_side;
-    side_by_side.run([&] { lay_out_roads(roads_report); });
-    side_by_side.run([&] { lay_out_paths(paths_report); });
-    roofs_and_colours(roofs_report);
-    side_by_side.wait();
-    for (const ParseReport* part : {&roofs_report, &roads_report, &paths_report}) report.merge(*part);
-
+    side_by_side(report, {roofs_and_colours, lay_out_roads, lay_out_paths});
     scene.sidewalks = drop_doubled_sidewalks(std::move(scene.sidewalks), paths.paths, report);
     scene.paths = std::move(paths.paths);
     scene.path_joints = std::move(paths.joints);
@@ -206,20 +211,30 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
         });
         scene.buildings.insert(scene.buildings.end(), generated.begin(), generated.end());
     }
-    scene.lamps = timed(report, "street lamps", [&] {
-        return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
+    // Street lamps, land cover with the trees in it, and crossings read the scene so far and each
+    // write a part of their own: side by side too.
+    side_by_side(report, {
+        [&](ParseReport& report) {
+            scene.lamps = timed(report, "street lamps", [&] {
+                return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
+            });
+        },
+        [&](ParseReport& report) {
+            scene.land_cover = timed(report, "land cover", [&] {
+                std::vector<LandCover> cover = build_land_cover(osm, projection, job.params.buildings, report);
+                std::vector<LandCover> sea =
+                    assemble_sea(osm, projection, extract_box(osm, projection), scene.buildings, report);
+                cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
+                return drop_land_cover_beyond_limits(std::move(cover), report);
+            });
+            scene.trees = timed(report, "trees", [&] {
+                return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);
+            });
+        },
+        [&](ParseReport& report) {
+            scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
+        },
     });
-    scene.land_cover = timed(report, "land cover", [&] {
-        std::vector<LandCover> cover = build_land_cover(osm, projection, job.params.buildings, report);
-        std::vector<LandCover> sea =
-            assemble_sea(osm, projection, extract_box(osm, projection), scene.buildings, report);
-        cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
-        return drop_land_cover_beyond_limits(std::move(cover), report);
-    });
-    scene.trees = timed(report, "trees", [&] {
-        return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);
-    });
-    scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
     set_bounds_and_ground(scene);
     return scene;
 }
