@@ -6,12 +6,12 @@
 #include <set>
 
 #include "clean_footprint.h"
+#include "read_osm.h"
 
 namespace citygen {
 
 namespace {
 
-const char* const kSea = "sea polygons";
 constexpr double kEdgeSnap = 0.5;  // metres: a chain end this close to the box edge lies on it
 
 // Positions along the box boundary, counter-clockwise from the lower-left corner.
@@ -172,7 +172,7 @@ std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains
                 continue;
             }
             if (!piece.start_on_edge || !piece.end_on_edge) {
-                report.dropped(kSea, "coastline ends inside the extract (broken or partial): no sea drawn");
+                report.dropped(kSeaPolygons, kCoastlineEndsInside);
                 return {};
             }
             if (piece.points.size() >= 2) open_pieces.push_back(std::move(piece));
@@ -210,14 +210,14 @@ std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains
             const Event& here = events[event_of_start[k]];
             const Event& next = events[(event_of_start[k] + 1) % events.size()];
             if (next.is_start) {
-                report.dropped(kSea, "coastline directions disagree along the extract edge: no sea drawn");
+                report.dropped(kSeaPolygons, kCoastlineDirectionsDisagree);
                 return {};
             }
             for (Vec2 c : boundary.corners_between(here.position, next.position)) ring.push_back(c);
             k = next.piece;
             if (k == first) break;
             if (used[k]) {
-                report.dropped(kSea, "coastline pieces do not close into rings: no sea drawn");
+                report.dropped(kSeaPolygons, kCoastlineDoesNotClose);
                 return {};
             }
         }
@@ -237,7 +237,7 @@ std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains
     clean.min_area = 1;
     std::vector<LandCover> out;
     for (auto& [ring, id] : water)
-        for (Footprint& f : clean_footprint(ring, {}, clean, report, kSea)) {
+        for (Footprint& f : clean_footprint(ring, {}, clean, report, kSeaPolygons)) {
             LandCover c;
             c.osm = {OsmType::Way, id};
             c.cover = LandCoverClass::Sea;
@@ -245,7 +245,7 @@ std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains
             out.push_back(std::move(c));
         }
     for (auto& [ring, id] : islands) {
-        std::vector<Footprint> cleaned = clean_footprint(ring, {}, clean, report, "coastline islands");
+        std::vector<Footprint> cleaned = clean_footprint(ring, {}, clean, report, kCoastlineIslands);
         for (Footprint& f : cleaned) {
             const Vec2 p = interior_point(f.outer);
             bool placed = false;
@@ -256,7 +256,7 @@ std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains
                     placed = true;
                     break;
                 }
-            if (!placed) report.dropped("coastline islands", "not inside any sea polygon");
+            if (!placed) report.dropped(kCoastlineIslands, kIslandNotInSea);
         }
     }
     // Holes must stay simple and apart: clean once more with them.
@@ -266,7 +266,7 @@ std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains
             final.push_back(std::move(c));
             continue;
         }
-        for (Footprint& f : clean_footprint(c.outer, c.holes, clean, report, kSea))
+        for (Footprint& f : clean_footprint(c.outer, c.holes, clean, report, kSeaPolygons))
             final.push_back({c.osm, LandCoverClass::Sea, std::move(f.outer), std::move(f.holes)});
     }
     std::stable_sort(final.begin(), final.end(), [](const LandCover& a, const LandCover& b) { return a.osm < b.osm; });
@@ -281,7 +281,7 @@ std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projec
     std::set<int64_t> ends;
     for (size_t i = 0; i < osm.coastlines.size(); ++i) {
         if (!by_start.emplace(osm.coastlines[i].nodes.front(), i).second)
-            report.note("coastline ways", "two ways start at the same node");
+            report.note(kCoastlineWays, kTwoWaysStartAtOneNode);
         ends.insert(osm.coastlines[i].nodes.back());
     }
     std::vector<bool> used(osm.coastlines.size(), false);
@@ -310,12 +310,12 @@ std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projec
         if (!used[i] && !ends.count(osm.coastlines[i].nodes.front())) follow(i);
     for (size_t i = 0; i < osm.coastlines.size(); ++i)
         if (!used[i]) follow(i);
-    report.kept("coastline ways", static_cast<int64_t>(osm.coastlines.size()));
+    report.kept(kCoastlineWays, static_cast<int64_t>(osm.coastlines.size()));
     for (const CoastlineChain& c : chains) {
-        if (c.cut_before) report.note("coastline ways", "cut by the extract: end carried to its edge");
-        if (c.cut_after) report.note("coastline ways", "cut by the extract: end carried to its edge");
+        if (c.cut_before) report.note(kCoastlineWays, kCutByExtract);
+        if (c.cut_after) report.note(kCoastlineWays, kCutByExtract);
     }
-    report.read(kSea, static_cast<int64_t>(chains.size()));
+    report.read(kSeaPolygons, static_cast<int64_t>(chains.size()));
 
     std::vector<LandCover> sea = sea_from_chains(chains, box, report);
     // Never a flooded city: a "sea" holding most buildings is land seen the wrong way round.
@@ -330,13 +330,13 @@ std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projec
             wet += !in_hole;
         }
         if (wet >= 10 && 2 * wet > buildings.size()) {
-            report.dropped(kSea, "would flood the city (holds most buildings)");
+            report.dropped(kSeaPolygons, kWouldFloodCity);
             continue;
         }
-        if (wet) report.note(kSea, "buildings with a corner in the sea (piers, breakwaters)", static_cast<int64_t>(wet));
+        if (wet) report.note(kSeaPolygons, kBuildingsInSea, static_cast<int64_t>(wet));
         kept.push_back(std::move(c));
     }
-    report.kept(kSea, static_cast<int64_t>(kept.size()));
+    report.kept(kSeaPolygons, static_cast<int64_t>(kept.size()));
     return kept;
 }
 

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "clean_footprint.h"
+#include "read_osm.h"
 #include "scene_limits.h"
 
 namespace citygen {
@@ -56,7 +57,7 @@ const std::vector<const char*>& land_cover_keys() {
 
 std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& projection,
                                         const BuildingParams& params, ParseReport& report) {
-    const char* const kind = "land cover areas";
+    const char* const kind = kLandCoverAreas;
     std::vector<LandCover> out;
     // Land cover keeps its shape: only edges turning by less than a degree are merged.
     BuildingParams clean = params;
@@ -80,7 +81,7 @@ std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& pr
     std::stable_sort(out.begin(), out.end(), [](const LandCover& a, const LandCover& b) {
         return a.cover != b.cover ? a.cover < b.cover : a.osm < b.osm;
     });
-    for (const LandCover& c : out) report.kept(std::string("land cover: ") + to_string(c.cover));
+    for (const LandCover& c : out) report.kept(std::string(kLandCoverClassPrefix) + to_string(c.cover));
     report.kept(kind, static_cast<int64_t>(out.size()));
     return out;
 }
@@ -95,7 +96,7 @@ std::vector<LandCover> drop_land_cover_beyond_limits(std::vector<LandCover> cove
     kept.reserve(cover.size());
     for (LandCover& c : cover) {
         if (beyond(c.outer) || std::any_of(c.holes.begin(), c.holes.end(), beyond))
-            report.dropped("land cover areas", "beyond the scene limits (points or extent)");
+            report.dropped(kLandCoverAreas, kBeyondSceneLimits);
         else
             kept.push_back(std::move(c));
     }

@@ -1,5 +1,6 @@
-// Land cover: OSM areas (closed ways and multipolygons, assembled by libosmium as buildings
-// are) -> cleaned polygons with holes and one class each (DESIGN 6b).
+// Stage 14: land cover (with the sea, assemble_sea.h). OSM areas (closed ways and
+// multipolygons, assembled by libosmium as buildings are) -> cleaned polygons with holes and
+// one class each (DESIGN 6b).
 #pragma once
 
 #include <optional>
@@ -12,6 +13,10 @@
 #include "scene.h"
 
 namespace citygen {
+
+// Report rows and reasons of this stage (areas are counted under read_osm.h's kLandCoverAreas).
+inline constexpr char kLandCoverClassPrefix[] = "land cover: ";
+inline constexpr char kBeyondSceneLimits[] = "beyond the scene limits (points or extent)";
 
 // The land cover class of an area's tags, or nullopt when it has none. The one table:
 //   water     natural=water, waterway=riverbank, landuse=basin|reservoir, leisure=swimming_pool

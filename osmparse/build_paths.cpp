@@ -13,8 +13,6 @@ namespace citygen {
 
 namespace {
 
-const char* const kPaths = "path edges";
-
 struct ClassInfo {
     const char* tag;  // the highway=* or railway=* value
     PathClass cls;
@@ -53,9 +51,9 @@ void lay_out(const std::vector<OsmWay>& ways, const Projection& projection, cons
     const size_t first_path = out.paths.size();
     std::vector<int> path_of_edge(graph.edges.size(), -1);
     for (size_t e = 0; e < graph.edges.size(); ++e) {
-        report.read(kPaths);
+        report.read(kPathEdges);
         if (layout.absorbed[e] || layout.quads[e].empty()) {
-            report.dropped(kPaths, layout.absorbed[e] ? "absorbed into a merged junction" : "too short for its junctions");
+            report.dropped(kPathEdges, layout.absorbed[e] ? "absorbed into a merged junction" : kPathTooShort);
             continue;
         }
         const RoadGraphEdge& g = graph.edges[e];
@@ -105,7 +103,7 @@ double path_width(const OsmTags& tags, PathClass c, ParseReport* report) {
     if (const char* w = tags.get("width")) {
         const std::optional<double> width = parse_osm_length(w);
         if (width && *width >= 1 && *width <= 20) return *width;
-        if (report) report->note(kPaths, "width tag unusable, fell back");
+        if (report) report->note(kPathEdges, "width tag unusable, fell back");
     }
     for (const ClassInfo& info : kTable)
         if (info.cls == c) return info.width;
@@ -123,10 +121,10 @@ PathSurface build_paths(const OsmData& osm, const Projection& projection, const 
         const char* tunnel = way.tags.get("tunnel");
         if ((tunnel && std::strcmp(tunnel, "no") != 0) || way.tags.has("area", "yes") ||
             way.tags.has("indoor", "yes")) {
-            report.dropped("path ways", tunnel ? "tunnel" : "area or indoor");
+            report.dropped(kPathWays, tunnel ? kPathTunnel : kPathAreaOrIndoor);
             return;
         }
-        report.read("path ways");
+        report.read(kPathWays);
         if (!info.count(way.id)) info[way.id] = {*c, path_width(way.tags, *c, &report)};
         sidewalk[way.id] = way.tags.has("footway", "sidewalk");
         OsmWay copy = way;
@@ -138,9 +136,9 @@ PathSurface build_paths(const OsmData& osm, const Projection& projection, const 
     PathSurface out;
     lay_out(paths, projection, roads, info, sidewalk, out, report);
     lay_out(rails, projection, roads, info, sidewalk, out, report);
-    report.kept(kPaths, static_cast<int64_t>(out.paths.size()));
-    for (const PathEdge& p : out.paths) report.kept(std::string("path: ") + to_string(p.path_class));
-    report.kept("path joints", static_cast<int64_t>(out.joints.size()));
+    report.kept(kPathEdges, static_cast<int64_t>(out.paths.size()));
+    for (const PathEdge& p : out.paths) report.kept(std::string(kPathClassPrefix) + to_string(p.path_class));
+    report.kept(kPathJoints, static_cast<int64_t>(out.joints.size()));
     return out;
 }
 
@@ -166,7 +164,7 @@ std::vector<Sidewalk> drop_doubled_sidewalks(std::vector<Sidewalk> sidewalks, co
         index.for_each_near(bounds_of(s.polygon), [&](uint32_t i) { covered += clipped_area(s.polygon, mapped[i].outer); });
         if (area > 0 && covered > area / 3) {
             const char* kind = s.kind == SidewalkKind::Strip ? "sidewalk strips" : "sidewalk corners";
-            report.dropped(kind, "replaced by a mapped sidewalk (footway=sidewalk)");
+            report.dropped(kind, kReplacedByMappedSidewalk);
             report.kept(kind, -1);  // build_sidewalks counted it as kept
             continue;
         }

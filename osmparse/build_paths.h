@@ -1,4 +1,4 @@
-// Paths and rails: highway=footway|path|cycleway|pedestrian|steps|track|bridleway and
+// Stage 11: paths and rails. highway=footway|path|cycleway|pedestrian|steps|track|bridleway and
 // railway=rail|tram|light_rail|subway ways (not in tunnels, not areas) as strips laid out
 // with the road join rules (road_layout.h), without curbs. Paths and rails are laid out as
 // two separate networks, so a level crossing of a footway over a track makes no joint.
@@ -14,6 +14,16 @@
 #include "scene.h"
 
 namespace citygen {
+
+// Report rows and reasons of this stage.
+inline constexpr char kPathEdges[] = "path edges";
+inline constexpr char kPathWays[] = "path ways";
+inline constexpr char kPathJoints[] = "path joints";
+inline constexpr char kPathClassPrefix[] = "path: ";
+inline constexpr char kPathTooShort[] = "too short for its junctions";
+inline constexpr char kPathTunnel[] = "tunnel";
+inline constexpr char kPathAreaOrIndoor[] = "area or indoor";
+inline constexpr char kReplacedByMappedSidewalk[] = "replaced by a mapped sidewalk (footway=sidewalk)";
 
 // The path class of a way's tags, or nullopt. highway=pedestrian as a line (a pedestrian
 // street) is a path; as an area it is land cover.

@@ -18,7 +18,6 @@ namespace citygen {
 
 namespace {
 
-const char* const kGenerated = "generated buildings";
 enum Salt : uint64_t { kJitter = 401 };
 
 struct Block {
@@ -144,7 +143,7 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
     for (const Sidewalk& w : scene.sidewalks) add_surface(w.polygon);
     const BuildingIndex surface_index(surfaces);
     for (const Block& block : road_blocks(scene)) {
-        report.read(kGenerated, 0);
+        report.read(kGeneratedBuildings, 0);
         Box2 box = bounds_of(block.ring);
         bool empty = true;
         for (uint32_t i : index.near(box)) {
@@ -155,7 +154,7 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
         box.extend(box.min - Vec2{params.near_distance, params.near_distance});
         box.extend(box.max + Vec2{params.near_distance, params.near_distance});
         if (static_cast<int>(index.near(box).size()) < params.min_buildings_near) {
-            report.note(kGenerated, "empty block not built-up: left empty");
+            report.note(kGeneratedBuildings, kBlockNotBuiltUp);
             continue;
         }
         std::vector<Ring> insides;
@@ -163,28 +162,28 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
         for (const Ring& inside : insides) {
             const double area = signed_area(inside);
             if (area < params.min_block_area || area > params.max_block_area) {
-                report.note(kGenerated, "empty block too small or too large: left empty");
+                report.note(kGeneratedBuildings, kBlockSizeOutOfRange);
                 continue;
             }
-            report.note(kGenerated, "empty built-up block filled");
+            report.note(kGeneratedBuildings, kBlockFilled);
             std::vector<Ring> lots;
             split_into_lots(inside, params.max_lot_area, 0, lots);
             for (const Ring& lot : lots) {
-                report.read(kGenerated);
+                report.read(kGeneratedBuildings);
                 if (!has_street_access(lot, inside)) {
-                    report.dropped(kGenerated, "lot without street access");
+                    report.dropped(kGeneratedBuildings, kLotWithoutAccess);
                     continue;
                 }
                 std::vector<Ring> shrunk;
                 if (!inset_polygon(lot, params.setback, &shrunk) || shrunk.empty()) {
-                    report.dropped(kGenerated, "lot too small");
+                    report.dropped(kGeneratedBuildings, kLotTooSmall);
                     continue;
                 }
                 const Ring footprint = *std::max_element(shrunk.begin(), shrunk.end(), [](const Ring& a, const Ring& b) {
                     return signed_area(a) < signed_area(b);
                 });
                 if (signed_area(footprint) < params.min_footprint_area || !ring_is_simple(footprint)) {
-                    report.dropped(kGenerated, "lot too small");
+                    report.dropped(kGeneratedBuildings, kLotTooSmall);
                     continue;
                 }
                 // Never on a road, joint, sidewalk or mapped building (the setbacks should see to it).
@@ -192,7 +191,7 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
                 for (uint32_t i : surface_index.near(bounds_of(footprint))) overlap += overlap_area(footprint, surfaces[i]);
                 for (uint32_t i : index.near(bounds_of(footprint))) overlap += overlap_area(footprint, scene.buildings[i]);
                 if (overlap > 1e-3) {
-                    report.dropped(kGenerated, "would overlap a road, sidewalk or building");
+                    report.dropped(kGeneratedBuildings, kLotOverlaps);
                     continue;
                 }
                 Building b;
@@ -217,7 +216,7 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
     const BuildingTagIndex tags(no_tags);
     build_roofs(generated, tags, buildings, report);
     choose_colours_and_materials(generated, tags, buildings, report);
-    report.kept(kGenerated, static_cast<int64_t>(generated.size()));
+    report.kept(kGeneratedBuildings, static_cast<int64_t>(generated.size()));
     return generated;
 }
 

@@ -1,4 +1,4 @@
-// Stage (optional, --fill-empty-blocks): buildings in the blocks of the road graph that the map
+// Stage 12 (optional, --fill-empty-blocks): buildings in the blocks of the road graph that the map
 // left empty (Bruneton's Rama: buildings generated in road-graph zones).
 #pragma once
 
@@ -9,6 +9,15 @@
 #include "scene.h"
 
 namespace citygen {
+
+// Report rows and reasons of this stage.
+inline constexpr char kGeneratedBuildings[] = "generated buildings";
+inline constexpr char kBlockNotBuiltUp[] = "empty block not built-up: left empty";
+inline constexpr char kBlockSizeOutOfRange[] = "empty block too small or too large: left empty";
+inline constexpr char kBlockFilled[] = "empty built-up block filled";
+inline constexpr char kLotWithoutAccess[] = "lot without street access";
+inline constexpr char kLotTooSmall[] = "lot too small";
+inline constexpr char kLotOverlaps[] = "would overlap a road, sidewalk or building";
 
 // The blocks are the bounded faces of the road graph (dead ends pruned). A block is filled when
 // no mapped building lies in it, it is built-up (at least min_buildings_near mapped buildings

@@ -21,7 +21,7 @@ std::optional<int> count_tag(const OsmTags& tags, const char* key, ParseReport* 
     if (!text) return std::nullopt;
     const std::optional<double> n = parse_osm_count(text);
     if (n && *n >= 0 && *n <= kMaxLanes) return static_cast<int>(*n);
-    if (report) report->note("road lanes", std::string(key) + " unusable, fell back");
+    if (report) report->note(kRoadLanes, std::string(key) + " unusable, fell back");
     return std::nullopt;
 }
 
@@ -118,7 +118,7 @@ void lay_out_lanes(std::vector<RoadEdge>& roads, const OsmData& osm, ParseReport
         const double room = r.width - 2.5 * std::max(1, layout.forward + layout.backward);
         r.cycle_lane_left = layout.cycle_left && room >= 1.5 * (1 + layout.cycle_right);
         r.cycle_lane_right = layout.cycle_right && room >= 1.5 * (1 + layout.cycle_left);
-        report.kept("road lanes", layout.forward + layout.backward);
+        report.kept(kRoadLanes, layout.forward + layout.backward);
     }
 }
 
@@ -133,7 +133,7 @@ std::vector<Crossing> place_crossings(const OsmData& osm, const Projection& proj
     std::vector<Crossing> out;
     for (const OsmNode& node : osm.road_marks) {
         const bool signal = node.tags.has("highway", "traffic_signals");
-        const char* kind_name = signal ? "stop lines" : "zebra crossings";
+        const char* kind_name = signal ? kStopLines : kZebraCrossings;
         if (!signal) {
             const char* crossing = node.tags.get("crossing");
             const char* markings = node.tags.get("crossing:markings");
@@ -160,7 +160,7 @@ std::vector<Crossing> place_crossings(const OsmData& osm, const Projection& proj
             }
         });
         if (best < 0) {
-            report.dropped(kind_name, joint_index.contains(p) ? "on a junction polygon" : "not on a drawn road");
+            report.dropped(kind_name, joint_index.contains(p) ? kOnJunctionPolygon : kNotOnDrawnRoad);
             continue;
         }
         const RoadEdge& r = scene.roads[best];
@@ -176,8 +176,8 @@ std::vector<Crossing> place_crossings(const OsmData& osm, const Projection& proj
     std::sort(out.begin(), out.end(), [](const Crossing& a, const Crossing& b) { return a.osm < b.osm; });
     size_t zebras = 0;
     for (const Crossing& c : out) zebras += c.kind == CrossingKind::Zebra;
-    report.kept("zebra crossings", static_cast<int64_t>(zebras));
-    report.kept("stop lines", static_cast<int64_t>(out.size() - zebras));
+    report.kept(kZebraCrossings, static_cast<int64_t>(zebras));
+    report.kept(kStopLines, static_cast<int64_t>(out.size() - zebras));
     return out;
 }
 

@@ -1,4 +1,5 @@
-// Lanes and road markings (DESIGN 6b): a lane layout per road from the tags osm2lanes reads
+// Stage 9 (lanes, in the road section) and stage 16 (crossings): lanes and road markings
+// (DESIGN 6b): a lane layout per road from the tags osm2lanes reads
 // (lanes, lanes:forward|backward, turn:lanes*, cycleway*, busway*, parking:*), and where
 // markings go: centre line, lane dividers and edge lines per road, zebra crossings and
 // stop lines per node. A few numbers each; render paints them at shading time.
@@ -12,6 +13,13 @@
 #include "scene.h"
 
 namespace citygen {
+
+// Report rows and reasons of this stage.
+inline constexpr char kRoadLanes[] = "road lanes";
+inline constexpr char kZebraCrossings[] = "zebra crossings";
+inline constexpr char kStopLines[] = "stop lines";
+inline constexpr char kOnJunctionPolygon[] = "on a junction polygon";
+inline constexpr char kNotOnDrawnRoad[] = "not on a drawn road";
 
 struct LaneLayout {
     int forward = 1, backward = 1;  // motor-traffic lanes along and against the way

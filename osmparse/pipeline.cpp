@@ -1,8 +1,15 @@
-// osmparse from top to bottom: each stage is a function from data to data.
+// osmparse from top to bottom: each stage is a function from data to data. The stage numbers in
+// the headers follow this file: 1 read, 2 buildings, 3 heights, 4 roofs, 5 colours, 6 road graph,
+// 7 roads vs buildings, 8 road polygons, 9 lanes, 10 sidewalks, 11 paths and rails, 12 empty
+// blocks (optional), 13 street lamps, 14 land cover and sea, 15 trees, 16 crossings.
 #include "pipeline.h"
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
+
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "assemble_sea.h"
 #include "build_buildings.h"
@@ -35,6 +42,17 @@ auto timed(ParseReport& report, const char* stage, F&& f) {
     auto result = f();
     report.stage_time(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     return result;
+}
+
+// Runs groups of stages side by side (TBB), each reporting into a report of its own, merged into
+// `report` in the order given: the printed report is the one a run on one thread prints.
+void side_by_side(ParseReport& report, const std::vector<std::function<void(ParseReport&)>>& groups) {
+    std::vector<ParseReport> reports(groups.size());
+    tbb::task_group tasks;
+    for (size_t i = 1; i < groups.size(); ++i) tasks.run([&, i] { groups[i](reports[i]); });
+    groups.front()(reports.front());  // on this thread
+    tasks.wait();
+    for (const ParseReport& r : reports) report.merge(r);
 }
 
 std::string base_name(const std::string& path) {
@@ -131,9 +149,8 @@ void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
     }
 }
 
-}  // namespace
-
-Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
+// The stages in order; parse_osm_to_scene runs them on job.threads threads.
+Scene run_pipeline(const ParseJob& job, ParseReport& report) {
     OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
     if (job.hide_height_tags > 0) hide_height_tags(osm, job.hide_height_tags, job.params.seed);
     const Projection projection = projection_for(osm);
@@ -147,15 +164,22 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
         infer_heights(scene.buildings, job.params.buildings, report);
         return 0;
     });
-    const BuildingTagIndex building_tags(osm);
-    timed(report, "roofs", [&] {
-        build_roofs(scene.buildings, building_tags, job.params.buildings, report);
-        return 0;
-    });
-    timed(report, "colours", [&] {
-        choose_colours_and_materials(scene.buildings, building_tags, job.params.buildings, report);
-        return 0;
-    });
+    // Roofs and colours change only the heights, roofs and colours of the buildings; the roads
+    // read only their footprints (outer and holes), and the paths only the OSM data. So these
+    // three groups of stages run side by side: neither the scene nor the printed report depends
+    // on the threads.
+    auto roofs_and_colours = [&](ParseReport& report) {
+        const BuildingTagIndex building_tags(osm);
+        timed(report, "roofs", [&] {
+            build_roofs(scene.buildings, building_tags, job.params.buildings, report);
+            return 0;
+        });
+        timed(report, "colours", [&] {
+            choose_colours_and_materials(scene.buildings, building_tags, job.params.buildings, report);
+            return 0;
+        });
+    };
+    auto lay_out_roads = [&](ParseReport& report) {  // the road section
     const RoadGraph road_graph = timed(report, "road graph", [&] {
         return build_road_graph(osm, projection, job.params.roads, report);
     });
@@ -173,9 +197,12 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
         return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
                                job.params.roads.miter_limit, report);
     });
-    PathSurface paths = timed(report, "paths and rails", [&] {
-        return build_paths(osm, projection, job.params.roads, report);
-    });
+    };  // end of the road section
+    PathSurface paths;
+    auto lay_out_paths = [&](ParseReport& report) {
+        paths = timed(report, "paths and rails", [&] { return build_paths(osm, projection, job.params.roads, report); });
+    };
+    side_by_side(report, {roofs_and_colours, lay_out_roads, lay_out_paths});
     scene.sidewalks = drop_doubled_sidewalks(std::move(scene.sidewalks), paths.paths, report);
     scene.paths = std::move(paths.paths);
     scene.path_joints = std::move(paths.joints);
@@ -185,22 +212,39 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
         });
         scene.buildings.insert(scene.buildings.end(), generated.begin(), generated.end());
     }
-    scene.lamps = timed(report, "street lamps", [&] {
-        return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
+    // Street lamps, land cover with the trees in it, and crossings read the scene so far and each
+    // write a part of their own: side by side too.
+    side_by_side(report, {
+        [&](ParseReport& report) {
+            scene.lamps = timed(report, "street lamps", [&] {
+                return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
+            });
+        },
+        [&](ParseReport& report) {
+            scene.land_cover = timed(report, "land cover", [&] {
+                std::vector<LandCover> cover = build_land_cover(osm, projection, job.params.buildings, report);
+                std::vector<LandCover> sea =
+                    assemble_sea(osm, projection, extract_box(osm, projection), scene.buildings, report);
+                cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
+                return drop_land_cover_beyond_limits(std::move(cover), report);
+            });
+            scene.trees = timed(report, "trees", [&] {
+                return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);
+            });
+        },
+        [&](ParseReport& report) {
+            scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
+        },
     });
-    scene.land_cover = timed(report, "land cover", [&] {
-        std::vector<LandCover> cover = build_land_cover(osm, projection, job.params.buildings, report);
-        std::vector<LandCover> sea =
-            assemble_sea(osm, projection, extract_box(osm, projection), scene.buildings, report);
-        cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
-        return drop_land_cover_beyond_limits(std::move(cover), report);
-    });
-    scene.trees = timed(report, "trees", [&] {
-        return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);
-    });
-    scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
     set_bounds_and_ground(scene);
     return scene;
+}
+
+}  // namespace
+
+Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
+    tbb::task_arena arena(job.threads > 0 ? job.threads : tbb::task_arena::automatic);
+    return arena.execute([&] { return run_pipeline(job, report); });
 }
 
 }  // namespace citygen

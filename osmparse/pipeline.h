@@ -14,8 +14,10 @@ struct ParseJob {
     ParseParams params;
     bool quiet = false;
     double hide_height_tags = 0;  // benchmark aid: this fraction of buildings loses its height tags
+    int threads = 0;              // --threads: at most this many threads for the stages (0: every core)
 };
 
+// The same scene and the same report rows whatever job.threads is.
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report);
 
 }  // namespace citygen

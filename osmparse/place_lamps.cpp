@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "build_buildings.h"
 #include "osm_units.h"
 #include "point_placement.h"
 #include "polygon_overlap.h"
+#include "read_osm.h"
 #include "rng.h"
 #include "scene_limits.h"
 
@@ -43,15 +45,15 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
     for (const OsmNode& node : osm.street_lamps) {
         Vec2 p = projection.to_local(node.location.lat, node.location.lon);
         if (std::max(std::fabs(p.x), std::fabs(p.y)) > kMaxCoordinate) {
-            report.dropped("tagged street lamps", "over 1000 km from the scene origin");
+            report.dropped(kTaggedStreetLamps, kTooFarOut);
             continue;
         }
         if (const Ring* ring = surface_containing(p)) {
             p = push_out_of(*ring, p, kKerbOffset);
-            report.note("tagged street lamps", "moved off the road surface");
+            report.note(kTaggedStreetLamps, kMovedOffRoad);
         }
         if (surface_containing(p) || buildings.contains(p)) {
-            report.dropped("tagged street lamps", "inside a road or building");
+            report.dropped(kTaggedStreetLamps, kInsideRoadOrBuilding);
             continue;
         }
         Lamp lamp;
@@ -65,7 +67,7 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
         lamps.push_back(lamp);
         tagged.add(p);
     }
-    report.kept("tagged street lamps", static_cast<int64_t>(lamps.size()));
+    report.kept(kTaggedStreetLamps, static_cast<int64_t>(lamps.size()));
 
     PointGrid generated(std::max(0.5 * params.spacing, 1.0));
     int64_t placed = 0;
@@ -104,7 +106,7 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
             }
         }
     }
-    report.kept("generated street lamps", placed);
+    report.kept(kGeneratedStreetLamps, placed);
     return lamps;
 }
 

@@ -6,8 +6,10 @@
 
 #include "clean_footprint.h"
 #include "osm_units.h"
+#include "place_lamps.h"
 #include "point_placement.h"
 #include "polygon_overlap.h"
+#include "read_osm.h"
 #include "rng.h"
 
 namespace citygen {
@@ -41,12 +43,12 @@ Tree tree_from_tags(const OsmTags& tags, ParseReport& report, const char* kind) 
             t.height = *h;
             break;
         }
-        report.note(kind, std::string(key) + " unusable, default used");
+        report.note(kind, std::string(key) + kUnusableSuffix);
     }
     if (const char* text = tags.get("diameter_crown")) {
         const std::optional<double> d = parse_osm_length(text);
         if (d && *d >= kMinCrown && *d <= kMaxCrown) t.crown_diameter = *d;
-        else report.note(kind, "diameter_crown unusable, default used");
+        else report.note(kind, std::string("diameter_crown") + kUnusableSuffix);
     }
     // A crown wider than the tree is tall reads as a bush: keep it in proportion.
     t.crown_diameter = std::min(t.crown_diameter, 1.2 * t.height);
@@ -90,30 +92,28 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
     };
 
     // 1. Mapped trees.
-    const char* const kMapped = "mapped trees";
     for (const OsmNode& node : osm.trees) {
-        Tree t = tree_from_tags(node.tags, report, kMapped);
+        Tree t = tree_from_tags(node.tags, report, kMappedTrees);
         t.osm = {OsmType::Node, node.id};
         t.source = TreeSource::Mapped;
         Vec2 p = round_to_stored_precision(projection.to_local(node.location.lat, node.location.lon));
         if (const Ring* ring = surface_containing(p)) {
             p = push_out_of(*ring, p, kTrunkClearance + 0.05);
-            report.note(kMapped, "moved off the road surface");
+            report.note(kMappedTrees, kMovedOffRoad);
         }
         if (buildings.contains(p) || surface_containing(p) || water.contains(p)) {
-            report.dropped(kMapped, "in a building, on a road or in water");
+            report.dropped(kMappedTrees, kInBuildingRoadOrWater);
             continue;
         }
         t.position = p;
         trees.push_back(t);
     }
-    report.kept(kMapped, static_cast<int64_t>(trees.size()));
+    report.kept(kMappedTrees, static_cast<int64_t>(trees.size()));
 
     // 2. Tree rows: one tree every row_spacing metres along the way, half a step in from its ends.
-    const char* const kRows = "tree row trees";
     size_t row_trees = 0;
     for (const OsmWay& way : osm.tree_rows) {
-        Tree proto = tree_from_tags(way.tags, report, kRows);
+        Tree proto = tree_from_tags(way.tags, report, kTreeRowTrees);
         proto.osm = {OsmType::Way, way.id};
         proto.source = TreeSource::Row;
         std::vector<Vec2> pts;
@@ -125,9 +125,9 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
             double s = carried;
             for (; s <= len; s += params.row_spacing) {
                 const Vec2 p = round_to_stored_precision(a + (b - a) * (s / len));
-                report.read(kRows);
+                report.read(kTreeRowTrees);
                 if (!free_ground(p)) {
-                    report.dropped(kRows, "on a road, in a building or in water");
+                    report.dropped(kTreeRowTrees, kOnRoadBuildingOrWater);
                     continue;
                 }
                 Tree t = proto;
@@ -138,11 +138,10 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
             carried = s - len;
         }
     }
-    report.kept(kRows, static_cast<int64_t>(row_trees));
+    report.kept(kTreeRowTrees, static_cast<int64_t>(row_trees));
     if (params.mode == TreeMode::Mapped) return trees;
 
     // 3. Forests: dart throwing with a least distance (Poisson-disk), seeded per polygon.
-    const char* const kScattered = "forest trees";
     PointGrid placed(std::max(params.forest_spacing, 0.5));
     for (const Tree& t : trees) placed.add(t.position);
     size_t scattered = 0;
@@ -175,11 +174,11 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
             ++scattered;
         }
         if (scattered >= params.max_scattered) {
-            report.note(kScattered, "cap reached: forests only partly filled");
+            report.note(kForestTrees, kForestCapReached);
             break;
         }
     }
-    report.kept(kScattered, static_cast<int64_t>(scattered));
+    report.kept(kForestTrees, static_cast<int64_t>(scattered));
     return trees;
 }
 

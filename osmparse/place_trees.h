@@ -1,4 +1,4 @@
-// Trees: natural=tree nodes, natural=tree_row ways (spaced along the way) and forests
+// Stage 15: trees. natural=tree nodes, natural=tree_row ways (spaced along the way) and forests
 // (land cover class Forest) filled with a seeded Poisson-disk scatter (DESIGN 6b).
 #pragma once
 
@@ -11,6 +11,14 @@
 #include "scene.h"
 
 namespace citygen {
+
+// Report rows and reasons of this stage (mapped trees are counted under read_osm.h's kMappedTrees).
+inline constexpr char kTreeRowTrees[] = "tree row trees";
+inline constexpr char kForestTrees[] = "forest trees";
+inline constexpr char kInBuildingRoadOrWater[] = "in a building, on a road or in water";
+inline constexpr char kOnRoadBuildingOrWater[] = "on a road, in a building or in water";
+inline constexpr char kForestCapReached[] = "cap reached: forests only partly filled";
+inline constexpr char kUnusableSuffix[] = " unusable, default used";  // after the tag key
 
 // Size of a tree from its tags: height from `height`, else `est_height`; crown from
 // `diameter_crown`; leaf type from `leaf_type` (needleleaved, else broadleaved). Missing or

@@ -9,6 +9,18 @@ ParseReport::Row& ParseReport::row(const std::string& kind) {
     return rows_.back().second;
 }
 
+void ParseReport::merge(const ParseReport& other) {
+    for (const auto& [kind, theirs] : other.rows_) {
+        Row& mine = row(kind);
+        mine.read += theirs.read;
+        mine.kept += theirs.kept;
+        mine.has_kept = mine.has_kept || theirs.has_kept;
+        for (const auto& [reason, n] : theirs.dropped) mine.dropped[reason] += n;
+        for (const auto& [what, n] : theirs.notes) mine.notes[what] += n;
+    }
+    times_.insert(times_.end(), other.times_.begin(), other.times_.end());
+}
+
 namespace {
 template <typename Rows>
 const auto* find_row(const Rows& rows, const std::string& kind) {

@@ -27,6 +27,10 @@ public:
         row(kind).notes[what] += n;
     }
     void stage_time(const std::string& stage, double seconds) { times_.emplace_back(stage, seconds); }
+    // Adds the counts and stage times of `other` as if they had been reported here, in its order.
+    // Stages that run side by side report into reports of their own, merged in pipeline order,
+    // so the printed report does not depend on the threads.
+    void merge(const ParseReport& other);
 
     int64_t read_count(const std::string& kind) const;
     int64_t kept_count(const std::string& kind) const;

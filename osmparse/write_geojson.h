@@ -1,4 +1,4 @@
-// Stage 9b (--geojson): the scene back in WGS84 as a GeoJSON FeatureCollection, so a
+// After the stages (--geojson): the scene back in WGS84 as a GeoJSON FeatureCollection, so a
 // person can open it in QGIS or a web map. Every feature has `kind` (building, road,
 // joint, sidewalk, lamp), `osm` ("w123", "n45", "r6") and what matters for that kind
 // (width, height, source, ...).
