@@ -180,23 +180,23 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
         });
     };
     auto lay_out_roads = [&](ParseReport& report) {  // the road section
-    const RoadGraph road_graph = timed(report, "road graph", [&] {
-        return build_road_graph(osm, projection, job.params.roads, report);
-    });
-    NarrowedRoads narrowed = timed(report, "roads vs buildings", [&] {
-        return narrow_roads(road_graph, scene.buildings, job.params.roads, report);
-    });
-    const RoadGraph& narrowed_graph = narrowed.graph;
-    RoadSurface surface = timed(report, "road polygons", [&] {
-        return build_road_polygons(narrowed_graph, std::move(narrowed.layout), report);
-    });
-    scene.roads = surface.roads;
-    scene.joints = surface.joints;
-    lay_out_lanes(scene.roads, osm, report);
-    scene.sidewalks = timed(report, "sidewalks", [&] {
-        return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
-                               job.params.roads.miter_limit, report);
-    });
+        const RoadGraph road_graph = timed(report, "road graph", [&] {
+            return build_road_graph(osm, projection, job.params.roads, report);
+        });
+        NarrowedRoads narrowed = timed(report, "roads vs buildings", [&] {
+            return narrow_roads(road_graph, scene.buildings, job.params.roads, report);
+        });
+        const RoadGraph& narrowed_graph = narrowed.graph;
+        RoadSurface surface = timed(report, "road polygons", [&] {
+            return build_road_polygons(narrowed_graph, std::move(narrowed.layout), report);
+        });
+        scene.roads = surface.roads;
+        scene.joints = surface.joints;
+        lay_out_lanes(scene.roads, osm, report);
+        scene.sidewalks = timed(report, "sidewalks", [&] {
+            return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
+                                   job.params.roads.miter_limit, report);
+        });
     };  // end of the road section
     PathSurface paths;
     auto lay_out_paths = [&](ParseReport& report) {
