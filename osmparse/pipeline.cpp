@@ -144,7 +144,7 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
         return build_buildings(osm, projection, job.params.buildings, report);
     });
     timed(report, "building heights", [&] {
-        infer_heights(scene.buildings, job.params.buildings, report);
+        infer_heights(scene.buildings, land_use_areas(osm, projection), job.params.buildings, report);
         return 0;
     });
     const BuildingTagIndex building_tags(osm);
