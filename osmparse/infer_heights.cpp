@@ -15,6 +15,7 @@ constexpr double kNeighbourRadius = 150;  // metres
 constexpr size_t kMaxNeighbours = 8;
 constexpr double kSimilarArea = 3;        // a neighbour's footprint within this factor is "like" it
 constexpr double kLandUseCell = 250;      // metres: grid cell of the land use index
+constexpr double kHallArea = 200;         // m2: an untyped building this large on industrial land is a hall
 // Tagged buildings of a kind the extract-wide rule needs: a handful (a few tagged garages among
 // thousands of untagged `yes` buildings) is no sample of a whole city.
 constexpr size_t kMinExtractSamples = 10;
@@ -209,7 +210,7 @@ double height_by_type_and_area(const std::string& type, double area, bool* sure,
     *sure = false;
     // An untyped building on industrial or retail land is most likely a hall (a house-sized one
     // is an office or a shop, left to the area rule).
-    if (is_untyped(type) && area >= 200) {
+    if (is_untyped(type) && area >= kHallArea) {
         if (use == LandUse::Industrial) return height_by_type_and_area("industrial", area, sure);
         if (use == LandUse::Retail) return height_by_type_and_area("retail", area, sure);
     }
@@ -265,7 +266,8 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         const double area = std::fabs(signed_area(b.outer));
         const Vec2 at = centroid(b.outer);
         bool sure = false;
-        const LandUse use = uses.at(at);
+        // Only untyped halls ask the land use (the lookup is most of this stage's time).
+        const LandUse use = is_untyped(b.type) && area >= kHallArea ? uses.at(at) : LandUse::None;
         const double by_type = height_by_type_and_area(b.type, area, &sure, use);
         double height = 0;
         const char* note = "from type and footprint area";
