@@ -13,6 +13,7 @@ namespace {
 
 constexpr double kNeighbourRadius = 150;  // metres
 constexpr size_t kMaxNeighbours = 8;
+constexpr size_t kMinNeighbours = 3;
 constexpr double kSimilarArea = 3;        // a neighbour's footprint within this factor is "like" it
 constexpr double kLandUseCell = 250;      // metres: grid cell of the land use index
 constexpr double kHallArea = 200;         // m2: an untyped building this large on industrial land is a hall
@@ -126,10 +127,13 @@ double height_from_neighbours(const TaggedGrid& grid, Vec2 at, const std::string
         if (size_alike) add(same_size, h, w);
         if (type_alike && size_alike) add(same_both, h, w);
     }
+    // Two of the same type say something (12 pooled half-hidden splits of Monaco: 6.6 m mean
+    // error on 146 buildings with two, 7.3 m on 83 with three); a mixed group needs three.
     if (same_both.size() >= 2) return weighted_median(same_both);
-    if (same_type.size() >= 2) return weighted_median(same_type);
-    if (same_size.size() >= 3) return weighted_median(same_size);
-    if (any.size() >= 3) return weighted_median(any);
+    // (`yes` is no type: two untyped buildings of any size are not alike.)
+    if (same_type.size() >= 2 && !is_untyped(type)) return weighted_median(same_type);
+    for (const auto* group : {&same_size, &any})
+        if (group->size() >= kMinNeighbours) return weighted_median(*group);
     return 0;
 }
 

@@ -34,8 +34,9 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //     type, is a one-storey shed; a house-like type is a two-storey house (both rules first
 //     because a neighbour's height says little about a garage beside a tower);
 //  2. Neighbours: the distance-weighted median height of the nearest (up to 8) tagged buildings
-//     (height or building:levels) within 150 m that are like it: the same type and a footprint
-//     within 3x of its own (at least 2 of them), else any type with such a footprint (at least 3);
+//     (height or building:levels) within 150 m that are most like it: the same type and a
+//     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
+//     (at least 2), else such a footprint (at least 3), else any (at least 3: the street's scale);
 //  3. Neighbours, extract-wide: the median height of the tagged buildings of the same type and
 //     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3);
 //  4. TypeAndArea: a height by building type and, for `yes`/unknown types, by footprint area,

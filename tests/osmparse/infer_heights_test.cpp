@@ -52,12 +52,21 @@ TEST(InferHeights, TaggedNeighboursOfTheSameKindDecide) {
     expect_near_guess(b, 24);  // the weighted median of 21, 24 and 27
     EXPECT_EQ(by_id(v, 1).height_rule, HeightRule::Tagged);
     EXPECT_EQ(by_id(v, 2).height_rule, HeightRule::Levels);
+
+    // Only one like it (and the tower): all three tagged near count, the tower is outvoted.
+    v.erase(v.begin() + 2);
+    v.erase(v.begin() + 1);
+    v.push_back(building(6, 40, 0, "office", 15, HeightSource::Tagged));
+    infer_heights(v, {}, params, report);
+    EXPECT_EQ(by_id(v, 5).height_rule, HeightRule::Neighbours);
+    expect_near_guess(by_id(v, 5), 21);  // the weighted median of 15, 21 and 120
 }
 
 TEST(InferHeights, SameTypeNeighboursBeatOtherTypes) {
     BuildingParams params;
     std::vector<Building> v{building(1, 0, 0, "apartments", 45, HeightSource::Tagged),
                             building(2, 20, 0, "apartments", 45, HeightSource::Tagged),
+                            building(7, 60, 0, "apartments", 48, HeightSource::Tagged),
                             building(3, 0, 20, "office", 9, HeightSource::Tagged),
                             building(4, 20, 20, "office", 9, HeightSource::Tagged),
                             building(5, 40, 20, "office", 9, HeightSource::Tagged),
