@@ -55,15 +55,7 @@ public:
         for (int i = 0; i < n; ++i) add_node(ring[i], 0);  // node i is footprint vertex i
         for (int i = 0; i < n; ++i) face_nodes_[i] = {i, (i + 1) % n};
         for (int i = 0; i < n; ++i) {
-            Vertex v;
-            v.p0 = ring[i];
-            v.t0 = 0;
-            v.in = (i + n - 1) % n;
-            v.out = i;
-            v.prev = (i + n - 1) % n;
-            v.next = (i + 1) % n;
-            v.alive = true;
-            vertices_.push_back(v);
+            vertices_.push_back(vertex(ring[i], 0, (i + n - 1) % n, i, (i + n - 1) % n, (i + 1) % n));
             if (!set_velocity(vertices_.back())) ok_ = false;
         }
     }
@@ -85,6 +77,18 @@ public:
     const std::vector<Edge>& edges() const { return edges_; }
 
 private:
+    static Vertex vertex(Vec2 p, double t, int in, int out, int prev, int next) {
+        Vertex v;
+        v.p0 = p;
+        v.t0 = t;
+        v.in = in;
+        v.out = out;
+        v.prev = prev;
+        v.next = next;
+        v.alive = true;
+        v.reflex = false;
+        return v;
+    }
     int add_node(Vec2 p, double t) {
         nodes_.push_back({p, t});
         return static_cast<int>(nodes_.size()) - 1;
@@ -197,14 +201,7 @@ private:
         }
         const int node = add_node(ev.p, ev.t);
         for (int e : {u.in, u.out, w.out}) face_nodes_[e].push_back(node);
-        Vertex v;
-        v.p0 = ev.p;
-        v.t0 = ev.t;
-        v.in = u.in;
-        v.out = w.out;
-        v.prev = u.prev;
-        v.next = w.next;
-        v.alive = true;
+        Vertex v = vertex(ev.p, ev.t, u.in, w.out, u.prev, w.next);
         if (!set_velocity(v)) return false;
         u.alive = w.alive = false;
         const int id = static_cast<int>(vertices_.size());
@@ -220,18 +217,8 @@ private:
         const int edge = vertices_[a].out;
         const int node = add_node(ev.p, ev.t);
         for (int e : {v.in, v.out, edge}) face_nodes_[e].push_back(node);
-        Vertex v1, v2;
-        v1.p0 = v2.p0 = ev.p;
-        v1.t0 = v2.t0 = ev.t;
-        v1.alive = v2.alive = true;
-        v1.in = v.in;
-        v1.out = edge;
-        v1.prev = v.prev;
-        v1.next = b;
-        v2.in = edge;
-        v2.out = v.out;
-        v2.prev = a;
-        v2.next = v.next;
+        Vertex v1 = vertex(ev.p, ev.t, v.in, edge, v.prev, b);
+        Vertex v2 = vertex(ev.p, ev.t, edge, v.out, a, v.next);
         if (!set_velocity(v1) || !set_velocity(v2)) return false;
         vertices_[ev.v].alive = false;
         const int id1 = static_cast<int>(vertices_.size()), id2 = id1 + 1;
