@@ -2,31 +2,59 @@
 // once, because the tagged heights of neighbours are one of the rules.
 #pragma once
 
+#include <string>
 #include <vector>
 
+#include "osm_data.h"
 #include "params.h"
+#include "projection.h"
 #include "report.h"
 #include "scene.h"
 
 namespace citygen {
+
+inline constexpr char kBuildingHeights[] = "building heights";
+
+// What the land around a building is used for (OSM landuse=*), as far as heights care.
+enum class LandUse : uint8_t { None, Residential, Commercial, Retail, Industrial };
+
+struct LandUseArea {
+    Ring outer;               // counter-clockwise or not: only point-in-polygon is asked
+    std::vector<Ring> holes;
+    LandUse use = LandUse::None;
+};
+
+// The landuse=residential|commercial|retail|industrial areas of the map, projected (the same
+// OSM areas build_land_cover paints as built-up ground).
+std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection);
 
 // Replaces the random height of every ground-standing building with nothing tagged
 // (height_source Random, min_height 0) by the first rule that applies; height_rule records it:
 //  1. TypeAndArea for sure things: a footprint under 30 m2, or a garage/shed/carport/kiosk-like
 //     type, is a one-storey shed; a house-like type is a two-storey house (both rules first
 //     because a neighbour's height says little about a garage beside a tower);
-//  2. Neighbours: the distance-weighted median height of the nearest (up to 8) buildings within
-//     150 m whose height is tagged (height or building:levels), preferring ones of the same type;
-//  3. TypeAndArea: a height by building type (apartments, office, industrial, ...) and, for
-//     `yes`/unknown types, by footprint area;
-//  4. Random: the seeded random height in [random_min_height, random_max_height] stays (only
-//     reached for types the table does not know, with no tagged neighbour).
-// Each guess is jittered by up to +-10% (seeded per building) so a street is not one height.
-// Levels are recomputed from the new height. Counts go to "building heights" in the report.
-void infer_heights(std::vector<Building>& buildings, const BuildingParams& params, ParseReport& report);
+//  2. Neighbours: the distance-weighted median height of the nearest (up to 8) tagged buildings
+//     (height or building:levels) within 150 m that are most like it: the same type and a
+//     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
+//     (at least 2), else such a footprint (at least 3), else any (at least 3: the street's scale);
+//  3. Neighbours, extract-wide: the median height of the tagged buildings of the same type and
+//     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3);
+//  4. TypeAndArea: a height by building type and, for `yes`/unknown types, by footprint area,
+//     where an untyped building on industrial or retail land counts as an industrial or retail
+//     hall (the land use of `land_use`, at the footprint's centroid);
+//  5. Random: the seeded random height in [random_min_height, random_max_height] stays (only
+//     reached for types the table does not know, with nothing tagged like it).
+// Only buildings whose height comes from their own tags are ever used, so a building whose tags
+// are hidden (--hide-height-tags) cannot see its own truth. Each guess is jittered by up to
+// +-10% (seeded per building) so a street is not one height. Levels are recomputed from the new
+// height. Counts go to kBuildingHeights in the report. The result does not depend on the order
+// of `buildings` beyond ties in distance.
+void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
+                   const BuildingParams& params, ParseReport& report);
 
-// Rule 1 and 3 alone (exposed for tests): the height of a building of `type` with a footprint of
-// `area` m2, or 0 when the type says nothing; `sure` tells whether the rule beats neighbours.
-double height_by_type_and_area(const std::string& type, double area, bool* sure);
+// Rule 1 and 4 alone (exposed for tests): the height of a building of `type` with a footprint of
+// `area` m2 on land used as `use`, or 0 when the type says nothing; `sure` tells whether the rule
+// beats neighbours.
+double height_by_type_and_area(const std::string& type, double area, bool* sure, LandUse use = LandUse::None);
 
 }  // namespace citygen

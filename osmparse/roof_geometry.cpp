@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "roof_skeleton.h"
+#include "wavefront_skeleton.h"
 
 namespace citygen {
 
@@ -230,6 +231,9 @@ bool skeleton_faces(const Ring& outer, const std::vector<Ring>& holes, std::vect
         }
         skeleton->clear();
     }
+    // Bent footprints without holes: the wavefront in doubles, CGAL's exact predicates only
+    // where that cannot decide (ties, parallel edges), as CGAL dominates the stage otherwise.
+    if (holes.empty() && wavefront_skeleton_faces(outer, skeleton)) return true;
     return straight_skeleton_faces(outer, holes, skeleton);
 }
 

@@ -90,7 +90,7 @@ TEST(InferHeights, RulesInOrder) {
                             building(5, 5000, "spaceport", 12, HeightSource::Random),  // nothing applies
                             building(6, 9000, "apartments", 12, HeightSource::Random)};  // type alone
     ParseReport report;
-    infer_heights(v, params, report);
+    infer_heights(v, {}, params, report);
     EXPECT_EQ(v[0].height_rule, HeightRule::Tagged);
     EXPECT_EQ(v[1].height_rule, HeightRule::Levels);
     EXPECT_EQ(v[2].height_rule, HeightRule::Neighbours);

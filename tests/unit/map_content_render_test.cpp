@@ -68,8 +68,10 @@ void compare(const Exr& stored, const Exr& procedural, const std::vector<float>&
     EXPECT_GE(same, 0.99 * pixels) << pixels - same << " pixels differ in id or depth;" << by_kind;
     const double psnr = 10 * std::log10(1 / std::max(squared / (3.0 * pixels), 1e-12));
     // Beauty: the faceted crowns and the road/joint overlaps (markings on one, none on the
-    // other) keep this near 29 dB on the street view; above the harbour it is over 40 dB.
-    EXPECT_GE(psnr, 27.0);
+    // other) keep this near 27 dB on the street view (27.1 dB before the neighbour heights of
+    // issue 11 moved some shadows, 26.97 dB after, with the same disagreeing pixels); above
+    // the harbour it is over 40 dB.
+    EXPECT_GE(psnr, 26.5);
     std::printf("agreeing pixels %d of %d, PSNR %.1f dB;%s\n", same, pixels, psnr, by_kind.c_str());
 }
 

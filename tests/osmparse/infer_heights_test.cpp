@@ -1,0 +1,200 @@
+// Heights where the map has none (osmparse/infer_heights.h): each rule decides where it should
+// and says so in height_rule, hidden tags never leak, the result does not depend on order.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "infer_heights.h"
+#include "pipeline.h"
+
+namespace citygen {
+namespace {
+
+Ring square(double x, double y, double side) { return {{x, y}, {x + side, y}, {x + side, y + side}, {x, y + side}}; }
+
+Building building(int64_t id, double x, double y, const std::string& type, double height, HeightSource source,
+                  double side = 15) {
+    Building b;
+    b.osm = {OsmType::Way, id};
+    b.outer = square(x, y, side);
+    b.type = type;
+    b.height = height;
+    b.height_source = source;
+    return b;
+}
+
+const Building& by_id(const std::vector<Building>& v, int64_t id) {
+    return *std::find_if(v.begin(), v.end(), [&](const Building& b) { return b.osm.id == id; });
+}
+
+// The jitter is at most 10% either way.
+void expect_near_guess(const Building& b, double guess) {
+    EXPECT_GE(b.height, 0.9 * guess - 1e-9) << b.osm.id;
+    EXPECT_LE(b.height, 1.1 * guess + 1e-9) << b.osm.id;
+}
+
+TEST(InferHeights, TaggedNeighboursOfTheSameKindDecide) {
+    BuildingParams params;
+    std::vector<Building> v{building(1, 0, 0, "yes", 21, HeightSource::Tagged),
+                            building(2, 20, 0, "yes", 24, HeightSource::Levels),
+                            building(3, 40, 0, "yes", 27, HeightSource::Tagged),
+                            // A tower of another size next door says nothing about it.
+                            building(4, 0, 20, "yes", 120, HeightSource::Tagged, 60),
+                            building(5, 20, 20, "yes", 12, HeightSource::Random)};
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    const Building& b = by_id(v, 5);
+    EXPECT_EQ(b.height_rule, HeightRule::Neighbours);
+    EXPECT_EQ(b.height_source, HeightSource::Random) << "still not from the map";
+    expect_near_guess(b, 24);  // the weighted median of 21, 24 and 27
+    EXPECT_EQ(by_id(v, 1).height_rule, HeightRule::Tagged);
+    EXPECT_EQ(by_id(v, 2).height_rule, HeightRule::Levels);
+
+    // Only one like it (and the tower): all three tagged near count, the tower is outvoted.
+    v.erase(v.begin() + 2);
+    v.erase(v.begin() + 1);
+    v.push_back(building(6, 40, 0, "office", 15, HeightSource::Tagged));
+    infer_heights(v, {}, params, report);
+    EXPECT_EQ(by_id(v, 5).height_rule, HeightRule::Neighbours);
+    expect_near_guess(by_id(v, 5), 21);  // the weighted median of 15, 21 and 120
+}
+
+TEST(InferHeights, SameTypeNeighboursBeatOtherTypes) {
+    BuildingParams params;
+    std::vector<Building> v{building(1, 0, 0, "apartments", 45, HeightSource::Tagged),
+                            building(2, 20, 0, "apartments", 45, HeightSource::Tagged),
+                            building(7, 60, 0, "apartments", 48, HeightSource::Tagged),
+                            building(3, 0, 20, "office", 9, HeightSource::Tagged),
+                            building(4, 20, 20, "office", 9, HeightSource::Tagged),
+                            building(5, 40, 20, "office", 9, HeightSource::Tagged),
+                            building(6, 40, 0, "apartments", 12, HeightSource::Random)};
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    EXPECT_EQ(by_id(v, 6).height_rule, HeightRule::Neighbours);
+    expect_near_guess(by_id(v, 6), 45);
+}
+
+TEST(InferHeights, HiddenTruthIsNeverANeighbour) {
+    // Buildings whose height is a guess (their tags hidden or absent) carry a height, but it must
+    // never feed a rule: here they "know" 90 m, the tagged ones say 12 m.
+    BuildingParams params;
+    std::vector<Building> v;
+    for (int i = 0; i < 6; ++i) v.push_back(building(10 + i, 20.0 * i, 0, "yes", 90, HeightSource::Random));
+    for (int i = 0; i < 3; ++i) v.push_back(building(20 + i, 20.0 * i, 20, "yes", 12, HeightSource::Tagged));
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    for (int i = 0; i < 6; ++i) {
+        EXPECT_EQ(by_id(v, 10 + i).height_rule, HeightRule::Neighbours);
+        expect_near_guess(by_id(v, 10 + i), 12);
+    }
+}
+
+TEST(InferHeights, ExtractWideMedianOfTheSameKindWhenNoneIsNear) {
+    BuildingParams params;
+    // Ten tagged `yes` buildings of its size far apart (none within 150 m of another), three
+    // dormitories: too few for a rule.
+    std::vector<Building> v;
+    for (int i = 0; i < 10; ++i) v.push_back(building(100 + i, 1000.0 * i, 0, "yes", 12.0 + 2 * i, HeightSource::Tagged));
+    for (int i = 0; i < 3; ++i) v.push_back(building(200 + i, 1000.0 * i, 3000, "dormitory", 60, HeightSource::Tagged));
+    v.push_back(building(4, 5000, 5000, "yes", 5, HeightSource::Random));
+    v.push_back(building(5, 9000, 9000, "dormitory", 5, HeightSource::Random));
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    EXPECT_EQ(by_id(v, 4).height_rule, HeightRule::Neighbours);
+    expect_near_guess(by_id(v, 4), 21);  // the median of 12, 14, ..., 30
+    EXPECT_EQ(by_id(v, 5).height_rule, HeightRule::TypeAndArea);
+    bool sure = false;
+    expect_near_guess(by_id(v, 5), height_by_type_and_area("dormitory", 225, &sure));
+    EXPECT_EQ(report.note_count(kBuildingHeights, "from tagged buildings of its type and size in the extract"), 1);
+}
+
+TEST(InferHeights, UntypedHallsOnIndustrialLand) {
+    BuildingParams params;
+    LandUseArea industrial;
+    industrial.outer = square(-100, -100, 200);
+    industrial.use = LandUse::Industrial;
+    std::vector<Building> v{building(1, 0, 0, "yes", 30, HeightSource::Random, 25),      // 625 m2, inside
+                            building(2, 1000, 0, "yes", 30, HeightSource::Random, 25),   // outside
+                            building(3, 10, 10, "house", 30, HeightSource::Random, 10)};  // typed: type wins
+    ParseReport report;
+    infer_heights(v, {industrial}, params, report);
+    bool sure = false;
+    EXPECT_EQ(by_id(v, 1).height_rule, HeightRule::TypeAndArea);
+    expect_near_guess(by_id(v, 1), height_by_type_and_area("industrial", 625, &sure));
+    expect_near_guess(by_id(v, 2), height_by_type_and_area("yes", 625, &sure));
+    EXPECT_LT(height_by_type_and_area("yes", 625, &sure, LandUse::Industrial), height_by_type_and_area("yes", 625, &sure));
+    expect_near_guess(by_id(v, 3), 8);
+}
+
+TEST(InferHeights, SameResultWhateverTheOrder) {
+    BuildingParams params;
+    std::vector<Building> v;
+    for (int i = 0; i < 40; ++i) {
+        const bool tagged = i % 3 == 0;
+        v.push_back(building(100 + i, 23.0 * (i % 7), 31.0 * (i / 7), i % 2 ? "yes" : "apartments",
+                             tagged ? 6.0 + i : 10, tagged ? HeightSource::Tagged : HeightSource::Random,
+                             8 + i % 5 * 6));
+    }
+    std::vector<Building> reversed(v.rbegin(), v.rend());
+    ParseReport r1, r2;
+    infer_heights(v, {}, params, r1);
+    infer_heights(reversed, {}, params, r2);
+    for (const Building& b : v) {
+        const Building& other = by_id(reversed, b.osm.id);
+        EXPECT_EQ(b.height, other.height) << b.osm.id;
+        EXPECT_EQ(b.height_rule, other.height_rule) << b.osm.id;
+    }
+}
+
+// Through the whole pipeline: --hide-height-tags removes the tags before any rule runs, so a
+// tagged tower among low tagged houses gets a guess from its kind, not its own 100 m.
+TEST(InferHeights, HiddenTagsDoNotLeakThroughThePipeline) {
+    const std::string path = (std::filesystem::temp_directory_path() / "infer_heights_test.osm").string();
+    {
+        std::ofstream osm(path);
+        osm << "<?xml version='1.0'?>\n<osm version='0.6'>\n";
+        int node = 1;
+        auto way = [&](int id, double lon, const std::string& tags) {
+            const double d = 0.0002;
+            const double lat = 48.0;
+            std::string refs;
+            const double pts[4][2] = {{lat, lon}, {lat, lon + d}, {lat + d, lon + d}, {lat + d, lon}};
+            const int first = node;
+            for (const auto& p : pts) {
+                osm << "<node id='" << node << "' lat='" << p[0] << "' lon='" << p[1] << "'/>\n";
+                refs += "<nd ref='" + std::to_string(node++) + "'/>";
+            }
+            osm << "<way id='" << id << "'>" << refs << "<nd ref='" << first << "'/><tag k='building' v='yes'/>"
+                << tags << "</way>\n";
+        };
+        way(1, 7.0, "<tag k='height' v='100'/>");
+        way(2, 7.0005, "<tag k='building:levels' v='2'/>");
+        way(3, 7.0010, "<tag k='height' v='6'/>");
+        way(4, 7.0015, "<tag k='height' v='7'/>");
+        osm << "</osm>\n";
+    }
+    ParseJob job;
+    job.input = path;
+    job.quiet = true;
+    ParseReport truth_report;
+    const Scene truth = parse_osm_to_scene(job, truth_report);
+    ASSERT_EQ(truth.buildings.size(), 4u);
+    EXPECT_GE(by_id(truth.buildings, 1).height, 100);
+    job.hide_height_tags = 1;
+    ParseReport report;
+    const Scene hidden = parse_osm_to_scene(job, report);
+    std::remove(path.c_str());
+    ASSERT_EQ(hidden.buildings.size(), 4u);
+    for (const Building& b : hidden.buildings) {
+        EXPECT_EQ(b.height_source, HeightSource::Random) << b.osm.id;
+        EXPECT_NE(b.height_rule, HeightRule::Tagged) << b.osm.id;
+        EXPECT_NE(b.height_rule, HeightRule::Levels) << b.osm.id;
+    }
+    EXPECT_LT(by_id(hidden.buildings, 1).height, 50) << "the tower saw its own hidden height";
+}
+
+}  // namespace
+}  // namespace citygen
