@@ -42,7 +42,7 @@ enum MaterialId : uint16_t {
     kGround,
     kGlass,
     kMirror,
-    // Facade detail (common/facade.h; the mapping is render/facade_materials.cpp).
+    // Facade detail (render/facade/facade.h; the mapping is render/facade_materials.cpp).
     kRoomInterior,
     kBalcony,
     kFence,

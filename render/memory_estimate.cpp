@@ -84,7 +84,7 @@ MemoryEstimate estimate_render_memory(const Scene& scene, const GeometryModes& m
     MemoryEstimate e;
     if (modes[GeometryClass::Buildings] == GeometryMode::Stored) {
         for (const Building& b : scene.buildings) {
-            if (b.outer.size() < 3 || !(b.height > b.min_height)) continue;
+            if (!has_volume(b)) continue;
             for (size_t w = 0, n = building_wall_count(b); w < n; ++w)
                 e.stored_triangles += wall_triangle_estimate(make_wall_layout(facades, building_wall_input(b, w)));
             e.stored_triangles += 4 * ring_points(b);  // roof and underside, a bound

@@ -26,7 +26,7 @@ std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scen
     for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
         if (progress) progress->advance();
         const Building& b = scene.buildings[index];
-        if (b.outer.size() < 3 || !(b.height > b.min_height)) continue;
+        if (!has_volume(b)) continue;
         const double bottom = ground + b.min_height, top = ground + b.height;
         for (size_t w = 0, n = building_wall_count(b); w < n; ++w) {
             Vec2 p, q;

@@ -2,8 +2,8 @@
 // intersect and occluded callbacks instead of being stored as triangles.
 //
 // Two kinds of primitive, both tiny:
-//   - a wall: a WallLayout + WallFrame (common/facade.h); the callback runs the cell-walking
-//     intersector (common/wall_intersect.h), so windows, balconies and shop fronts exist only
+//   - a wall: a WallLayout + WallFrame (render/facade/facade.h); the callback runs the cell-walking
+//     intersector (render/facade/wall_intersect.h), so windows, balconies and shop fronts exist only
 //     for the rays that reach them. Bounds = the wall's slab including recess and balcony depth.
 //   - a plain wall: a bare vertical rectangle over an edge (curb faces), a few numbers.
 //   - a flat polygon (roof, building underside, road, joint, sidewalk, ground): plane hit +

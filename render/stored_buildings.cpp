@@ -11,7 +11,7 @@ namespace citygen {
 
 namespace {
 
-// The walls with their facades (common/facade.h): every window, balcony and shop front as
+// The walls with their facades (render/facade/facade.h): every window, balcony and shop front as
 // triangles. Wall i is the same wall the procedural mode intersects (building_wall), with the
 // building on its left, so each surface's front faces the side it is seen from.
 void add_facade_walls(const Building& b, uint32_t object, double bottom, const FacadeOptions& facades,
@@ -50,9 +50,6 @@ void add_facade_walls(const Building& b, uint32_t object, double bottom, const F
         }
     }
 }
-
-// Whether a building gets any geometry at all (the same test in both modes).
-bool has_volume(const Building& b) { return b.outer.size() >= 3 && b.height > b.min_height; }
 
 // Buffer sizes for all buildings (facades exact, roofs and undersides a bound), so the buffers
 // are allocated once instead of doubling: at tall heights they hold tens of millions of triangles.

@@ -13,7 +13,7 @@ namespace citygen {
 constexpr double kRoadLift = 0.02;
 
 // Walls from every ring (holes included) from min_height to height, carrying the facade rules
-// (windows, balconies, shop fronts; common/facade.h) as triangles, flat roof triangulated with
+// (windows, balconies, shop fronts; render/facade/facade.h) as triangles, flat roof triangulated with
 // holes, and a floor when the building floats (min_height > 0).
 // `progress` (optional) advances once per building.
 TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& facades, Progress* progress = nullptr);
