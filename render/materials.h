@@ -60,7 +60,6 @@ enum MaterialId : uint16_t {
     kLeavesBroad,
     kLeavesNeedle,
     kPaintWhite,
-    kPaintYellow,
     kPathPaving,
     kCyclewaySurface,
     kGravel,

@@ -46,6 +46,9 @@ bool sidewalk_shape(const Scene& scene, uint32_t index, SidewalkShape* shape);
 std::vector<Vec3> lifted_face(const RoofFace& face, double ground_z);
 uint16_t roof_face_material(const RoofFace& face);
 
+// A flat polygon at height z as triangles, front side up (roads, joints, sidewalk tops, paths).
+void add_flat_polygon(const Ring& ring, double z, uint32_t object, uint16_t material, TriangleMesh& mesh);
+
 // The rectangle build_stored_terrain covers (shared with the procedural terrain).
 Box2 terrain_extent(const Scene& scene);
 

@@ -58,7 +58,8 @@ TEST(Hardening, FacadeCellCountsOfAbsurdWallsStayInRange) {
     EXPECT_LE(layout.slots, 1000000);
 }
 
-// building_wall's orientation is remembered per ring; it must follow a ring changed in place.
+// A wall follows the ring as it is when asked (it once came from an orientation cache keyed by
+// the ring's address, which a ring reversed in place fooled).
 TEST(Hardening, BuildingWallFollowsTheRingItIsGiven) {
     Building b = box_building(0, 0, 10, 10);
     Vec2 p, q;
@@ -68,6 +69,10 @@ TEST(Hardening, BuildingWallFollowsTheRingItIsGiven) {
     std::reverse(b.outer.begin(), b.outer.end());  // now clockwise, same storage
     building_wall(b, 0, &p, &q);
     EXPECT_GT(cross(q - p, Vec2(5, 5) - p), 0);  // the building still on the left
+    Vec2 p_walls, q_walls;
+    BuildingWalls(b).wall(0, &p_walls, &q_walls);  // what the geometry builders use
+    EXPECT_EQ(p_walls, p);
+    EXPECT_EQ(q_walls, q);
 }
 
 // Defects 6 and 7: a full disk (here: a file size limit) left a truncated image in place of
