@@ -23,4 +23,11 @@ inline Scene scene_with(const Building& b) {
     return s;
 }
 
+// The first road edge of OSM way `way`, or null.
+inline const RoadEdge* road_of_way(const Scene& s, int64_t way) {
+    for (const RoadEdge& r : s.roads)
+        if (r.osm.id == way) return &r;
+    return nullptr;
+}
+
 }  // namespace citygen::test

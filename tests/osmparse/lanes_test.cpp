@@ -6,8 +6,10 @@
 #include "build_road_graph.h"
 #include "lay_out_lanes.h"
 #include "pipeline.h"
+#include "test_scenes.h"
 
 using namespace citygen;
+using citygen::test::road_of_way;
 
 namespace {
 
@@ -17,11 +19,6 @@ OsmTags tags(std::vector<std::pair<std::string, std::string>> entries) {
     return t;
 }
 
-const RoadEdge* road_of_way(const Scene& s, int64_t way) {
-    for (const RoadEdge& r : s.roads)
-        if (r.osm.id == way) return &r;
-    return nullptr;
-}
 
 }  // namespace
 

@@ -8,18 +8,10 @@
 #include "materials.h"
 #include "road_markings.h"
 #include "scene_io.h"
+#include "test_scenes.h"
 
 using namespace citygen;
-
-namespace {
-
-const RoadEdge* road_of_way(const Scene& s, int64_t way) {
-    for (const RoadEdge& r : s.roads)
-        if (r.osm.id == way) return &r;
-    return nullptr;
-}
-
-}  // namespace
+using citygen::test::road_of_way;
 
 TEST(Markings, PaintedPatternOfTheLanesFixture) {
     const Scene s = load_scene(std::string(CITYGEN_SOURCE_DIR) + "/tests/golden/map_lanes.scene");

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <gtest/gtest.h>
+
 #include "camera.h"
 #include "materials.h"
 #include "render_image.h"
@@ -82,6 +84,15 @@ inline ChannelStats stats_of(const Film& film, int channel) {
     s.mean = sum / n;
     s.standard_error = std::sqrt(std::max(0.0, sum2 / n - s.mean * s.mean) / n);
     return s;
+}
+
+// Every pixel of every channel within 0.01 of one (white furnace tests).
+inline void expect_all_one(const Film& film) {
+    for (int c = 0; c < 3; ++c) {
+        const ChannelStats s = stats_of(film, c);
+        EXPECT_NEAR(s.min, 1.0, 0.01) << "channel " << c;
+        EXPECT_NEAR(s.max, 1.0, 0.01) << "channel " << c;
+    }
 }
 
 }  // namespace citygen::test
