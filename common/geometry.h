@@ -55,11 +55,12 @@ inline double signed_area(const Ring& ring) {
     return 0.5 * a;
 }
 
-// Winding-number point-in-polygon; points exactly on the boundary may go either way.
-inline bool point_in_ring(Vec2 p, const Ring& ring) {
+// Winding-number point-in-polygon over n points stored back to back; points exactly on the
+// boundary may go either way.
+inline bool point_in_ring(Vec2 p, const Vec2* ring, size_t n) {
     int winding = 0;
-    for (size_t i = 0, n = ring.size(); i < n; ++i) {
-        Vec2 a = ring[i], b = ring[(i + 1) % n];
+    for (size_t i = 0; i < n; ++i) {
+        Vec2 a = ring[i], b = ring[i + 1 == n ? 0 : i + 1];
         if (a.y <= p.y) {
             if (b.y > p.y && cross(b - a, p - a) > 0) ++winding;
         } else if (b.y <= p.y && cross(b - a, p - a) < 0) {
@@ -68,6 +69,7 @@ inline bool point_in_ring(Vec2 p, const Ring& ring) {
     }
     return winding != 0;
 }
+inline bool point_in_ring(Vec2 p, const Ring& ring) { return point_in_ring(p, ring.data(), ring.size()); }
 
 // Distance from p to the nearest point on the ring's boundary.
 inline double distance_to_boundary(Vec2 p, const Ring& ring) {

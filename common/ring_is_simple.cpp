@@ -1,6 +1,6 @@
 // ring_is_simple: a pairwise test for small rings, CGAL's sweep (is_simple_2, O(n log n)) for
 // the rest; a pairwise test took 48 s on a 100k-point outline. Both give the same answer
-// (tests/unit/hardening_test.cpp compares them). The one translation unit of common/ that
+// (tests/common/scene_hardening_test.cpp compares them). The one translation unit of common/ that
 // includes CGAL.
 #include "geometry.h"
 

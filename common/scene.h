@@ -79,10 +79,15 @@ struct Building {
     double eaves_height() const { return height - roof_height; }
 };
 
+// Whether a building has anything to draw (a ring, a top above its bottom): the one test of
+// both geometry modes, the render memory estimate, the lights and the roofs.
+inline bool has_volume(const Building& b) { return b.outer.size() >= 3 && b.height > b.min_height; }
+
 enum class RoadClass : uint8_t {
     Motorway = 0, Trunk, Primary, Secondary, Tertiary, Unclassified,
     Residential, LivingStreet, Service, Other
 };
+const char* to_string(RoadClass c);  // the highway value, e.g. "living_street"; "other"
 
 enum class CentreLine : uint8_t { None = 0, Dashed, Solid, Double };
 

@@ -35,6 +35,13 @@ const char* to_string(PathClass c) {
     return i < kPathClassCount ? names[i] : "?";
 }
 
+const char* to_string(RoadClass c) {
+    static const char* const names[] = {"motorway",     "trunk",       "primary",       "secondary", "tertiary",
+                                        "unclassified", "residential", "living_street", "service",   "other"};
+    const auto i = static_cast<size_t>(c);
+    return i < sizeof names / sizeof *names ? names[i] : "?";
+}
+
 std::string to_string(OsmRef ref) {
     const char prefix = ref.type == OsmType::Node ? 'n' : ref.type == OsmType::Way ? 'w' : 'r';
     return prefix + std::to_string(ref.id);

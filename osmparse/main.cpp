@@ -11,9 +11,10 @@
 
 #include "error.h"
 #include "output_target.h"
+#include "diff_scenes.h"
 #include "pipeline.h"
+#include "scene_info.h"
 #include "scene_io.h"
-#include "scene_summary.h"
 #include "write_geojson.h"
 
 using namespace citygen;

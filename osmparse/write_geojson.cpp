@@ -9,12 +9,6 @@ namespace citygen {
 
 namespace {
 
-const char* class_name(RoadClass c) {
-    static const char* names[] = {"motorway", "trunk",       "primary",       "secondary", "tertiary",
-                                  "unclassified", "residential", "living_street", "service",   "other"};
-    return names[static_cast<int>(c)];
-}
-
 class GeoJsonWriter {
 public:
     explicit GeoJsonWriter(const Projection& p) : projection_(p) { text_ = "{\"type\":\"FeatureCollection\",\"features\":[\n"; }
@@ -106,7 +100,7 @@ std::string scene_to_geojson(const Scene& scene) {
     for (const RoadEdge& r : scene.roads)
         w.polygon({&r.quad}, "\"kind\":\"road\",\"osm\":" + str(to_string(r.osm)) + ",\"from_node\":" +
                                  std::to_string(r.from_node) + ",\"to_node\":" + std::to_string(r.to_node) +
-                                 ",\"width\":" + num(r.width) + ",\"class\":\"" + class_name(r.road_class) +
+                                 ",\"width\":" + num(r.width) + ",\"class\":\"" + to_string(r.road_class) +
                                  "\",\"lanes\":" + std::to_string(r.lanes) + ",\"oneway\":" + (r.oneway ? "true" : "false") +
                                  ",\"bridge\":" + (r.bridge ? "true" : "false") +
                                  ",\"lanes_forward\":" + std::to_string(r.lanes_forward) +

@@ -1,4 +1,4 @@
-// Which material each facade surface kind (common/facade.h) is drawn with.
+// Which material each facade surface kind (render/facade/facade.h) is drawn with.
 #pragma once
 
 #include <array>

@@ -25,6 +25,7 @@
 #include "render_frames.h"
 #include "render_image.h"
 #include "render_report.h"
+#include "scene_info.h"
 #include "scene_io.h"
 #include "scene_lights.h"
 #include "sky.h"
@@ -157,7 +158,7 @@ int run(const Options& o) {
     const Clock::time_point start = Clock::now();
     const Scene scene = load_scene(o.scene_path);
     const double load_seconds = seconds_since(start);
-    if (o.print_scene_info) print_scene_info(scene, stdout);
+    if (o.print_scene_info) print_scene_info(scene, o.scene_path, stdout);
 
     // Facades follow the scene's seed (not --seed, which drives the pixel streams), so every
     // render of a scene shows the same buildings.
@@ -333,7 +334,7 @@ int main(int argc, char** argv) {
     app.add_option("--export-gltf", o.export_gltf_path,
                    "write the stored geometry as binary glTF (.glb): a node per building with its OSM id, PBR "
                    "materials, y-up");
-    app.add_flag("--print-scene-info", o.print_scene_info, "object counts and bounds");
+    app.add_flag("--print-scene-info", o.print_scene_info, "the summary osmparse --info prints: counts, bounds, origin, options");
     app.add_flag("--print-memory-info", o.print_memory_info, "Embree and buffer bytes, peak RSS");
     app.add_flag("--print-scene-geometry-info", o.print_geometry_info, "triangles or primitives per class");
     app.add_flag("--stats", o.stats, "print render_seconds:, rays_per_second: and the camera used");

@@ -30,7 +30,6 @@ MaterialTable default_materials() {
     t[kLeavesNeedle] = {"leaves_needle", MaterialType::Diffuse, {0.035, 0.085, 0.04}, {}, 1, 1.5, {}};
     // Road paint: brighter than asphalt and a little smoother.
     t[kPaintWhite] = {"paint_white", MaterialType::Glossy, {0.7, 0.7, 0.68}, {0.05, 0.05, 0.05}, 60, 1.5, {}};
-    t[kPaintYellow] = {"paint_yellow", MaterialType::Glossy, {0.65, 0.45, 0.06}, {0.05, 0.05, 0.05}, 60, 1.5, {}};
     t[kPathPaving] = {"path_paving", MaterialType::Diffuse, {0.42, 0.39, 0.35}, {}, 1, 1.5, {}};
     t[kCyclewaySurface] = {"cycleway", MaterialType::Diffuse, {0.28, 0.11, 0.09}, {}, 1, 1.5, {}};
     t[kGravel] = {"gravel", MaterialType::Diffuse, {0.36, 0.31, 0.24}, {}, 1, 1.5, {}};

@@ -42,7 +42,7 @@ enum MaterialId : uint16_t {
     kGround,
     kGlass,
     kMirror,
-    // Facade detail (common/facade.h; the mapping is render/facade_materials.cpp).
+    // Facade detail (render/facade/facade.h; the mapping is render/facade_materials.cpp).
     kRoomInterior,
     kBalcony,
     kFence,
@@ -60,7 +60,6 @@ enum MaterialId : uint16_t {
     kLeavesBroad,
     kLeavesNeedle,
     kPaintWhite,
-    kPaintYellow,
     kPathPaving,
     kCyclewaySurface,
     kGravel,

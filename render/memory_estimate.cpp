@@ -84,9 +84,10 @@ MemoryEstimate estimate_render_memory(const Scene& scene, const GeometryModes& m
     MemoryEstimate e;
     if (modes[GeometryClass::Buildings] == GeometryMode::Stored) {
         for (const Building& b : scene.buildings) {
-            if (b.outer.size() < 3 || !(b.height > b.min_height)) continue;
-            for (size_t w = 0, n = building_wall_count(b); w < n; ++w)
-                e.stored_triangles += wall_triangle_estimate(make_wall_layout(facades, building_wall_input(b, w)));
+            if (!has_volume(b)) continue;
+            const BuildingWalls walls(b);
+            for (size_t w = 0, n = walls.count(); w < n; ++w)
+                e.stored_triangles += wall_triangle_estimate(make_wall_layout(facades, walls.input(w)));
             e.stored_triangles += 4 * ring_points(b);  // roof and underside, a bound
             for (const RoofFace& face : b.roof_faces) e.stored_triangles += static_cast<double>(face.points.size());
         }

@@ -4,20 +4,12 @@
 
 #include "materials.h"
 #include "road_markings.h"
+#include "stored_geometry.h"
 #include "surface_detail.h"
-#include "triangulate_polygon.h"
 
 namespace citygen {
 
 namespace {
-
-void add_flat(TriangleMesh& mesh, const Ring& ring, double z, uint32_t object, uint16_t material) {
-    if (ring.size() < 3) return;
-    const PolygonTriangulation tri = triangulate_polygon(ring);
-    const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
-    for (Vec2 p : tri.points) mesh.add_vertex({p.x, p.y, z});
-    for (const auto& t : tri.triangles) mesh.add_triangle(first + t[0], first + t[1], first + t[2], object, material);
-}
 
 uint16_t joint_material(const Scene& scene, const Joint& j) {
     return j.edges.empty() ? kPathPaving : path_material(scene.paths[j.edges.front()].path_class);
@@ -56,7 +48,8 @@ TriangleMesh build_stored_paths(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Path;
     for (uint32_t i = 0; i < scene.paths.size(); ++i)
-        add_flat(mesh, scene.paths[i].quad, path_z(scene, scene.paths[i]), i, path_material(scene.paths[i].path_class));
+        add_flat_polygon(scene.paths[i].quad, path_z(scene, scene.paths[i]), i, path_material(scene.paths[i].path_class),
+                         mesh);
     return mesh;
 }
 
@@ -65,7 +58,7 @@ TriangleMesh build_stored_path_joints(const Scene& scene) {
     mesh.kind = ObjectKind::PathJoint;
     const double z = scene.ground.z + kPathLift;
     for (uint32_t i = 0; i < scene.path_joints.size(); ++i)
-        add_flat(mesh, scene.path_joints[i].polygon, z, i, joint_material(scene, scene.path_joints[i]));
+        add_flat_polygon(scene.path_joints[i].polygon, z, i, joint_material(scene, scene.path_joints[i]), mesh);
     return mesh;
 }
 

@@ -26,12 +26,13 @@ std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scen
     for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
         if (progress) progress->advance();
         const Building& b = scene.buildings[index];
-        if (b.outer.size() < 3 || !(b.height > b.min_height)) continue;
+        if (!has_volume(b)) continue;
         const double bottom = ground + b.min_height, top = ground + b.height;
-        for (size_t w = 0, n = building_wall_count(b); w < n; ++w) {
+        const BuildingWalls walls(b);
+        for (size_t w = 0, n = walls.count(); w < n; ++w) {
             Vec2 p, q;
-            building_wall(b, w, &p, &q);
-            const WallInput input = building_wall_input(b, w);
+            walls.wall(w, &p, &q);
+            const WallInput input = walls.input(w);
             if (p == q || !(input.height > 0)) continue;  // no wall under a roof that starts at the bottom
             geometry->add_wall(index, make_wall_layout(facades, input), wall_frame(p, q, bottom),
                                static_cast<uint32_t>(w));

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
+#include "face_plane.h"
 #include "wall_intersect.h"
 
 namespace citygen {
@@ -37,23 +37,13 @@ void ProceduralGeometry::add_polygon(uint32_t object, const Ring& outer, const s
 }
 
 void ProceduralGeometry::add_face(uint32_t object, const std::vector<Vec3>& points, uint16_t material) {
-    if (points.size() < 3) return;
-    // Newell's normal: robust for any planar polygon, its sign gives the front (CCW) side.
-    Vec3 n{0, 0, 0};
-    for (size_t i = 0; i < points.size(); ++i) {
-        const Vec3 a = points[i] - points[0], b = points[(i + 1) % points.size()] - points[0];
-        n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
-    }
-    if (!(length(n) > 0)) return;
+    FacePlane plane;
+    if (!face_plane(points, &plane)) return;
     Face face;
-    face.normal = normalize(n);
-    const Vec3 m{std::fabs(face.normal.x), std::fabs(face.normal.y), std::fabs(face.normal.z)};
-    const int drop = m.z >= m.x && m.z >= m.y ? 2 : (m.y >= m.x ? 1 : 0);
-    face.axis_u = static_cast<uint8_t>(drop == 0 ? 1 : 0);
-    face.axis_v = static_cast<uint8_t>(drop == 2 ? 1 : 2);
-    face.offset = 0;
-    for (Vec3 p : points) face.offset += dot(face.normal, p);
-    face.offset /= static_cast<double>(points.size());
+    face.normal = plane.normal;
+    face.axis_u = static_cast<uint8_t>(plane.axis_u);
+    face.axis_v = static_cast<uint8_t>(plane.axis_v);
+    face.offset = plane.offset;
     face.lo = {1e300, 1e300, 1e300};
     face.hi = {-1e300, -1e300, -1e300};
     face.first_point = static_cast<uint32_t>(face_points_.size());
@@ -75,31 +65,13 @@ size_t ProceduralGeometry::buffer_bytes() const {
            points_.capacity() * sizeof(Vec2) + ring_ends_.capacity() * sizeof(uint32_t);
 }
 
-namespace {
-
-// Winding-number test over one ring stored in a span of points.
-bool point_in_span(Vec2 p, const Vec2* ring, uint32_t n) {
-    int winding = 0;
-    for (uint32_t i = 0; i < n; ++i) {
-        Vec2 a = ring[i], b = ring[i + 1 == n ? 0 : i + 1];
-        if (a.y <= p.y) {
-            if (b.y > p.y && cross(b - a, p - a) > 0) ++winding;
-        } else if (b.y <= p.y && cross(b - a, p - a) < 0) {
-            --winding;
-        }
-    }
-    return winding != 0;
-}
-
-}  // namespace
-
 bool ProceduralGeometry::inside_polygon(const Polygon& polygon, Vec2 p) const {
     const Box2& b = polygon.bounds;
     if (p.x < b.min.x || p.x > b.max.x || p.y < b.min.y || p.y > b.max.y) return false;
     for (uint32_t r = 0; r < polygon.ring_count; ++r) {
         const uint32_t ring = polygon.first_ring + r;
         const uint32_t begin = ring == 0 ? 0 : ring_ends_[ring - 1];
-        const bool inside = point_in_span(p, points_.data() + begin, ring_ends_[ring] - begin);
+        const bool inside = point_in_ring(p, points_.data() + begin, ring_ends_[ring] - begin);
         if (inside != (r == 0)) return false;  // outside the outer ring, or inside a hole
     }
     return true;
@@ -112,7 +84,7 @@ bool ProceduralGeometry::intersect_face(const Face& face, Vec3 origin, Vec3 dire
     const double hit_t = (face.offset - dot(face.normal, origin)) / denom;
     if (!(hit_t >= tmin && hit_t <= tmax)) return false;
     const Vec3 p = origin + direction * hit_t;
-    if (!point_in_span({p[face.axis_u], p[face.axis_v]}, face_points_.data() + face.first_point, face.point_count))
+    if (!point_in_ring({p[face.axis_u], p[face.axis_v]}, face_points_.data() + face.first_point, face.point_count))
         return false;
     *t = hit_t;
     return true;
@@ -194,8 +166,7 @@ bool ProceduralGeometry::occluded(unsigned prim_id, Vec3 origin, Vec3 direction,
     return intersect(prim_id, origin, direction, tmin, tmax, &hit);
 }
 
-void ProceduralGeometry::bounds_callback(const RTCBoundsFunctionArguments* args) {
-    const auto* self = static_cast<const ProceduralGeometry*>(args->geometryUserPtr);
+void ProceduralGeometry::bounds(unsigned prim_id, RTCBounds* out) const {
     Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
     auto extend = [&](Vec3 p) {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
@@ -203,69 +174,27 @@ void ProceduralGeometry::bounds_callback(const RTCBoundsFunctionArguments* args)
     };
     WallLayout layout;
     WallFrame frame;
-    if (self->wall_of(args->primID, &layout, &frame)) {
+    if (wall_of(prim_id, &layout, &frame)) {
         for (double u : {0.0, layout.length})
             for (double v : {0.0, layout.height})
                 for (double w : {layout.w_min(), layout.w_max()}) extend(frame.to_world(u, v, w));
-    } else if (args->primID >= self->walls_.size() + self->plain_walls_.size() + self->polygons_.size()) {
-        const Face& face =
-            self->faces_[args->primID - self->walls_.size() - self->plain_walls_.size() - self->polygons_.size()];
+    } else if (prim_id >= walls_.size() + plain_walls_.size() + polygons_.size()) {
+        const Face& face = faces_[prim_id - walls_.size() - plain_walls_.size() - polygons_.size()];
         extend(face.lo);
         extend(face.hi);
     } else {
-        const Polygon& polygon = self->polygons_[args->primID - self->walls_.size() - self->plain_walls_.size()];
+        const Polygon& polygon = polygons_[prim_id - walls_.size() - plain_walls_.size()];
         extend({polygon.bounds.min.x, polygon.bounds.min.y, polygon.z});
         extend({polygon.bounds.max.x, polygon.bounds.max.y, polygon.z});
     }
     // Pad so that float rounding of the bounds never cuts off a surface on their faces.
     const double pad = 1e-3;
-    RTCBounds* b = args->bounds_o;
-    b->lower_x = static_cast<float>(lo.x - pad);
-    b->lower_y = static_cast<float>(lo.y - pad);
-    b->lower_z = static_cast<float>(lo.z - pad);
-    b->upper_x = static_cast<float>(hi.x + pad);
-    b->upper_y = static_cast<float>(hi.y + pad);
-    b->upper_z = static_cast<float>(hi.z + pad);
-}
-
-void ProceduralGeometry::intersect_callback(const RTCIntersectFunctionNArguments* args) {
-    const auto* self = static_cast<const ProceduralGeometry*>(args->geometryUserPtr);
-    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
-    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (args->valid[i] != -1) continue;
-        const unsigned N = args->N;
-        const Vec3 origin{RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)};
-        const Vec3 direction{RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)};
-        PrimitiveHit found;
-        if (!self->intersect(args->primID, origin, direction, RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i),
-                             &found))
-            continue;
-        RTCRayN_tfar(ray, N, i) = static_cast<float>(found.t);
-        RTCHitN_Ng_x(hit, N, i) = static_cast<float>(found.normal.x);
-        RTCHitN_Ng_y(hit, N, i) = static_cast<float>(found.normal.y);
-        RTCHitN_Ng_z(hit, N, i) = static_cast<float>(found.normal.z);
-        RTCHitN_u(hit, N, i) = static_cast<float>(found.material);
-        RTCHitN_v(hit, N, i) = static_cast<float>(found.cell);
-        RTCHitN_primID(hit, N, i) = args->primID;
-        RTCHitN_geomID(hit, N, i) = args->geomID;
-        RTCHitN_instID(hit, N, i, 0) = args->context->instID[0];
-    }
-}
-
-void ProceduralGeometry::occluded_callback(const RTCOccludedFunctionNArguments* args) {
-    const auto* self = static_cast<const ProceduralGeometry*>(args->geometryUserPtr);
-    for (unsigned i = 0; i < args->N; ++i) {
-        if (args->valid[i] != -1) continue;
-        const unsigned N = args->N;
-        const Vec3 origin{RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i),
-                          RTCRayN_org_z(args->ray, N, i)};
-        const Vec3 direction{RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i),
-                             RTCRayN_dir_z(args->ray, N, i)};
-        if (self->occluded(args->primID, origin, direction, RTCRayN_tnear(args->ray, N, i),
-                           RTCRayN_tfar(args->ray, N, i)))
-            RTCRayN_tfar(args->ray, N, i) = -std::numeric_limits<float>::infinity();
-    }
+    out->lower_x = static_cast<float>(lo.x - pad);
+    out->lower_y = static_cast<float>(lo.y - pad);
+    out->lower_z = static_cast<float>(lo.z - pad);
+    out->upper_x = static_cast<float>(hi.x + pad);
+    out->upper_y = static_cast<float>(hi.y + pad);
+    out->upper_z = static_cast<float>(hi.z + pad);
 }
 
 RTCGeometry ProceduralGeometry::create_embree_geometry(RTCDevice device) {
@@ -277,25 +206,15 @@ RTCGeometry ProceduralGeometry::create_embree_geometry(RTCDevice device) {
     face_points_.shrink_to_fit();
     points_.shrink_to_fit();
     ring_ends_.shrink_to_fit();
-    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-    rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(primitive_count()));
-    rtcSetGeometryUserData(geometry, this);
-    rtcSetGeometryBoundsFunction(geometry, bounds_callback, nullptr);
-    rtcSetGeometryIntersectFunction(geometry, intersect_callback);
-    rtcSetGeometryOccludedFunction(geometry, occluded_callback);
-    return geometry;
+    return new_user_geometry(device, this, primitive_count());
 }
 
 void ProceduralGeometry::complete_hit(const RTCHit& embree_hit, Hit& hit) const {
-    hit.kind = kind_;
-    hit.object = object(embree_hit.primID);
-    hit.material = static_cast<uint16_t>(embree_hit.u);
+    complete_user_hit(embree_hit, kind_, object(embree_hit.primID), hit);
     if (embree_hit.primID < walls_.size()) {
         hit.wall = walls_[embree_hit.primID].wall_index;
         hit.cell = static_cast<uint32_t>(embree_hit.v);
     }
-    hit.geometric_normal = normalize(Vec3{embree_hit.Ng_x, embree_hit.Ng_y, embree_hit.Ng_z});
-    hit.shading_normal = hit.geometric_normal;
 }
 
 }  // namespace citygen

@@ -2,8 +2,8 @@
 // intersect and occluded callbacks instead of being stored as triangles.
 //
 // Two kinds of primitive, both tiny:
-//   - a wall: a WallLayout + WallFrame (common/facade.h); the callback runs the cell-walking
-//     intersector (common/wall_intersect.h), so windows, balconies and shop fronts exist only
+//   - a wall: a WallLayout + WallFrame (render/facade/facade.h); the callback runs the cell-walking
+//     intersector (render/facade/wall_intersect.h), so windows, balconies and shop fronts exist only
 //     for the rays that reach them. Bounds = the wall's slab including recess and balcony depth.
 //   - a plain wall: a bare vertical rectangle over an edge (curb faces), a few numbers.
 //   - a flat polygon (roof, building underside, road, joint, sidewalk, ground): plane hit +
@@ -24,6 +24,7 @@
 #include "progress.h"
 #include "render_scene.h"
 #include "scene.h"
+#include "user_geometry.h"
 
 namespace citygen {
 
@@ -72,13 +73,9 @@ public:
         return faces_[prim_id - polygons_.size()].object;
     }
 
-    // What the callbacks compute, in double precision (tests, debugging).
-    struct PrimitiveHit {
-        double t = 0;
-        Vec3 normal;
-        uint16_t material = 0;
-        uint32_t cell = 0;
-    };
+    // What the Embree callbacks (user_geometry.h) compute, in double precision.
+    using PrimitiveHit = UserHit;
+    void bounds(unsigned prim_id, RTCBounds* out) const;
     bool intersect(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax, PrimitiveHit* hit) const;
     bool occluded(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax) const;
 
@@ -116,10 +113,6 @@ private:
     bool inside_polygon(const Polygon& polygon, Vec2 p) const;
     // The wall primitive prim_id as a layout and frame (plain walls are built on the fly).
     bool wall_of(unsigned prim_id, WallLayout* layout, WallFrame* frame) const;
-
-    static void bounds_callback(const RTCBoundsFunctionArguments* args);
-    static void intersect_callback(const RTCIntersectFunctionNArguments* args);
-    static void occluded_callback(const RTCOccludedFunctionNArguments* args);
 
     ObjectKind kind_;
     SurfaceMaterials wall_materials_;

@@ -9,6 +9,7 @@
 #include "lamp_shape.h"
 #include "render_scene.h"
 #include "scene.h"
+#include "user_geometry.h"
 
 namespace citygen {
 
@@ -24,10 +25,12 @@ public:
     uint64_t triangle_count() const override { return 0; }
     size_t buffer_bytes() const override { return lamps_.capacity() * sizeof(LampShape); }
 
+    // What the Embree callbacks (user_geometry.h) compute per lamp.
+    void bounds(unsigned prim, RTCBounds* out) const;
+    bool intersect(unsigned prim, Vec3 origin, Vec3 direction, double tmin, double tmax, UserHit* hit) const;
+    bool occluded(unsigned prim, Vec3 origin, Vec3 direction, double tmin, double tmax) const;
+
 private:
-    static void bounds_callback(const RTCBoundsFunctionArguments* args);
-    static void intersect_callback(const RTCIntersectFunctionNArguments* args);
-    static void occluded_callback(const RTCOccludedFunctionNArguments* args);
     std::vector<LampShape> lamps_;  // index = lamp index in the scene file
 };
 

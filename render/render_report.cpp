@@ -16,19 +16,6 @@ uint64_t peak_rss_bytes() {
     return 0;
 }
 
-void print_scene_info(const Scene& scene, FILE* out) {
-    std::fprintf(out, "scene: %zu buildings, %zu roads, %zu joints, %zu sidewalks, %zu lamps\n",
-                 scene.buildings.size(), scene.roads.size(), scene.joints.size(), scene.sidewalks.size(),
-                 scene.lamps.size());
-    std::fprintf(out, "buildings: %zu\nroads: %zu\njoints: %zu\nsidewalks: %zu\nlamps: %zu\n", scene.buildings.size(),
-                 scene.roads.size(), scene.joints.size(), scene.sidewalks.size(), scene.lamps.size());
-    std::fprintf(out, "land_cover: %zu\ntrees: %zu\npaths: %zu\npath_joints: %zu\ncrossings: %zu\n",
-                 scene.land_cover.size(), scene.trees.size(), scene.paths.size(), scene.path_joints.size(),
-                 scene.crossings.size());
-    std::fprintf(out, "bounds_min: %.3f %.3f\nbounds_max: %.3f %.3f\n", scene.header.bounds_min.x,
-                 scene.header.bounds_min.y, scene.header.bounds_max.x, scene.header.bounds_max.y);
-}
-
 void print_memory_info(const RenderScene& scene, FILE* out) {
     const int64_t embree = scene.embree_bytes();
     const size_t buffers = scene.buffer_bytes();

@@ -1,4 +1,4 @@
-// --print-scene-info, --print-memory-info, --print-scene-geometry-info: some prose for people
+// --print-memory-info, --print-scene-geometry-info (--print-scene-info: common/scene_info.h): some prose for people
 // plus `key: value` lines for scripts (geometry_bytes:, peak_rss_bytes:, triangles:, ...).
 #pragma once
 
@@ -9,7 +9,6 @@
 
 namespace citygen {
 
-void print_scene_info(const Scene& scene, FILE* out);
 void print_memory_info(const RenderScene& scene, FILE* out);
 void print_geometry_info(const RenderScene& scene, FILE* out);
 

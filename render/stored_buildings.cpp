@@ -3,6 +3,7 @@
 
 #include "facade_materials.h"
 #include "facade_mesh.h"
+#include "face_plane.h"
 #include "materials.h"
 #include "stored_geometry.h"
 #include "triangulate_polygon.h"
@@ -11,16 +12,17 @@ namespace citygen {
 
 namespace {
 
-// The walls with their facades (common/facade.h): every window, balcony and shop front as
+// The walls with their facades (render/facade/facade.h): every window, balcony and shop front as
 // triangles. Wall i is the same wall the procedural mode intersects (building_wall), with the
 // building on its left, so each surface's front faces the side it is seen from.
 void add_facade_walls(const Building& b, uint32_t object, double bottom, const FacadeOptions& facades,
                       FacadeMesh& scratch, TriangleMesh& mesh) {
     static const auto materials = facade_surface_materials();
-    for (size_t w = 0, n = building_wall_count(b); w < n; ++w) {
+    const BuildingWalls walls(b);
+    for (size_t w = 0, n = walls.count(); w < n; ++w) {
         Vec2 p, q;
-        building_wall(b, w, &p, &q);
-        const WallInput input = building_wall_input(b, w);
+        walls.wall(w, &p, &q);
+        const WallInput input = walls.input(w);
         if (p == q || !(input.height > 0)) continue;  // no wall under a roof that starts at the bottom
         scratch.clear();
         const WallLayout layout = make_wall_layout(facades, input);
@@ -51,9 +53,6 @@ void add_facade_walls(const Building& b, uint32_t object, double bottom, const F
     }
 }
 
-// Whether a building gets any geometry at all (the same test in both modes).
-bool has_volume(const Building& b) { return b.outer.size() >= 3 && b.height > b.min_height; }
-
 // Buffer sizes for all buildings (facades exact, roofs and undersides a bound), so the buffers
 // are allocated once instead of doubling: at tall heights they hold tens of millions of triangles.
 void reserve_buildings(const Scene& scene, const FacadeOptions& facades, TriangleMesh& mesh) {
@@ -62,8 +61,9 @@ void reserve_buildings(const Scene& scene, const FacadeOptions& facades, Triangl
         if (!has_volume(b)) continue;
         size_t ring_points = b.outer.size();
         for (const Ring& h : b.holes) ring_points += h.size();
-        for (size_t w = 0, n = building_wall_count(b); w < n; ++w) {
-            const size_t t = wall_triangle_count(make_wall_layout(facades, building_wall_input(b, w)));
+        const BuildingWalls walls(b);
+        for (size_t w = 0, n = walls.count(); w < n; ++w) {
+            const size_t t = wall_triangle_count(make_wall_layout(facades, walls.input(w)));
             triangles += t;
             vertices += 2 * t;  // 4 vertices per rectangle of 2 triangles
         }
@@ -79,24 +79,16 @@ void reserve_buildings(const Scene& scene, const FacadeOptions& facades, Triangl
 // A planar face as triangles, wound counter-clockwise seen from the face's front: triangulated
 // in its projection along the dominant axis of its normal (faces may be non-convex).
 void add_planar_face(const std::vector<Vec3>& points, uint32_t object, uint16_t material, TriangleMesh& mesh) {
-    Vec3 n{0, 0, 0};
-    for (size_t i = 0; i < points.size(); ++i) {
-        const Vec3 a = points[i] - points[0], b = points[(i + 1) % points.size()] - points[0];
-        n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
-    }
-    if (points.size() < 3 || !(length(n) > 0)) return;
-    const Vec3 m{std::fabs(n.x), std::fabs(n.y), std::fabs(n.z)};
-    const int drop = m.z >= m.x && m.z >= m.y ? 2 : (m.y >= m.x ? 1 : 0);
-    const int au = drop == 0 ? 1 : 0, av = drop == 2 ? 1 : 2;
+    FacePlane plane;
+    if (!face_plane(points, &plane)) return;
+    const Vec3 n = plane.normal;
+    const double offset = plane.offset;
+    const int drop = plane.drop, au = plane.axis_u, av = plane.axis_v;
     Ring flat;
     for (Vec3 p : points) flat.push_back({p[au], p[av]});
     const PolygonTriangulation tri = triangulate_polygon(flat);
     // Points of the triangulation back in 3D: on the face's plane, the same plane the procedural
-    // mode intersects (unit Newell normal through the mean of the points).
-    n = normalize(n);
-    double offset = 0;
-    for (Vec3 p : points) offset += dot(n, p);
-    offset /= static_cast<double>(points.size());
+    // mode intersects.
     const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
     for (Vec2 q : tri.points) {
         double c[3] = {0, 0, 0};
@@ -141,25 +133,29 @@ TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& fac
         const Building& b = scene.buildings[index];
         if (!has_volume(b)) continue;
         const double bottom = ground + b.min_height, top = ground + b.height;
-        const Ring outer = oriented(b.outer, true);
-        std::vector<Ring> holes;
-        for (const Ring& h : b.holes) holes.push_back(oriented(h, false));
-
         add_facade_walls(b, index, bottom, facades, scratch, mesh);
 
-        const PolygonTriangulation roof = triangulate_polygon(outer, holes);
-        if (b.roof_faces.empty()) {
+        // The footprint's triangles: the flat roof (when there are no roof faces) and the
+        // underside of a floating part.
+        const bool flat_roof = b.roof_faces.empty(), underside = b.min_height > 0;
+        PolygonTriangulation footprint;
+        if (flat_roof || underside) {
+            std::vector<Ring> holes;
+            for (const Ring& h : b.holes) holes.push_back(oriented(h, false));
+            footprint = triangulate_polygon(oriented(b.outer, true), holes);
+        }
+        if (flat_roof) {
             const uint32_t first_top = static_cast<uint32_t>(mesh.vertex_count());
-            for (Vec2 p : roof.points) mesh.add_vertex({p.x, p.y, top});
-            for (const auto& t : roof.triangles)
+            for (Vec2 p : footprint.points) mesh.add_vertex({p.x, p.y, top});
+            for (const auto& t : footprint.triangles)
                 mesh.add_triangle(first_top + t[0], first_top + t[1], first_top + t[2], index, kRoof);
         }
         for (const RoofFace& face : b.roof_faces)
             add_planar_face(lifted_face(face, ground), index, roof_face_material(face), mesh);
-        if (b.min_height > 0) {  // a floating part (bridge, overhang) needs an underside
+        if (underside) {  // a floating part (bridge, overhang)
             const uint32_t first_bottom = static_cast<uint32_t>(mesh.vertex_count());
-            for (Vec2 p : roof.points) mesh.add_vertex({p.x, p.y, bottom});
-            for (const auto& t : roof.triangles)
+            for (Vec2 p : footprint.points) mesh.add_vertex({p.x, p.y, bottom});
+            for (const auto& t : footprint.triangles)
                 mesh.add_triangle(first_bottom + t[0], first_bottom + t[2], first_bottom + t[1], index,
                                   kFacade);
         }

@@ -6,17 +6,12 @@
 
 namespace citygen {
 
-namespace {
-
-// A flat polygon at height z, front side up.
 void add_flat_polygon(const Ring& ring, double z, uint32_t object, uint16_t material, TriangleMesh& mesh) {
     const PolygonTriangulation tri = triangulate_polygon(ring);
     const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
     for (Vec2 p : tri.points) mesh.add_vertex({p.x, p.y, z});
     for (const auto& t : tri.triangles) mesh.add_triangle(first + t[0], first + t[1], first + t[2], object, material);
 }
-
-}  // namespace
 
 TriangleMesh build_stored_roads(const Scene& scene) {
     TriangleMesh mesh;

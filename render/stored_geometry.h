@@ -13,7 +13,7 @@ namespace citygen {
 constexpr double kRoadLift = 0.02;
 
 // Walls from every ring (holes included) from min_height to height, carrying the facade rules
-// (windows, balconies, shop fronts; common/facade.h) as triangles, flat roof triangulated with
+// (windows, balconies, shop fronts; render/facade/facade.h) as triangles, flat roof triangulated with
 // holes, and a floor when the building floats (min_height > 0).
 // `progress` (optional) advances once per building.
 TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& facades, Progress* progress = nullptr);
@@ -45,6 +45,9 @@ bool sidewalk_shape(const Scene& scene, uint32_t index, SidewalkShape* shape);
 // and its material: roof faces kRoof, gable walls kFacade. Shared by both geometry modes.
 std::vector<Vec3> lifted_face(const RoofFace& face, double ground_z);
 uint16_t roof_face_material(const RoofFace& face);
+
+// A flat polygon at height z as triangles, front side up (roads, joints, sidewalk tops, paths).
+void add_flat_polygon(const Ring& ring, double z, uint32_t object, uint16_t material, TriangleMesh& mesh);
 
 // The rectangle build_stored_terrain covers (shared with the procedural terrain).
 Box2 terrain_extent(const Scene& scene);

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "materials.h"
 #include "rng.h"
 #include "triangle_mesh.h"
+#include "user_geometry.h"
 
 namespace citygen {
 
@@ -123,20 +123,34 @@ public:
     uint64_t triangle_count() const override { return 0; }
     size_t buffer_bytes() const override { return trees_.capacity() * sizeof(Compact); }
     RTCGeometry create_embree_geometry(RTCDevice device) override {
-        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-        rtcSetGeometryUserPrimitiveCount(g, static_cast<unsigned>(trees_.size()));
-        rtcSetGeometryUserData(g, this);
-        rtcSetGeometryBoundsFunction(g, bounds, nullptr);
-        rtcSetGeometryIntersectFunction(g, intersect);
-        rtcSetGeometryOccludedFunction(g, occluded);
-        return g;
+        return new_user_geometry(device, this, trees_.size());
     }
     void complete_hit(const RTCHit& embree_hit, Hit& hit) const override {
-        hit.kind = ObjectKind::Tree;
-        hit.object = embree_hit.primID;
-        hit.material = static_cast<uint16_t>(embree_hit.u);
-        hit.geometric_normal = normalize(Vec3{embree_hit.Ng_x, embree_hit.Ng_y, embree_hit.Ng_z});
-        hit.shading_normal = hit.geometric_normal;
+        complete_user_hit(embree_hit, ObjectKind::Tree, embree_hit.primID, hit);
+    }
+
+    // What the Embree callbacks (user_geometry.h) compute per tree.
+    void bounds(unsigned prim, RTCBounds* out) const {
+        const TreeShape s = shape(prim);
+        const double r = std::max(s.crown_radius, s.trunk_radius) + 1e-3;
+        out->lower_x = static_cast<float>(s.base.x - r);
+        out->lower_y = static_cast<float>(s.base.y - r);
+        out->lower_z = static_cast<float>(s.base.z - 1e-3);
+        out->upper_x = static_cast<float>(s.base.x + r);
+        out->upper_y = static_cast<float>(s.base.y + r);
+        out->upper_z = static_cast<float>(s.crown_centre.z + s.crown_half_height + 1e-3);
+    }
+    bool intersect(unsigned prim, Vec3 origin, Vec3 direction, double tmin, double tmax, UserHit* hit) const {
+        TreeHit found;
+        if (!intersect_tree(shape(prim), origin, direction, tmin, tmax, &found)) return false;
+        hit->t = found.t;
+        hit->normal = found.normal;
+        hit->material = found.material;
+        return true;
+    }
+    bool occluded(unsigned prim, Vec3 origin, Vec3 direction, double tmin, double tmax) const {
+        TreeHit found;
+        return intersect_tree(shape(prim), origin, direction, tmin, tmax, &found);
     }
 
 private:
@@ -149,56 +163,6 @@ private:
         const Compact& c = trees_[prim];
         return tree_shape(c.x, c.y, c.height, c.crown, c.leaf_type == static_cast<uint8_t>(LeafType::Needleleaved),
                           ground_z_, prim);
-    }
-
-    static void bounds(const RTCBoundsFunctionArguments* args) {
-        const auto* self = static_cast<const ProceduralTrees*>(args->geometryUserPtr);
-        const TreeShape s = self->shape(args->primID);
-        const double r = std::max(s.crown_radius, s.trunk_radius) + 1e-3;
-        RTCBounds* b = args->bounds_o;
-        b->lower_x = static_cast<float>(s.base.x - r);
-        b->lower_y = static_cast<float>(s.base.y - r);
-        b->lower_z = static_cast<float>(s.base.z - 1e-3);
-        b->upper_x = static_cast<float>(s.base.x + r);
-        b->upper_y = static_cast<float>(s.base.y + r);
-        b->upper_z = static_cast<float>(s.crown_centre.z + s.crown_half_height + 1e-3);
-    }
-    static void intersect(const RTCIntersectFunctionNArguments* args) {
-        const auto* self = static_cast<const ProceduralTrees*>(args->geometryUserPtr);
-        RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
-        RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
-        const unsigned N = args->N;
-        for (unsigned i = 0; i < N; ++i) {
-            if (args->valid[i] != -1) continue;
-            const Vec3 o{RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)};
-            const Vec3 d{RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)};
-            TreeHit found;
-            if (!intersect_tree(self->shape(args->primID), o, d, RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i),
-                                &found))
-                continue;
-            RTCRayN_tfar(ray, N, i) = static_cast<float>(found.t);
-            RTCHitN_Ng_x(hit, N, i) = static_cast<float>(found.normal.x);
-            RTCHitN_Ng_y(hit, N, i) = static_cast<float>(found.normal.y);
-            RTCHitN_Ng_z(hit, N, i) = static_cast<float>(found.normal.z);
-            RTCHitN_u(hit, N, i) = static_cast<float>(found.material);
-            RTCHitN_v(hit, N, i) = 0;
-            RTCHitN_primID(hit, N, i) = args->primID;
-            RTCHitN_geomID(hit, N, i) = args->geomID;
-            RTCHitN_instID(hit, N, i, 0) = args->context->instID[0];
-        }
-    }
-    static void occluded(const RTCOccludedFunctionNArguments* args) {
-        const auto* self = static_cast<const ProceduralTrees*>(args->geometryUserPtr);
-        const unsigned N = args->N;
-        for (unsigned i = 0; i < N; ++i) {
-            if (args->valid[i] != -1) continue;
-            const Vec3 o{RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i), RTCRayN_org_z(args->ray, N, i)};
-            const Vec3 d{RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i), RTCRayN_dir_z(args->ray, N, i)};
-            TreeHit found;
-            if (intersect_tree(self->shape(args->primID), o, d, RTCRayN_tnear(args->ray, N, i),
-                               RTCRayN_tfar(args->ray, N, i), &found))
-                RTCRayN_tfar(args->ray, N, i) = -std::numeric_limits<float>::infinity();
-        }
     }
 
     double ground_z_;

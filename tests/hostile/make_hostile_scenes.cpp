@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     write(dir, "height_1e6", scene_of(box(0, 0, 10, 10, 1e6)));
     b = box(0, 0, 10, 10, 10);
     b.outer.clear();
-    for (int i = 0; i < 100000; ++i) b.outer.push_back({50 * std::cos(i * 2 * M_PI / 100000), 50 * std::sin(i * 2 * M_PI / 100000)});
+    for (int i = 0; i < 100000; ++i) b.outer.push_back({50 * std::cos(i * 2 * kPi / 100000), 50 * std::sin(i * 2 * kPi / 100000)});
     write(dir, "points_100k", scene_of(b));
     // Within every limit, but the stored facades of 100 blocks of 9 km, 1000 m tall, need
     // about 2.4 TB, more than any test machine has: the memory estimate must refuse it.

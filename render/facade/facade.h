@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "geometry.h"
 #include "scene.h"
@@ -158,10 +159,28 @@ WallFrame wall_frame(Vec2 a, Vec2 b, double bottom_z);
 
 // Walls of a building: outer ring edges, then every hole's edges.
 size_t building_wall_count(const Building& building);
-// Endpoints of wall `index` (edge from a to b), the building on its left (outer rings walked
-// counter-clockwise, holes clockwise, whatever their orientation in the file).
+
+// A building's walls, each ring's orientation found once (O(n)) so that each wall then costs
+// O(1): loops over a building's walls make one of these. It refers to the building, which must
+// not change while it is used.
+class BuildingWalls {
+public:
+    explicit BuildingWalls(const Building& building);
+    size_t count() const { return count_; }
+    // Endpoints of wall `index` (edge from a to b), the building on its left (outer rings walked
+    // counter-clockwise, holes clockwise, whatever their orientation in the file).
+    void wall(size_t index, Vec2* a, Vec2* b) const;
+    // The rules' input for wall `index`.
+    WallInput input(size_t index) const;
+
+private:
+    const Building& building_;
+    size_t count_;
+    std::vector<bool> counter_clockwise_;  // outer ring, then each hole
+};
+
+// One wall without a BuildingWalls (each call finds the rings' orientation again).
 void building_wall(const Building& building, size_t index, Vec2* a, Vec2* b);
-// The rules' input for wall `index` of a building.
 WallInput building_wall_input(const Building& building, size_t index);
 
 }  // namespace citygen

@@ -1,11 +1,10 @@
-// Colours, materials, heights where the map has none, and facade styles.
+// Colours, materials and heights where the map has none (facade styles: tests/render/facade/,
+// how render draws the looks: tests/render/building_looks_render_test.cpp).
 #include <gtest/gtest.h>
 
 #include <set>
 
 #include "building_colours.h"
-#include "building_looks.h"
-#include "facade.h"
 #include "infer_heights.h"
 #include "parse_colour.h"
 #include "pipeline.h"
@@ -102,75 +101,4 @@ TEST(InferHeights, RulesInOrder) {
     EXPECT_DOUBLE_EQ(v[4].height, 12);  // the seeded random height stays
     EXPECT_EQ(v[5].height_rule, HeightRule::TypeAndArea);
     EXPECT_EQ(v[2].height_source, HeightSource::Random);  // still not from the map
-}
-
-TEST(FacadeStyle, ByTypeMaterialAndHeight) {
-    Building b;
-    b.outer = {{0, 0}, {20, 0}, {20, 10}, {0, 10}};
-    b.height = 9;
-    b.type = "garage";
-    EXPECT_EQ(facade_style(b), FacadeStyle::Plain);
-    EXPECT_TRUE(make_wall_layout(FacadeOptions{}, building_wall_input(b, 0)).plain());
-    b.type = "office";
-    b.height = 60;
-    EXPECT_EQ(facade_style(b), FacadeStyle::CurtainWall);
-    const WallLayout glass = make_wall_layout(FacadeOptions{}, building_wall_input(b, 0));
-    EXPECT_FALSE(glass.balconies);
-    EXPECT_GT(glass.window.u1 - glass.window.u0, 0.9 * glass.slot_width);
-    b.type = "office";
-    b.height = 20;
-    EXPECT_EQ(facade_style(b), FacadeStyle::Office);
-    const WallLayout office = make_wall_layout(FacadeOptions{}, building_wall_input(b, 0));
-    EXPECT_FALSE(office.balconies);
-    EXPECT_GT(office.window.u1 - office.window.u0, 0.9 * office.slot_width) << "ribbon windows";
-    b.type = "house";  // the same wall as a house: lower storeys, so more of them
-    EXPECT_GT(make_wall_layout(FacadeOptions{}, building_wall_input(b, 0)).floors, office.floors);
-    b.height = 9;
-    FacadeOptions always_shops;
-    always_shops.shop_probability = 1;
-    EXPECT_FALSE(make_wall_layout(always_shops, building_wall_input(b, 0)).shop);
-    b.type = "retail";
-    EXPECT_TRUE(make_wall_layout(FacadeOptions{}, building_wall_input(b, 0)).shop);
-}
-
-TEST(BuildingLooksRender, ColoursPatternsAndBumpOnlyOnBuildingWallsAndRoofs) {
-    Scene scene;
-    Building b;
-    b.outer = {{0, 0}, {10, 0}, {10, 8}, {0, 8}};
-    b.height = 9;
-    b.wall_colour = 0xffcc8844;
-    b.roof_colour = 0xff2f4f4f;
-    b.wall_material = WallMaterial::Brick;
-    b.roof_material = RoofMaterial::RoofTiles;
-    scene.buildings.push_back(b);
-    const BuildingLooks looks(scene);
-    const MaterialTable table = default_materials();
-
-    Hit wall;
-    wall.kind = ObjectKind::Building;
-    wall.material = kFacade;
-    wall.geometric_normal = wall.shading_normal = {0, -1, 0};
-    // Brick courses are 7.5 cm: a joint at v = 0.075 k, brick faces in between.
-    double lowest = 1e9, highest = 0;
-    int tilted = 0;
-    for (int i = 0; i < 200; ++i) {
-        wall.position = {1 + 0.0137 * i, 0, 2 + 0.0041 * i};
-        wall.shading_normal = wall.geometric_normal;
-        const Material m = surface_material(table, &looks, wall);
-        lowest = std::min(lowest, m.albedo.x);
-        highest = std::max(highest, m.albedo.x);
-        tilted += dot(wall.shading_normal, wall.geometric_normal) < 0.99999;
-        EXPECT_GT(dot(wall.shading_normal, wall.geometric_normal), 0.5);
-    }
-    EXPECT_GT(highest, 1.2 * lowest) << "mortar and bricks differ";
-    EXPECT_GT(tilted, 5) << "joint edges tilt the normal";
-    EXPECT_LT(tilted, 150) << "brick faces stay flat";
-    EXPECT_NEAR(highest, albedo_from_srgb(0xcc8844).x * 1.45, 1e-9);  // mortar: the lightest
-
-    Hit road = wall;
-    road.kind = ObjectKind::Road;
-    road.material = kAsphalt;
-    road.shading_normal = road.geometric_normal;
-    EXPECT_EQ(surface_material(table, &looks, road).albedo.x, table[kAsphalt].albedo.x);
-    EXPECT_EQ(road.shading_normal.y, -1);
 }

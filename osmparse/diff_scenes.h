@@ -1,16 +1,12 @@
-// Human-readable views of scene files: `osmparse --info` and `osmparse --diff`.
+// `osmparse --diff`: two scene files compared object by object.
 #pragma once
 
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "scene.h"
 
 namespace citygen {
-
-// Counts per object kind, bounds, origin, format version and parse options.
-void print_scene_info(const Scene& scene, const std::string& name, std::FILE* out);
 
 // One difference between two scenes, e.g. {"moved", "building w123 #0", "outer ring moved 0.8 m"}.
 struct SceneChange {

@@ -6,8 +6,6 @@
 #include <filesystem>
 
 #include "build_paths.h"
-#include "materials.h"
-#include "path_geometry.h"
 #include "pipeline.h"
 
 using namespace citygen;
@@ -86,28 +84,4 @@ TEST(Paths, MonacoGivesValidStripsAndJoints) {
         EXPECT_GT(s.paths.size(), 1000u) << name;
         expect_valid_strips(s);
     }
-}
-
-TEST(PathRender, RailsAndSleepersOnRailwaysRailsOnlyOnStreetTramTracks) {
-    PathEdge rail;
-    rail.centreline = {{0, 0}, {100, 0}};
-    rail.width = 3;
-    rail.path_class = PathClass::Rail;
-    EXPECT_EQ(path_surface_material(rail, {10.3, 0.75}), kRailSteel);
-    EXPECT_EQ(path_surface_material(rail, {10.3, -0.75}), kRailSteel);
-    int sleepers = 0, ballast = 0;
-    for (double x = 0; x < 6; x += 0.05) {
-        const uint16_t m = path_surface_material(rail, {x, 0.3});
-        sleepers += m == kSleeper;
-        ballast += m == kBallast;
-    }
-    EXPECT_GT(sleepers, 20);
-    EXPECT_GT(ballast, 20);
-    PathEdge tram = rail;
-    tram.path_class = PathClass::Tram;
-    EXPECT_EQ(path_surface_material(tram, {10.3, 0.75}), kRailSteel);
-    for (double x = 0; x < 6; x += 0.05) EXPECT_NE(path_surface_material(tram, {x, 0.3}), kSleeper);
-    PathEdge footway = rail;
-    footway.path_class = PathClass::Footway;
-    EXPECT_EQ(path_surface_material(footway, {10.3, 0.75}), kPathPaving);
 }

@@ -279,47 +279,35 @@ size_t building_wall_count(const Building& building) {
     return n;
 }
 
-namespace {
-
-// building_wall runs once per wall (three times for building_wall_input), so a ring's
-// orientation, O(n) to find, is remembered for the ring last asked about: a building's walls
-// stay O(1) each instead of O(n). The key includes the end points, so a ring reversed or
-// refilled in place is not mistaken for the one remembered.
-bool ring_is_counter_clockwise(const Ring& ring) {
-    struct Remembered {
-        const Vec2* data = nullptr;
-        size_t size = 0;
-        Vec2 front, back;
-        bool counter_clockwise = false;
-    };
-    thread_local Remembered last;
-    if (ring.empty()) return false;
-    if (last.data != ring.data() || last.size != ring.size() || last.front != ring.front() ||
-        last.back != ring.back())
-        last = {ring.data(), ring.size(), ring.front(), ring.back(), signed_area(ring) > 0};
-    return last.counter_clockwise;
+BuildingWalls::BuildingWalls(const Building& building)
+    : building_(building), count_(building_wall_count(building)) {
+    counter_clockwise_.reserve(1 + building.holes.size());
+    counter_clockwise_.push_back(signed_area(building.outer) > 0);
+    for (const Ring& hole : building.holes) counter_clockwise_.push_back(signed_area(hole) > 0);
 }
 
-}  // namespace
-
-void building_wall(const Building& building, size_t index, Vec2* a, Vec2* b) {
-    const Ring* ring = &building.outer;
+void BuildingWalls::wall(size_t index, Vec2* a, Vec2* b) const {
+    const Ring* ring = &building_.outer;
     size_t hole = 0;
-    while (index >= ring->size() && hole < building.holes.size()) {
+    while (index >= ring->size() && hole < building_.holes.size()) {
         index -= ring->size();
-        ring = &building.holes[hole++];
+        ring = &building_.holes[hole++];
     }
     // Walk outer rings counter-clockwise and holes clockwise whatever the file says, so that the
     // building is always on the left (+w) of a wall.
     const size_t n = ring->size();
-    const bool counter_clockwise = ring_is_counter_clockwise(*ring);
-    if (counter_clockwise == (ring == &building.outer)) {
+    const bool counter_clockwise = counter_clockwise_[ring == &building_.outer ? 0 : hole];
+    if (counter_clockwise == (ring == &building_.outer)) {
         *a = (*ring)[index];
         *b = (*ring)[(index + 1) % n];
     } else {
         *a = (*ring)[n - 1 - index];
         *b = (*ring)[(2 * n - 2 - index) % n];
     }
+}
+
+void building_wall(const Building& building, size_t index, Vec2* a, Vec2* b) {
+    BuildingWalls(building).wall(index, a, b);
 }
 
 namespace {
@@ -335,9 +323,10 @@ double interior_angle(Vec2 behind, Vec2 corner, Vec2 ahead) {
 
 }  // namespace
 
-WallInput building_wall_input(const Building& building, size_t index) {
+WallInput BuildingWalls::input(size_t index) const {
+    const Building& building = building_;
     Vec2 a, b;
-    building_wall(building, index, &a, &b);
+    wall(index, &a, &b);
     // The neighbours of this wall in the same ring (walls are numbered ring by ring).
     size_t first = 0, count = building.outer.size();
     for (size_t h = 0; index >= first + count && h < building.holes.size(); ++h) {
@@ -345,19 +334,23 @@ WallInput building_wall_input(const Building& building, size_t index) {
         count = building.holes[h].size();
     }
     Vec2 before, unused, after;
-    building_wall(building, first + (index - first + count - 1) % count, &before, &unused);
-    building_wall(building, first + (index - first + 1) % count, &unused, &after);
-    WallInput wall;
-    wall.building_key = facade_building_key(building);
-    wall.wall_index = static_cast<uint32_t>(index);
-    wall.length = length(b - a);
-    wall.bottom_z = building.min_height;
-    wall.height = building.eaves_height() - building.min_height;  // gables above are roof faces
-    wall.levels = building.levels;
-    if (a != before) wall.start_angle = interior_angle(before, a, b);
-    if (b != after) wall.end_angle = interior_angle(a, b, after);
-    wall.style = facade_style(building);
-    return wall;
+    wall(first + (index - first + count - 1) % count, &before, &unused);
+    wall(first + (index - first + 1) % count, &unused, &after);
+    WallInput result;
+    result.building_key = facade_building_key(building);
+    result.wall_index = static_cast<uint32_t>(index);
+    result.length = length(b - a);
+    result.bottom_z = building.min_height;
+    result.height = building.eaves_height() - building.min_height;  // gables above are roof faces
+    result.levels = building.levels;
+    if (a != before) result.start_angle = interior_angle(before, a, b);
+    if (b != after) result.end_angle = interior_angle(a, b, after);
+    result.style = facade_style(building);
+    return result;
+}
+
+WallInput building_wall_input(const Building& building, size_t index) {
+    return BuildingWalls(building).input(index);
 }
 
 FacadeStyle facade_style(const Building& b) {

@@ -1,0 +1,138 @@
+#include "scene_info.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+namespace citygen {
+
+namespace {
+
+// Format 1.1: roof shapes (and how many were inferred), height rules, wall materials.
+void print_building_looks(const Scene& s, std::FILE* out) {
+    std::map<std::string, size_t> roofs, rules, walls;
+    size_t inferred = 0, faces = 0, generated = 0;
+    for (const Building& b : s.buildings) {
+        ++roofs[to_string(b.roof_shape)];
+        ++rules[to_string(b.height_rule)];
+        ++walls[to_string(b.wall_material)];
+        inferred += b.roof_inferred;
+        faces += b.roof_faces.size();
+        generated += b.generated;
+    }
+    std::fprintf(out, "generated_buildings: %zu\n", generated);
+    auto list = [&](const char* name, const std::map<std::string, size_t>& m) {
+        std::fprintf(out, "%s:", name);
+        for (const auto& [k, v] : m) std::fprintf(out, " %s %zu,", k.c_str(), v);
+        std::fprintf(out, "\n");
+    };
+    list("roof_shapes", roofs);
+    std::fprintf(out, "roof_faces: %zu (%zu roofs by the default rules)\n", faces, inferred);
+    list("height_rules", rules);
+    list("wall_materials", walls);
+}
+
+}  // namespace
+
+void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
+    const SceneHeader& h = s.header;
+    std::fprintf(out, "scene: %s\n", name.c_str());
+    std::fprintf(out, "format_version: %u.%u\n", h.format_major, h.format_minor);
+    std::fprintf(out, "generator: %s\n", h.generator.c_str());
+    std::fprintf(out, "source: %s\n", h.source.c_str());
+    std::fprintf(out, "origin: %.7f, %.7f (lat, lon; %s)\n", h.origin_lat, h.origin_lon,
+                 h.projection.c_str());
+    std::fprintf(out, "bounds: [%.1f, %.1f] - [%.1f, %.1f] m (%.0f x %.0f m)\n", h.bounds_min.x,
+                 h.bounds_min.y, h.bounds_max.x, h.bounds_max.y, h.bounds_max.x - h.bounds_min.x,
+                 h.bounds_max.y - h.bounds_min.y);
+    std::fprintf(out, "seed: %llu\n", static_cast<unsigned long long>(h.seed));
+
+    size_t holes = 0, parts = 0, tagged_heights = 0;
+    for (const Building& b : s.buildings) {
+        holes += b.holes.size();
+        parts += b.is_part;
+        tagged_heights += b.height_source != HeightSource::Random;
+    }
+    std::fprintf(out, "buildings: %zu\n", s.buildings.size());
+    std::fprintf(out, "building_parts: %zu\n", parts);
+    std::fprintf(out, "building_holes: %zu\n", holes);
+    std::fprintf(out, "buildings_with_tagged_height: %zu\n", tagged_heights);
+    if (!s.buildings.empty()) {
+        std::vector<double> heights;
+        size_t from_tag = 0, from_levels = 0, vertices = 0;
+        for (const Building& b : s.buildings) {
+            heights.push_back(b.height);
+            from_tag += b.height_source == HeightSource::Tagged;
+            from_levels += b.height_source == HeightSource::Levels;
+            vertices += b.outer.size();
+            for (const Ring& hole : b.holes) vertices += hole.size();
+        }
+        std::sort(heights.begin(), heights.end());
+        std::fprintf(out, "building_heights: %.1f - %.1f m, median %.1f m (%zu from height, %zu from levels, %zu random)\n",
+                     heights.front(), heights.back(), heights[heights.size() / 2], from_tag, from_levels,
+                     s.buildings.size() - from_tag - from_levels);
+        std::fprintf(out, "building_vertices: %zu\n", vertices);
+        print_building_looks(s, out);
+    }
+    std::fprintf(out, "roads: %zu\n", s.roads.size());
+    std::map<std::string, size_t> per_class;
+    for (const RoadEdge& r : s.roads) ++per_class[to_string(r.road_class)];
+    for (const auto& [c, n] : per_class) std::fprintf(out, "roads_%s: %zu\n", c.c_str(), n);
+    std::fprintf(out, "joints: %zu\n", s.joints.size());
+    size_t corners = 0;
+    for (const Sidewalk& w : s.sidewalks) corners += w.kind == SidewalkKind::Corner;
+    std::fprintf(out, "sidewalks: %zu (%zu strips, %zu corners)\n", s.sidewalks.size(),
+                 s.sidewalks.size() - corners, corners);
+    size_t generated = 0;
+    for (const Lamp& l : s.lamps) generated += l.source == LampSource::Generated;
+    std::fprintf(out, "lamps: %zu (%zu tagged, %zu generated)\n", s.lamps.size(),
+                 s.lamps.size() - generated, generated);
+    // Format 1.1: land cover by class (polygons and square metres) and trees by source.
+    std::fprintf(out, "land_cover: %zu\n", s.land_cover.size());
+    {
+        size_t count[kLandCoverClassCount] = {}, holes = 0;
+        double area[kLandCoverClassCount] = {};
+        for (const LandCover& c : s.land_cover) {
+            const int k = static_cast<int>(c.cover);
+            ++count[k];
+            area[k] += std::fabs(signed_area(c.outer));
+            for (const Ring& hole : c.holes) area[k] -= std::fabs(signed_area(hole));
+            holes += c.holes.size();
+        }
+        for (int k = 0; k < kLandCoverClassCount; ++k)
+            if (count[k])
+                std::fprintf(out, "land_cover_%s: %zu (%.0f m2)\n", to_string(static_cast<LandCoverClass>(k)),
+                             count[k], area[k]);
+        std::fprintf(out, "land_cover_holes: %zu\n", holes);
+    }
+    {
+        size_t by_source[3] = {};
+        for (const Tree& t : s.trees) ++by_source[static_cast<int>(t.source)];
+        std::fprintf(out, "trees: %zu (%zu mapped, %zu in rows, %zu scattered)\n", s.trees.size(), by_source[0],
+                     by_source[1], by_source[2]);
+    }
+    {
+        size_t per_class[kPathClassCount] = {}, mapped_sidewalks = 0;
+        for (const PathEdge& p : s.paths) {
+            ++per_class[static_cast<int>(p.path_class)];
+            mapped_sidewalks += p.sidewalk;
+        }
+        std::fprintf(out, "paths: %zu (%zu mapped sidewalks)\n", s.paths.size(), mapped_sidewalks);
+        for (int k = 0; k < kPathClassCount; ++k)
+            if (per_class[k]) std::fprintf(out, "paths_%s: %zu\n", to_string(static_cast<PathClass>(k)), per_class[k]);
+        std::fprintf(out, "path_joints: %zu\n", s.path_joints.size());
+        size_t zebras = 0, marked = 0;
+        for (const Crossing& c : s.crossings) zebras += c.kind == CrossingKind::Zebra;
+        for (const RoadEdge& r : s.roads) marked += r.centre_line != CentreLine::None || r.edge_lines;
+        std::fprintf(out, "crossings: %zu (%zu zebra, %zu stop lines)\n", s.crossings.size(), zebras,
+                     s.crossings.size() - zebras);
+        std::fprintf(out, "roads_with_markings: %zu\n", marked);
+    }
+    std::fprintf(out, "ground: [%.1f, %.1f] - [%.1f, %.1f] m at z=%.2f\n", s.ground.min.x,
+                 s.ground.min.y, s.ground.max.x, s.ground.max.y, s.ground.z);
+    std::fprintf(out, "options:\n");
+    for (const auto& [k, v] : h.options) std::fprintf(out, "  %s = %s\n", k.c_str(), v.c_str());
+}
+
+}  // namespace citygen
