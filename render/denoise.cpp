@@ -24,6 +24,9 @@ void denoise(Film& film, double exposure, const DenoiseSettings& settings) {
     if (film.object_kind.size() != pixels || film.guide_depth.size() != pixels || film.guide_variance.size() != pixels)
         throw Error("--denoise needs the film's id AOVs and guides");
     film.raw_rgb = film.rgb;
+    // Emission and haze seen directly are noise-free: filter only the rest (no guide: none).
+    const bool has_direct = film.guide_direct.size() == 3 * pixels;
+    auto direct_at = [&](size_t k) { return has_direct ? film.guide_direct[k] : 0.f; };
     constexpr double kernel[5] = {1.0 / 16, 1.0 / 4, 3.0 / 8, 1.0 / 4, 1.0 / 16};
 
     // Filter the light arriving at the surface (colour divided by the albedo guide), not the
@@ -35,7 +38,7 @@ void denoise(Film& film, double exposure, const DenoiseSettings& settings) {
         for (int c = 0; c < 3; ++c) {
             const size_t k = 3 * i + c;
             modulation[k] = film.guide_albedo[k] > 0.01f ? film.guide_albedo[k] : 1.f;
-            current[k] = static_cast<float>(film.rgb[k] * exposure / modulation[k]);
+            current[k] = static_cast<float>((film.rgb[k] - direct_at(k)) * exposure / modulation[k]);
         }
         const double m = luminance3(&modulation[3 * i]);
         variance[i] = static_cast<float>(film.guide_variance[i] * exposure * exposure / (m * m));

@@ -7,7 +7,9 @@
 // units of the pixel's own noise (the variance of its samples, filtered along, as in SVGF by
 // Schied et al. 2017, which replaces the paper's fixed, halving colour tolerance), normal,
 // relative depth and albedo; pixels of another object (or the sky) get no weight at all. The
-// filter works on colour divided by albedo, so texture is kept. Every pixel is computed alone
+// filter works on colour minus the noise-free direct light of film.guide_direct (emitters, haze,
+// the sun's light with hard shadows: added back unfiltered), divided by albedo, so texture,
+// lamps, lit windows and shadow edges are kept. Every pixel is computed alone
 // from the previous level, so the result does not depend on the thread count.
 #pragma once
 
@@ -17,10 +19,10 @@ namespace citygen {
 
 struct DenoiseSettings {
     int levels = 4;            // taps 1, 2, 4, 8 pixels apart
-    double sigma_luminance = 2;  // luminance difference, in standard deviations of the pixel's noise
+    double sigma_luminance = 4;  // luminance difference, in standard deviations of the pixel's noise
     double sigma_normal = 0.2; // length of the difference of unit normals
     double sigma_depth = 0.03; // depth difference relative to depth, per pixel of tap distance
-    double sigma_albedo = 0.1; // albedo difference
+    double sigma_albedo = 0.3; // albedo difference
 };
 
 // How far (in pixels, each way) a filtered pixel sees: a region rendered this much larger and

@@ -36,6 +36,7 @@ Film crop(const Film& film, const PixelRegion& region) {
     copy(film.guide_albedo, out.guide_albedo, 3);
     copy(film.guide_normal, out.guide_normal, 3);
     copy(film.guide_depth, out.guide_depth, 1);
+    copy(film.guide_direct, out.guide_direct, 3);
     copy(film.guide_variance, out.guide_variance, 1);
     return out;
 }

@@ -12,6 +12,7 @@
 
 #include "error.h"
 #include "bsdf.h"
+#include "lights/scene_lights.h"
 #include "progress.h"
 
 namespace citygen {
@@ -27,6 +28,46 @@ Color albedo_at(const PathContext& context, Hit& hit) {
     const Material m = surface_material(context.materials, context.building_looks, hit);
     return m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy || m.type == MaterialType::Water ? m.albedo
                                                                                                            : m.specular;
+}
+
+// The part of a camera ray's radiance that needs few or no random numbers: what the hit surface
+// emits (lamp globes, lit windows) and the aerial haze in front of it, as trace_path adds them on
+// its first bounce, and the sun's (or moon's) direct light, with one shadow ray to the centre of
+// its disc. The denoiser filters only the rest and adds this back unfiltered, so lamps, lit
+// windows and sharp shadows are not smeared. It need not be exact (what it misses is filtered
+// with the rest), only free of noise. Zero under --fog, whose first segment may scatter before
+// it reaches the surface.
+Color direct_light_at(const PathContext& context, const Ray& ray, Hit hit, uint64_t& rays) {
+    const IntegratorSettings& settings = context.settings;
+    if (settings.fog.density > 0) return {0, 0, 0};
+    Color haze{0, 0, 0};
+    double transmittance = 1;
+    if (settings.haze_extinction > 0) {
+        transmittance = aerial_transmittance(settings.haze_extinction, hit.t);
+        const Vec3 horizon = normalize(Vec3{ray.direction.x, ray.direction.y, 0.06});
+        haze = context.sky.radiance(horizon, false) * (1 - transmittance);
+    }
+    const Material material = surface_material(context.materials, context.building_looks, hit);
+    const Vec3 wo = -ray.direction;
+    const bool front = dot(hit.geometric_normal, wo) > 0;
+    Color light{0, 0, 0};
+    if (front) {  // emitters shine from their front
+        light = material.emission;
+        if (context.lights && !context.lights->empty()) light = light + context.lights->emitted(hit);
+    }
+    const Sky& sky = context.sky;
+    if (!is_delta(material) && sky.has_sun() && settings.sample_sun) {
+        const Vec3 n = front ? hit.geometric_normal : -hit.geometric_normal;
+        const Vec3 ns = front ? hit.shading_normal : -hit.shading_normal;
+        const Vec3 wi = sky.sun_direction();
+        const double cos_i = dot(ns, wi);
+        if (cos_i > 0 && dot(n, wi) > 0) {
+            ++rays;
+            if (!context.scene.occluded(Ray{offset_origin(hit.position, n), wi, 0, 1e30}))
+                light = light + bsdf_eval(material, ns, wo, wi) * sky.sun_radiance() * (cos_i * sky.sun_solid_angle());
+        }
+    }
+    return haze + light * transmittance;
 }
 
 // `x`, `y` in the full frame; `i` indexes the film.
@@ -51,7 +92,7 @@ void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, s
 void fill_guides(const PathContext& context, const Camera& camera, int x, int y, size_t i, Film& film,
                  uint64_t& rays) {
     constexpr int kGrid = 3;
-    double albedo[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, depth = 0;
+    double albedo[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, direct[3] = {0, 0, 0}, depth = 0;
     for (int sy = 0; sy < kGrid; ++sy)
         for (int sx = 0; sx < kGrid; ++sx) {
             const Ray ray = camera.generate_ray(x + (sx + 0.5) / kGrid, y + (sy + 0.5) / kGrid);
@@ -60,13 +101,15 @@ void fill_guides(const PathContext& context, const Camera& camera, int x, int y,
             if (!context.scene.intersect(ray, hit)) continue;
             const Color a = albedo_at(context, hit);
             const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
-            for (int c = 0; c < 3; ++c) albedo[c] += a[c], normal[c] += n[c];
+            const Color d = direct_light_at(context, ray, hit, rays);
+            for (int c = 0; c < 3; ++c) albedo[c] += a[c], normal[c] += n[c], direct[c] += d[c];
             depth += hit.t;
         }
     constexpr double inv = 1.0 / (kGrid * kGrid);
     for (int c = 0; c < 3; ++c) {
         film.guide_albedo[3 * i + c] = static_cast<float>(albedo[c] * inv);
         film.guide_normal[3 * i + c] = static_cast<float>(normal[c] * inv);
+        film.guide_direct[3 * i + c] = static_cast<float>(direct[c] * inv);
     }
     film.guide_depth[i] = static_cast<float>(depth * inv);
 }
@@ -204,6 +247,7 @@ Film render_image(const PathContext& context, const Camera& camera, const Render
         film.guide_albedo.assign(3 * pixels, 0.f);
         film.guide_normal.assign(3 * pixels, 0.f);
         film.guide_depth.assign(pixels, 0.f);
+        film.guide_direct.assign(3 * pixels, 0.f);
         for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
             fill_guides(context, camera, x, y, i, film, rays);
         });

@@ -7,6 +7,9 @@
 # RUNS (default 3) denoise_seconds from --stats (the filter alone, 2 threads here).
 #   tests/bench/denoise_bench.sh
 #   REF_SPP=256 WIDTH=320 HEIGHT=180 tests/bench/denoise_bench.sh   # a quicker look
+# CACHE=DIR keeps the reference and the raw renders (which the denoiser does not change) in DIR
+# between runs, named <view>_<width>x<height>_spp<n>_seed1000.png and <view>_<width>x<height>_raw<n>.png;
+# empty DIR yourself when the path tracer or the example changes.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 RUNS=${RUNS:-3}
@@ -16,6 +19,8 @@ cmake --build build -j2 --target osmparse render > /dev/null
 
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+CACHE=${CACHE:-$work}
+mkdir -p "$CACHE"
 build/bin/osmparse examples/neukolln.osm.bz2 -o "$work/city.scene" -q
 render() { build/bin/render "$work/city.scene" --width "$WIDTH" --height "$HEIGHT" -q "$@"; }
 psnr() { { idiff "$1" "$2" || true; } | awk '/Peak SNR/ { print $4 }'; }
@@ -24,11 +29,14 @@ median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] 
 echo "| view | raw 16 | raw 32 | raw 64 | raw 128 | raw 256 | denoised 16 | denoised 64 | equal-quality spp of denoised 16 | factor | filter seconds |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
 for view in day night; do
-  render --time "$view" --spp "$REF_SPP" --seed 1000 -o "$work/ref_$view.png"
+  ref="$CACHE/${view}_${WIDTH}x${HEIGHT}_spp${REF_SPP}_seed1000.png"
+  [ -s "$ref" ] || { render --time "$view" --spp "$REF_SPP" --seed 1000 -o "$work/ref.png" && mv "$work/ref.png" "$ref"; }
+  cp "$ref" "$work/ref_$view.png"
   declare -A raw=()
   for spp in 16 32 64 128 256; do
-    render --time "$view" --spp "$spp" -o "$work/raw.png"
-    raw[$spp]=$(psnr "$work/ref_$view.png" "$work/raw.png")
+    cached="$CACHE/${view}_${WIDTH}x${HEIGHT}_raw${spp}.png"
+    [ -s "$cached" ] || { render --time "$view" --spp "$spp" -o "$work/raw.png" && mv "$work/raw.png" "$cached"; }
+    raw[$spp]=$(psnr "$work/ref_$view.png" "$cached")
   done
   seconds=$(for run in $(seq "$RUNS"); do
     render --time "$view" --spp 16 --denoise --stats -o "$work/dn16.png" | awk '/denoise_seconds/ { print $2 }'

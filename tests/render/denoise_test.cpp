@@ -134,3 +134,27 @@ TEST(Denoise, NeedsTheGuides) {
     film.guide_depth.clear();
     EXPECT_THROW(denoise(film, 1.0), std::exception);
 }
+
+TEST(Denoise, AddsTheDirectLightBackUnfiltered) {
+    // A lit window (one bright pixel) and a sunlit band on a noisy wall, both known to the
+    // direct-light guide: they come back exactly where they were, and the wall around them is
+    // filtered as if they were not there.
+    Film film = flat_film(0.2f, 0.2f, 0.2f);
+    add_noise(film, 5, 0.8);
+    film.guide_direct.assign(film.rgb.size(), 0.f);
+    Film lit = film;
+    auto add_direct = [&](int x, int y, float value) {
+        for (int c = 0; c < 3; ++c) {
+            lit.guide_direct[3 * (y * 64 + x) + c] = value;
+            lit.rgb[3 * (y * 64 + x) + c] += value;
+        }
+    };
+    add_direct(30, 20, 40.f);
+    for (int y = 0; y < 48; ++y)
+        for (int x = 40; x < 48; ++x) add_direct(x, y, 2.f);
+    denoise(film, 1.0);
+    denoise(lit, 1.0);
+    for (size_t k = 0; k < film.rgb.size(); ++k)
+        ASSERT_NEAR(lit.rgb[k], film.rgb[k] + lit.guide_direct[k], 1e-5f * (1 + lit.guide_direct[k])) << k / 3;
+    EXPECT_LT(mean_abs_error(film, 0, 64, 0.2f), 0.02) << "the wall is still filtered";
+}
