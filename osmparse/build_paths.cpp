@@ -5,6 +5,8 @@
 #include <unordered_map>
 
 #include "build_road_graph.h"
+#include "build_road_polygons.h"
+#include "build_sidewalks.h"
 #include "osm_units.h"
 #include "polygon_overlap.h"
 #include "road_layout.h"
@@ -53,7 +55,7 @@ void lay_out(const std::vector<OsmWay>& ways, const Projection& projection, cons
     for (size_t e = 0; e < graph.edges.size(); ++e) {
         report.read(kPathEdges);
         if (layout.absorbed[e] || layout.quads[e].empty()) {
-            report.dropped(kPathEdges, layout.absorbed[e] ? "absorbed into a merged junction" : kPathTooShort);
+            report.dropped(kPathEdges, layout.absorbed[e] ? kAbsorbedIntoMergedJunction : kPathTooShort);
             continue;
         }
         const RoadGraphEdge& g = graph.edges[e];
@@ -163,7 +165,7 @@ std::vector<Sidewalk> drop_doubled_sidewalks(std::vector<Sidewalk> sidewalks, co
         double covered = 0;
         index.for_each_near(bounds_of(s.polygon), [&](uint32_t i) { covered += clipped_area(s.polygon, mapped[i].outer); });
         if (area > 0 && covered > area / 3) {
-            const char* kind = s.kind == SidewalkKind::Strip ? "sidewalk strips" : "sidewalk corners";
+            const char* kind = s.kind == SidewalkKind::Strip ? kSidewalkStrips : kSidewalkCorners;
             report.dropped(kind, kReplacedByMappedSidewalk);
             report.kept(kind, -1);  // build_sidewalks counted it as kept
             continue;

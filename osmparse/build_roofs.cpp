@@ -133,7 +133,7 @@ void build_roof(Building& b, const BuildingTagIndex& index, const BuildingParams
     b.roof_faces.clear();
     b.roof_height = 0;
     b.roof_shape = RoofShape::Flat;
-    if (b.outer.size() < 3 || !(b.height > b.min_height)) return;
+    if (!has_volume(b)) return;
     const OsmTags& tags = index.find(b.osm);
     const double area = std::fabs(signed_area(b.outer));
 

@@ -1,4 +1,4 @@
-// Stage: roofs. roof:shape and its companions -> planar roof faces and gable walls on every
+// Stage 4: roofs. roof:shape and its companions -> planar roof faces and gable walls on every
 // building (after the heights are final).
 #pragma once
 

@@ -1,4 +1,4 @@
-// Stage: colours and materials of walls and roofs, from the map where it says, else seeded,
+// Stage 5: colours and materials of walls and roofs, from the map where it says, else seeded,
 // plausible variety by building type (after roofs: a pitched roof is tiled, a flat one is not).
 #pragma once
 

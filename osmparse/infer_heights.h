@@ -1,4 +1,4 @@
-// Stage: heights where the map has none. Runs after build_buildings, over all buildings at
+// Stage 3: heights where the map has none. Runs after build_buildings, over all buildings at
 // once, because the tagged heights of neighbours are one of the rules.
 #pragma once
 

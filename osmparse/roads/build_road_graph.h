@@ -1,4 +1,4 @@
-// Stage 4: the road graph. Highway ways (WGS84) -> straight node-to-node edges in local
+// Stage 6: the road graph. Highway ways (WGS84) -> straight node-to-node edges in local
 // metres with a width, a class and which sides get a sidewalk.
 #pragma once
 

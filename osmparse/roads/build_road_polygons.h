@@ -1,4 +1,4 @@
-// Stage 5: road polygons. Road graph -> one quadrangle per edge and one joint polygon per
+// Stage 8: road polygons. Road graph -> one quadrangle per edge and one joint polygon per
 // junction (thesis ch. 3.2.3; the geometry itself is in road_layout.h).
 #pragma once
 

@@ -1,4 +1,4 @@
-// Stage 7: sidewalks. An outer outline around every carriageway, laid out with the same
+// Stage 10: sidewalks. An outer outline around every carriageway, laid out with the same
 // joins (road_layout.h); the band between outline and carriageway is the sidewalk, in
 // strips along edges and corner pieces around joints, raised by a curb.
 #pragma once

@@ -1,4 +1,4 @@
-// Stage 6: roads against buildings. OSM centrelines and guessed widths often put a road
+// Stage 7: roads against buildings. OSM centrelines and guessed widths often put a road
 // surface into a building; as in the thesis such a road is narrowed step by step, and
 // dropped once it would be narrower than params.min_width.
 #pragma once
