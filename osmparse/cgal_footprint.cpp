@@ -93,7 +93,11 @@ struct DirectionSpreadCost {
         const CGAL::Constrained_triangulation_plus_2<CDT>&,
         typename CGAL::Constrained_triangulation_plus_2<CDT>::Vertices_in_constraint_iterator q) const {
         using Points = typename CGAL::Constrained_triangulation_plus_2<CDT>::Points_in_constraint_iterator;
-        const auto p = std::prev(q), r = std::next(q);
+        // Not std::prev: these iterators call themselves forward-only, and std::prev on one
+        // steps forward for ever.
+        auto p = q, r = q;
+        --p;
+        ++r;
         const auto& a = (*p)->point();
         const auto& b = (*r)->point();
         const double dx = b.x() - a.x(), dy = b.y() - a.y();

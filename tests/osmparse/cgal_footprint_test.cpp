@@ -68,10 +68,8 @@ TEST(CgalFootprint, SplitKeepsTheEvenOddInside) {
     ParseReport report;
     const auto polygons = clean(twice, {}, report);
     expect_valid(polygons);
-    double expected = 900 - 100;  // the square minus the doubly wound middle
-    expected -= 0;               // the strip between y 5 and 10 right of x 10 is crossed once more
     EXPECT_GT(area_of(polygons), 0);
-    EXPECT_LE(area_of(polygons), 900);
+    EXPECT_LT(area_of(polygons), 900);  // not all of the square: the doubly wound part is out
 }
 
 TEST(CgalFootprint, SimplifiedOutlineNeverCrossesAHole) {
@@ -131,11 +129,8 @@ TEST(CgalFootprint, RealSelfIntersectingOutlineFromKaiserslautern) {
     const auto polygons = clean(ring, {}, report);
     ASSERT_EQ(polygons.size(), 1u);
     expect_valid(polygons);
-    for (const Footprint& f : polygons) {
-        std::string points;
-        for (Vec2 p : f.outer) points += "(" + std::to_string(p.x) + "," + std::to_string(p.y) + ") ";
-        std::cerr << points << "\n";
-    }
+    // The twist's crossing point is a vertex now; the rest of the outline is kept or merged.
+    EXPECT_GT(area_of(polygons), 1000);
 }
 
 TEST(CgalFootprint, ExactOverlapAgreesWithTheHandWrittenOne) {
