@@ -61,10 +61,11 @@ struct Piece {
 };
 
 // merge_small_turns, kept only if the result is simple. The hand-written merge stays for the
-// common case, a ring on its own: it is about 10x faster than CGAL's simplification (see
-// tests/bench/footprint_bench) and gives the scenes we had. Where rings must be simplified
-// together (pieces of a split ring, a hole the merged outline would cross), CGAL's
-// simplify_keeping_topology is used instead.
+// common case, a ring on its own: CGAL's simplify_keeping_topology took 3x its time on
+// Kaiserslautern's footprints (235 vs 79 ms) and 100x on Monaco's (tests/bench/footprint_bench),
+// and its greedy order keeps other vertices in 5% of the rings, which would change most
+// scenes. Where rings must be simplified together (pieces of a split ring, a hole the merged
+// outline would cross) CGAL's is used instead.
 Ring simplified_alone(const Ring& ring, double simplify_angle_deg) {
     Ring merged = remove_repeated_and_collinear(merge_small_turns(ring, simplify_angle_deg));
     return merged.size() >= 3 && ring_is_simple(merged) ? merged : ring;
