@@ -299,16 +299,19 @@ std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring
     for (size_t p = 0; p < outers.size(); ++p) {
         std::vector<Piece> mine;  // the holes that could be this polygon's, in order
         std::vector<size_t> index;
+        bool lost_any = false;
         for (size_t i = 0; i < hole_candidates.size(); ++i) {
             const HoleFate fate = assignment.fate[i];
             const bool lost_to_simplification =
                 (fate == HoleFate::Outside || fate == HoleFate::Overlaps) &&
                 ring_strictly_inside(hole_candidates[i].unsimplified, outers[p].unsimplified);
+            lost_any |= lost_to_simplification;
             if (assignment.home[i] == static_cast<int>(p) || lost_to_simplification) {
                 mine.push_back(hole_candidates[i]);
                 index.push_back(i);
             }
         }
+        if (!lost_any) continue;  // the common case: nothing to win
         const HoleAssignment again = assign_holes(mine, {outers[p]}, true, params.min_area);
         size_t kept_before = 0, kept_again = 0;
         for (size_t k = 0; k < mine.size(); ++k) {
