@@ -61,8 +61,8 @@ struct Piece {
 };
 
 // merge_small_turns, kept only if the result is simple. The hand-written merge stays for the
-// common case, a ring on its own: CGAL's simplify_keeping_topology took 3x its time on
-// Kaiserslautern's footprints (235 vs 79 ms) and 100x on Monaco's (tests/bench/footprint_bench),
+// common case, a ring on its own: CGAL's simplify_keeping_topology took 3-14x its time on
+// Kaiserslautern's footprints and 70-120x on Monaco's (tests/bench/footprint_bench, two runs),
 // and its greedy order keeps other vertices in 5% of the rings, which would change most
 // scenes. Where rings must be simplified together (pieces of a split ring, a hole the merged
 // outline would cross) CGAL's is used instead.
