@@ -1,5 +1,7 @@
 #include "clean_footprint.h"
 
+#include "cgal_footprint.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -46,31 +48,101 @@ bool ring_strictly_inside(const Ring& inner, const Ring& outer) {
 }
 
 Ring oriented(Ring ring, bool counter_clockwise) {
-    if ((signed_area(ring) > 0) != counter_clockwise) std::reverse(ring.begin(), ring.end());
+    if ((ring_orientation_exact(ring) > 0) != counter_clockwise) std::reverse(ring.begin(), ring.end());
     return ring;
 }
 
 enum class RingOutcome { Clean, Repaired, Degenerate, Unrepairable };
 
+// One simple piece of a ring, before and after merging small turns.
+struct Piece {
+    Ring unsimplified;
+    Ring ring;
+};
+
+// merge_small_turns, kept only if the result is simple. The hand-written merge stays for the
+// common case, a ring on its own: CGAL's simplify_keeping_topology took 3-14x its time on
+// Kaiserslautern's footprints and 70-120x on Monaco's (tests/bench/footprint_bench, two runs),
+// and its greedy order keeps other vertices in 5% of the rings, which would change most
+// scenes. Where rings must be simplified together (pieces of a split ring, a hole the merged
+// outline would cross) CGAL's is used instead.
+Ring simplified_alone(const Ring& ring, double simplify_angle_deg) {
+    Ring merged = remove_repeated_and_collinear(merge_small_turns(ring, simplify_angle_deg));
+    return merged.size() >= 3 && ring_is_simple(merged) ? merged : ring;
+}
+
+// The rings simplified together, so none crosses itself or another (CGAL), each cleaned of
+// repeated and collinear points as simplified_alone does; the unsimplified rings where
+// that leaves one that is not simple.
+std::vector<Ring> simplified_together(const std::vector<Ring>& rings, double simplify_angle_deg) {
+    std::vector<Ring> out = simplify_keeping_topology(rings, simplify_angle_deg);
+    for (size_t i = 0; i < out.size(); ++i) {
+        out[i] = remove_repeated_and_collinear(out[i]);
+        if (out[i].size() < 3 || !ring_is_simple(out[i])) return rings;
+    }
+    return out;
+}
+
 // Steps 1-3 for one ring: simple pieces, orientation not yet fixed.
-std::vector<Ring> clean_ring(const Ring& input, double simplify_angle_deg, RingOutcome& outcome) {
+std::vector<Piece> clean_ring(const Ring& input, double simplify_angle_deg, RingOutcome& outcome) {
     const Ring ring = remove_repeated_and_collinear(input);
     if (ring.size() < 3) {
         outcome = RingOutcome::Degenerate;
         return {};
     }
-    auto simplified = [&](const Ring& r) {
-        Ring merged = remove_repeated_and_collinear(merge_small_turns(r, simplify_angle_deg));
-        return merged.size() >= 3 && ring_is_simple(merged) ? merged : r;
-    };
     if (ring_is_simple(ring)) {
         outcome = RingOutcome::Clean;
-        return {simplified(ring)};
+        return {{ring, simplified_alone(ring, simplify_angle_deg)}};
     }
-    std::vector<Ring> pieces = split_self_intersections(ring);
-    for (Ring& piece : pieces) piece = simplified(piece);
+    // Pieces of a split ring touch where the ring crossed itself: simplifying them one by one
+    // could make them overlap there.
+    const std::vector<Ring> pieces = split_self_intersections(ring);
+    const std::vector<Ring> simplified = simplified_together(pieces, simplify_angle_deg);
     outcome = pieces.empty() ? RingOutcome::Unrepairable : RingOutcome::Repaired;
-    return pieces;
+    std::vector<Piece> out;
+    for (size_t i = 0; i < pieces.size(); ++i) out.push_back({pieces[i], simplified[i]});
+    return out;
+}
+
+enum class HoleFate { Kept, BelowMinArea, Outside, Overlaps };
+
+struct HoleAssignment {
+    std::vector<HoleFate> fate;
+    std::vector<int> home;  // index into the outers, -1 for none
+};
+
+// Each hole goes to the (last) outer it lies strictly inside, unless it is a sliver or meets
+// a hole already accepted there; on the simplified rings or on the unsimplified ones.
+HoleAssignment assign_holes(const std::vector<Piece>& holes, const std::vector<Piece>& outers,
+                            bool unsimplified, double min_area) {
+    auto ring_of = [&](const Piece& piece) -> const Ring& { return unsimplified ? piece.unsimplified : piece.ring; };
+    HoleAssignment out{std::vector<HoleFate>(holes.size(), HoleFate::Kept), std::vector<int>(holes.size(), -1)};
+    std::vector<std::vector<const Ring*>> accepted(outers.size());
+    for (size_t i = 0; i < holes.size(); ++i) {
+        const Ring& hole = ring_of(holes[i]);
+        if (std::fabs(signed_area(holes[i].ring)) < min_area) {
+            out.fate[i] = HoleFate::BelowMinArea;
+            continue;
+        }
+        int home = -1;
+        for (size_t p = 0; p < outers.size(); ++p)
+            if (ring_strictly_inside(hole, ring_of(outers[p]))) home = static_cast<int>(p);
+        if (home < 0) {
+            out.fate[i] = HoleFate::Outside;
+            continue;
+        }
+        bool overlaps = false;
+        for (const Ring* other : accepted[home])
+            overlaps |= !rings_disjoint_boundaries(hole, *other) || point_in_ring(hole[0], *other) ||
+                        point_in_ring((*other)[0], hole);
+        if (overlaps) {
+            out.fate[i] = HoleFate::Overlaps;
+            continue;
+        }
+        out.home[i] = home;
+        accepted[home].push_back(&hole);
+    }
+    return out;
 }
 
 }  // namespace
@@ -149,62 +221,10 @@ Ring merge_small_turns(const Ring& ring, double angle_deg) {
 }
 
 std::vector<Ring> split_self_intersections(const Ring& ring) {
-    const size_t n = ring.size();
-    if (n < 3) return {};
-    // 1. Every point where two non-adjacent edges meet becomes a vertex of both edges.
-    std::vector<std::vector<std::pair<double, Vec2>>> cuts(n);
-    auto param_on = [](Vec2 p, Vec2 a, Vec2 b) { return dot(p - a, b - a) / dot(b - a, b - a); };
-    for (size_t i = 0; i < n; ++i) {
-        const Vec2 a = ring[i], b = ring[(i + 1) % n];
-        for (size_t j = i + 1; j < n; ++j) {
-            if (j == i + 1 || (i == 0 && j == n - 1)) continue;
-            const Vec2 c = ring[j], d = ring[(j + 1) % n];
-            if (!segments_intersect(a, b, c, d)) continue;
-            const double den = cross(b - a, d - c);
-            if (den != 0) {
-                const double t = cross(c - a, d - c) / den;
-                Vec2 p = round_to_stored_precision(a + (b - a) * t);
-                for (Vec2 end : {a, b, c, d})  // a touch at a vertex stays that vertex
-                    if (length(p - end) <= kFootprintTolerance) p = end;
-                cuts[i].push_back({param_on(p, a, b), p});
-                cuts[j].push_back({param_on(p, c, d), p});
-            } else {  // collinear overlap: the ends of each lying on the other
-                for (Vec2 e : {c, d})
-                    if (segments_intersect(a, b, e, e)) cuts[i].push_back({param_on(e, a, b), e});
-                for (Vec2 e : {a, b})
-                    if (segments_intersect(c, d, e, e)) cuts[j].push_back({param_on(e, c, d), e});
-            }
-        }
-    }
-    Ring walk;
-    for (size_t i = 0; i < n; ++i) {
-        walk.push_back(ring[i]);
-        std::sort(cuts[i].begin(), cuts[i].end(),
-                  [](const auto& x, const auto& y) { return x.first < y.first; });
-        for (const auto& [t, p] : cuts[i])
-            if (p != walk.back() && p != ring[(i + 1) % n]) walk.push_back(p);
-    }
-    // 2. Walk the ring; whenever it comes back to a point already on the path, the
-    //    stretch since then is a closed loop of its own: cut it off.
-    std::vector<Ring> loops;
-    Ring path;
-    std::map<std::pair<double, double>, size_t> position;
-    for (Vec2 p : walk) {
-        auto it = position.find({p.x, p.y});
-        if (it == position.end()) {
-            position[{p.x, p.y}] = path.size();
-            path.push_back(p);
-            continue;
-        }
-        const size_t k = it->second;
-        loops.emplace_back(path.begin() + static_cast<long>(k), path.end());
-        for (size_t m = k + 1; m < path.size(); ++m) position.erase({path[m].x, path[m].y});
-        path.resize(k + 1);
-    }
-    loops.push_back(path);
-    // 3. Keep the loops that are proper simple rings.
+    // The crossings come from CGAL's arrangement (exact intersection points); the loops are
+    // rounded to float there, so they are cleaned and checked again here.
     std::vector<Ring> pieces;
-    for (Ring& loop : loops) {
+    for (Ring& loop : split_at_crossings_exact(ring)) {
         loop = remove_repeated_and_collinear(loop);
         if (loop.size() >= 3 && ring_is_simple(loop)) pieces.push_back(std::move(loop));
     }
@@ -245,56 +265,82 @@ std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring
     // Buildings count their holes under "building holes" (as they always did), others under "<kind> holes".
     const std::string hole_kind = kind.rfind("building", 0) == 0 ? std::string("building holes") : kind + " (holes)";
     RingOutcome outcome = RingOutcome::Clean;
-    std::vector<Ring> pieces = clean_ring(outer, params.simplify_angle_deg, outcome);
+    std::vector<Piece> pieces = clean_ring(outer, params.simplify_angle_deg, outcome);
     if (outcome == RingOutcome::Degenerate) report.dropped(kind, "degenerate (fewer than 3 distinct points)");
     if (outcome == RingOutcome::Unrepairable) report.dropped(kind, "self-intersecting, could not repair");
     if (outcome == RingOutcome::Repaired) report.note(kind, "self-intersection repaired by splitting");
 
     // Pieces of a split outline: biggest first; a piece inside another is its hole.
-    std::sort(pieces.begin(), pieces.end(), [](const Ring& x, const Ring& y) {
-        return std::fabs(signed_area(x)) > std::fabs(signed_area(y));
+    std::sort(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) {
+        return std::fabs(signed_area(x.ring)) > std::fabs(signed_area(y.ring));
     });
-    std::vector<Footprint> polygons;
-    std::vector<Ring> hole_candidates;
-    for (Ring& piece : pieces) {
+    std::vector<Piece> outers, hole_candidates;
+    for (Piece& piece : pieces) {
         bool nested = false;
-        for (const Footprint& f : polygons) nested |= point_in_ring(interior_point(piece), f.outer);
-        if (nested) hole_candidates.push_back(std::move(piece));
-        else polygons.push_back({oriented(std::move(piece), true), {}});
+        for (const Piece& o : outers) nested |= point_in_ring(interior_point(piece.ring), o.ring);
+        (nested ? hole_candidates : outers).push_back(std::move(piece));
     }
     for (const Ring& hole : holes) {
         report.read(hole_kind);
         RingOutcome hole_outcome = RingOutcome::Clean;
-        std::vector<Ring> hole_pieces = clean_ring(hole, params.simplify_angle_deg, hole_outcome);
+        std::vector<Piece> hole_pieces = clean_ring(hole, params.simplify_angle_deg, hole_outcome);
         if (hole_outcome == RingOutcome::Degenerate) report.dropped(hole_kind, "degenerate (fewer than 3 distinct points)");
         if (hole_outcome == RingOutcome::Unrepairable) report.dropped(hole_kind, "self-intersecting, could not repair");
         if (hole_outcome == RingOutcome::Repaired) report.note(hole_kind, "self-intersection repaired by splitting");
-        for (Ring& piece : hole_pieces) hole_candidates.push_back(std::move(piece));
+        for (Piece& piece : hole_pieces) hole_candidates.push_back(std::move(piece));
     }
 
-    // Each hole goes to the polygon it lies strictly inside, unless it is a sliver or
-    // meets a hole already accepted there.
-    for (Ring& hole : hole_candidates) {
-        if (std::fabs(signed_area(hole)) < params.min_area) {
-            report.dropped(hole_kind, "below min area");
-            continue;
+    // Holes go where the simplified rings say. Simplifying each ring on its own can make a
+    // hole meet its outline or another hole that the map kept apart: a polygon where that
+    // cost a hole assigns its holes again on the unsimplified rings, then simplifies all its
+    // rings together (CGAL), which keeps them apart.
+    HoleAssignment assignment = assign_holes(hole_candidates, outers, false, params.min_area);
+    std::vector<bool> together(outers.size(), false);
+    for (size_t p = 0; p < outers.size(); ++p) {
+        std::vector<Piece> mine;  // the holes that could be this polygon's, in order
+        std::vector<size_t> index;
+        bool lost_any = false;
+        for (size_t i = 0; i < hole_candidates.size(); ++i) {
+            const HoleFate fate = assignment.fate[i];
+            const bool lost_to_simplification =
+                (fate == HoleFate::Outside || fate == HoleFate::Overlaps) &&
+                ring_strictly_inside(hole_candidates[i].unsimplified, outers[p].unsimplified);
+            lost_any |= lost_to_simplification;
+            if (assignment.home[i] == static_cast<int>(p) || lost_to_simplification) {
+                mine.push_back(hole_candidates[i]);
+                index.push_back(i);
+            }
         }
-        Footprint* home = nullptr;
-        for (Footprint& f : polygons)
-            if (ring_strictly_inside(hole, f.outer)) home = &f;
-        if (!home) {
-            report.dropped(hole_kind, "outside or touching the outline");
-            continue;
+        if (!lost_any) continue;  // the common case: nothing to win
+        const HoleAssignment again = assign_holes(mine, {outers[p]}, true, params.min_area);
+        size_t kept_before = 0, kept_again = 0;
+        for (size_t k = 0; k < mine.size(); ++k) {
+            kept_before += assignment.fate[index[k]] == HoleFate::Kept;
+            kept_again += again.fate[k] == HoleFate::Kept;
         }
-        bool overlaps = false;
-        for (const Ring& other : home->holes)
-            overlaps |= !rings_disjoint_boundaries(hole, other) || point_in_ring(hole[0], other) ||
-                        point_in_ring(other[0], hole);
-        if (overlaps) {
-            report.dropped(hole_kind, "overlaps another hole");
-            continue;
+        if (kept_again <= kept_before) continue;
+        together[p] = true;
+        for (size_t k = 0; k < mine.size(); ++k) {
+            assignment.fate[index[k]] = again.fate[k];
+            assignment.home[index[k]] = again.fate[k] == HoleFate::Kept ? static_cast<int>(p) : -1;
         }
-        home->holes.push_back(oriented(std::move(hole), false));
+    }
+
+    std::vector<Footprint> polygons;
+    for (size_t p = 0; p < outers.size(); ++p) {
+        std::vector<Ring> rings{together[p] ? outers[p].unsimplified : outers[p].ring};
+        for (size_t i = 0; i < hole_candidates.size(); ++i)
+            if (assignment.home[i] == static_cast<int>(p))
+                rings.push_back(together[p] ? hole_candidates[i].unsimplified : hole_candidates[i].ring);
+        if (together[p]) rings = simplified_together(rings, params.simplify_angle_deg);
+        Footprint f{oriented(std::move(rings[0]), true), {}};
+        for (size_t k = 1; k < rings.size(); ++k) f.holes.push_back(oriented(std::move(rings[k]), false));
+        polygons.push_back(std::move(f));
+    }
+    for (HoleFate fate : assignment.fate) {
+        if (fate == HoleFate::BelowMinArea) report.dropped(hole_kind, "below min area");
+        if (fate == HoleFate::Outside) report.dropped(hole_kind, "outside or touching the outline");
+        if (fate == HoleFate::Overlaps) report.dropped(hole_kind, "overlaps another hole");
     }
 
     std::vector<Footprint> kept;

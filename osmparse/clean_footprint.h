@@ -39,10 +39,13 @@ inline Vec2 round_to_stored_precision(Vec2 p) { return {round_to_float(p.x), rou
 //     of each other into one edge (kept only if it leaves the ring simple);
 //  3. a ring that is still self-intersecting or self-touching is split at its crossings
 //     into simple pieces (a bow-tie becomes two triangles; a piece inside another becomes
-//     its hole); pieces that cannot be made simple are dropped;
-//  4. orient outers CCW, holes CW;
+//     its hole); pieces that cannot be made simple are dropped. The split is CGAL's
+//     arrangement, and the pieces are simplified together (CGAL) so they cannot overlap;
+//  4. orient outers CCW, holes CW (CGAL's exact orientation);
 //  5. drop holes that are not simple, too small, outside or touching the outline, or
-//     overlapping another hole; drop polygons whose area is below min_area.
+//     overlapping another hole; drop polygons whose area is below min_area. A polygon that
+//     loses a hole only because step 2 merged its rings one by one assigns its holes again
+//     on the unmerged rings and merges them all together with CGAL, which keeps them apart.
 // Returns zero or more polygons (usually one). Every drop is counted in `report` under
 // `kind` (outer rings) or "building holes".
 std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring>& holes,

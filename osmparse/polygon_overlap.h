@@ -2,6 +2,10 @@
 // buildings near a polygon fast. Exact up to floating point: convex pieces clip the
 // footprint directly (Sutherland-Hodgman gives the right area even for a non-convex
 // footprint); other simple polygons are ear-clipped into triangles first.
+// Hand-written for speed: CGAL's Boolean intersection on exact constructions
+// (overlap_area_exact in cgal_footprint.h) took 100-180x as long (3.2-4.5 s against 18-47 ms) for
+// one road-sized quad across each Kaiserslautern footprint; the areas differed by at most 1e-9 m²
+// (tests/bench/footprint_bench); the road stages call this hundreds of thousands of times.
 #pragma once
 
 #include <algorithm>
