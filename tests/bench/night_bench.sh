@@ -17,7 +17,8 @@
 #                                    VIEWS="monaco_street monaco_elevated" for some views only;
 #                                    RENDER=path/to/render to measure another build; OUT=dir
 #                                    for the images, default build/bench/night; references
-#                                    are kept there and reused while they exist)
+#                                    are kept there and reused while they exist; MEMORY=0 skips
+#                                    the memory table)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 size=${SIZE:-640x360}
@@ -136,6 +137,7 @@ for v in "${order[@]}"; do
         'BEGIN { printf "| %s | %.2f | %.2f | %.2f | %.2f | %.2fx |\n", v, d, n, dc, nc, nc / dc }'
 done
 
+[ "${MEMORY:-1}" = 0 ] && exit 0
 printf '\nProcedural geometry memory (Embree + our buffers, plus the light BVH and lists at night)\n\n'
 echo "| city | day MB | night MB | night / day |"
 echo "|---|---|---|---|"
