@@ -61,7 +61,7 @@ public:
     // Whether the pane at `hit` belongs to a lit window (tests).
     bool lit_window_at(const Hit& hit) const;
     // Lit windows decided by the rules, counted over the scene: (windows, lit) per cell kind.
-    static constexpr int kFloorsPerStrip = 2, kSlotsPerStrip = 4;
+    static constexpr int kFloorsPerStrip = 4, kSlotsPerStrip = 4;
 
 private:
     struct Lamp {
