@@ -40,6 +40,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
     const SceneLights* lights = context.lights && !context.lights->empty() ? context.lights : nullptr;
     const bool sample_lights = lights && settings.sample_lights;
     Vec3 previous_position, previous_normal;
+    bool previous_inside_room = false;
     const FogSettings& fog = settings.fog;
 
     // Light reaching a point x in the fog from the sun (or moon) and one lamp or window, scattered
@@ -90,6 +91,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
             previous_pdf = hg_phase(fog.g, ray.direction, wi);
             previous_position = x;
             previous_normal = {0, 0, 0};
+            previous_inside_room = false;
             if (bounce >= settings.rr_depth) {
                 const double survival = russian_roulette_survival(throughput, settings.rr_prob);
                 if (rng.next_double() >= survival) break;
@@ -122,7 +124,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         if (front && lights) {
             const Color emitted = lights->emitted(hit);
             if (emitted.x + emitted.y + emitted.z > 0) {
-                const double w = previous_delta || !sample_lights
+                const double w = previous_delta || !sample_lights || previous_inside_room
                                      ? 1
                                      : power_heuristic(previous_pdf, lights->pdf(previous_position, previous_normal, hit));
                 radiance = radiance + throughput * emitted * w;
@@ -135,12 +137,18 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         const Vec3 ns = front ? hit.shading_normal : -hit.shading_normal;  // bumped patterns; else n
         const bool delta = is_delta(material);
 
+        // Rooms behind windows are closed boxes whose only opening holds a pane, and panes stop
+        // shadow rays: no lamp or window outside can light a room directly, so its points skip
+        // the descent and the shadow ray (their sample would always be zero). Should a path from a
+        // room still reach an emitter without passing a pane, it keeps its full weight, as
+        // next-event estimation did not look for it: unbiased either way.
+        const bool inside_room = hit.material == kRoomInterior;
         if (lights) {
             // One lamp or window through the light sampler, MIS-weighted against BSDF sampling.
             // Four numbers drawn whatever the material, so streams stay aligned.
             const double u[4] = {rng.next_double(), rng.next_double(), rng.next_double(), rng.next_double()};
             LightSample ls;
-            if (!delta && sample_lights && lights->sample(hit.position, n, u, &ls)) {
+            if (!delta && sample_lights && !inside_room && lights->sample(hit.position, n, u, &ls)) {
                 const double cos_i = dot(ns, ls.direction);
                 const Color f = cos_i > 0 && dot(n, ls.direction) > 0 ? bsdf_eval(material, ns, wo, ls.direction)
                                                                       : Color{0, 0, 0};
@@ -193,6 +201,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         previous_pdf = sample.pdf;
         previous_position = hit.position;
         previous_normal = n;
+        previous_inside_room = inside_room;
 
         // The next ray is bounce number bounce + 1: the first rr_depth are always traced.
         if (bounce >= settings.rr_depth) {

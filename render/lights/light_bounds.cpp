@@ -8,15 +8,7 @@ namespace citygen {
 namespace {
 
 
-double safe_sqrt(double x) { return std::sqrt(std::max(0.0, x)); }
 double safe_acos(double x) { return std::acos(std::clamp(x, -1.0, 1.0)); }
-// cos(max(0, a - b)) and sin(max(0, a - b)) from the sines and cosines of a and b.
-double cos_sub_clamped(double sin_a, double cos_a, double sin_b, double cos_b) {
-    return cos_a > cos_b ? 1 : cos_a * cos_b + sin_a * sin_b;
-}
-double sin_sub_clamped(double sin_a, double cos_a, double sin_b, double cos_b) {
-    return cos_a > cos_b ? 0 : sin_a * cos_b - cos_a * sin_b;
-}
 
 // v rotated by `angle` around the unit axis k (Rodrigues).
 Vec3 rotate(Vec3 v, Vec3 k, double angle) {
@@ -40,49 +32,64 @@ void LightBounds::set_axis(Vec3 v) {
     w[2] = static_cast<float>(v.z);
 }
 
-double LightBounds::importance(Vec3 p, Vec3 n) const { return CompactLightBounds(*this).importance(p, n); }
-
 CompactLightBounds::CompactLightBounds(const LightBounds& b) {
-    const Vec3 c = b.centroid(), diagonal = b.max() - b.min();
     for (int i = 0; i < 3; ++i) {
-        center[i] = static_cast<float>(c[i]);
+        lo[i] = b.lo[i];
+        hi[i] = b.hi[i];
         w[i] = b.w[i];
     }
-    // Rounded outwards a little: the sphere must hold the box.
-    radius2 = static_cast<float>(dot(diagonal, diagonal) / 4 * (1 + 1e-5));
     phi = b.phi;
     cos_theta_o = b.two_sided ? -1 : b.cos_theta_o;  // two-sided: any direction (conservative)
     cos_theta_e = b.cos_theta_e;
 }
 
-double CompactLightBounds::importance(Vec3 p, Vec3 n) const {
-    const Vec3 to_p = p - Vec3{center[0], center[1], center[2]};  // from the cluster towards p
-    const double dist2 = dot(to_p, to_p);
-    // pbrt-v4: no blow-up near or inside the cluster (distance^2 at least half the diagonal).
-    const double d2 = std::max(dist2, std::sqrt(double(radius2)));
-    const Vec3 wi = dist2 > 0 ? to_p * (1 / std::sqrt(dist2)) : Vec3{0, 0, 1};
-    // The cone of directions from p that the bounds' sphere subtends.
-    const double cos_b = dist2 < radius2 ? -1 : safe_sqrt(1 - radius2 / dist2);
-    const double sin_b = safe_sqrt(1 - cos_b * cos_b);
-    double cos_p = 1;  // normals pointing everywhere (any cluster holding a lamp's globe): no bound
+void CompactLightBounds::importance(Vec3 p, Vec3 n, double* most, double* least) const {
+    *most = *least = 0;
+    // Float throughout: two of these per level of every descent.
+    const float px = float(p.x), py = float(p.y), pz = float(p.z);
+    const float cx = 0.5f * (lo[0] + hi[0]), cy = 0.5f * (lo[1] + hi[1]), cz = 0.5f * (lo[2] + hi[2]);
+    const float hx = 0.5f * (hi[0] - lo[0]), hy = 0.5f * (hi[1] - lo[1]), hz = 0.5f * (hi[2] - lo[2]);
+    const float tx = px - cx, ty = py - cy, tz = pz - cz;  // from the centre towards p
+    const float dist2 = tx * tx + ty * ty + tz * tz;
+    // Rounded outwards a little: the sphere must hold the box.
+    const float radius2 = (hx * hx + hy * hy + hz * hz) * (1 + 1e-5f);
+    const float dist = std::sqrt(dist2), radius = std::sqrt(radius2);
+    const float inv_dist = dist > 0 ? 1 / dist : 0;
+    const float wx = dist > 0 ? tx * inv_dist : 0, wy = dist > 0 ? ty * inv_dist : 0, wz = dist > 0 ? tz * inv_dist : 1;
+    // The cone of directions from p that the bounds' sphere subtends (all of them from inside).
+    const bool inside = dist2 <= radius2;
+    const float sin_b = inside ? 0 : radius * inv_dist;
+    const float cos_b = inside ? -1 : std::sqrt(std::max(0.f, 1 - sin_b * sin_b));
+    float cos_p = 1;  // normals pointing everywhere (any cluster holding a lamp's globe): no bound
     if (cos_theta_o > -1) {
-        const double cos_w = w[0] * wi.x + w[1] * wi.y + w[2] * wi.z;
-        const double sin_w = safe_sqrt(1 - cos_w * cos_w);
-        const double sin_theta_o = safe_sqrt(1 - double(cos_theta_o) * cos_theta_o);
-        const double cos_x = cos_sub_clamped(sin_w, cos_w, sin_theta_o, cos_theta_o);
-        const double sin_x = sin_sub_clamped(sin_w, cos_w, sin_theta_o, cos_theta_o);
-        cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-        if (cos_p <= cos_theta_e) return 0;
+        const float cos_w = w[0] * wx + w[1] * wy + w[2] * wz;
+        const float sin_w = std::sqrt(std::max(0.f, 1 - cos_w * cos_w));
+        const float sin_theta_o = std::sqrt(std::max(0.f, 1 - cos_theta_o * cos_theta_o));
+        // theta_x = max(0, theta_w - theta_o), then cos(max(0, theta_x - theta_b)).
+        const bool within_o = cos_w > cos_theta_o;
+        const float cos_x = within_o ? 1 : cos_w * cos_theta_o + sin_w * sin_theta_o;
+        const float sin_x = within_o ? 0 : sin_w * cos_theta_o - cos_w * sin_theta_o;
+        cos_p = cos_x > cos_b ? 1 : cos_x * cos_b + sin_x * sin_b;
+        if (cos_p <= cos_theta_e) return;
     }
-    double importance = phi * cos_p / d2;
+    float factor = phi * cos_p;
     if (n.x != 0 || n.y != 0 || n.z != 0) {
         // Our surfaces only reflect (glass is never sampled): a cluster wholly below the
         // horizon of n cannot light p.
-        const double cos_i = -dot(wi, n);
-        const double sin_i = safe_sqrt(1 - cos_i * cos_i);
-        importance *= std::max(0.0, cos_sub_clamped(sin_i, cos_i, sin_b, cos_b));
+        const float cos_i = -(wx * float(n.x) + wy * float(n.y) + wz * float(n.z));
+        const float sin_i = std::sqrt(std::max(0.f, 1 - cos_i * cos_i));
+        const float bound = cos_i > cos_b ? 1 : cos_i * cos_b + sin_i * sin_b;
+        if (!(bound > 0)) return;
+        factor *= bound;
     }
-    return std::max(importance, 0.0);
+    if (!(factor > 0)) return;
+    // Nearest point of the box (no nearer than kNearest) and farthest point of the sphere.
+    const float ex = std::max(std::fabs(tx) - hx, 0.f), ey = std::max(std::fabs(ty) - hy, 0.f),
+                ez = std::max(std::fabs(tz) - hz, 0.f);
+    const float near2 = std::max(ex * ex + ey * ey + ez * ez, kNearest * kNearest);
+    const float far = dist + radius;
+    *most = double(factor) / near2;
+    *least = double(factor) / std::max(far * far, near2);
 }
 
 LightBounds union_of(const LightBounds& a, const LightBounds& b) {

@@ -22,22 +22,25 @@ struct LightBounds {
     void set_box(Vec3 a, Vec3 b);
     void set_axis(Vec3 v);
 
-    // How much this cluster may light point p with surface normal n (n = 0: a point in a
-    // medium, light from all directions counts). Zero only where no light of the cluster can
-    // arrive (behind every emitter, or below the surface's horizon): sampling stays unbiased.
-    double importance(Vec3 p, Vec3 n) const;
 };
 
-// LightBounds with what importance() needs precomputed (centre, bounding-sphere radius): what the
-// light BVH keeps per node, 40 bytes. Our emitters are one-sided (panes) or spheres (globes), so
-// two-sided bounds are not kept.
+// What the light BVH keeps per node (52 bytes, floats: the descent evaluates two per level).
+// Our emitters are one-sided (panes) or spheres (globes), so two-sided bounds are not kept.
 struct CompactLightBounds {
-    float center[3], radius2;
+    float lo[3], hi[3];
     float w[3], phi, cos_theta_o, cos_theta_e;
 
     explicit CompactLightBounds(const LightBounds& b);
     CompactLightBounds() = default;
-    double importance(Vec3 p, Vec3 n) const;  // as LightBounds::importance
+
+    // How much this cluster may light point p with surface normal n (n = 0: a point in a medium,
+    // light from all directions counts), as two bounds: `most` with the cluster's nearest point
+    // (at least kNearest away), `least` with its farthest. Both are power x orientation bound x
+    // surface-cosine bound / distance^2 (Conty & Kulla 2018; pbrt-v4's LightBounds::Importance
+    // uses the centre's distance instead). Zero only where no light of the cluster can arrive
+    // (behind every emitter, or below the surface's horizon): sampling stays unbiased.
+    void importance(Vec3 p, Vec3 n, double* most, double* least) const;
+    static constexpr float kNearest = 0.1f;  // metres: closer than any shading point to a light's centre
 };
 
 // The bounds of two clusters together (cones joined as in pbrt-v4's DirectionCone Union).

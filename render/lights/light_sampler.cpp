@@ -206,16 +206,23 @@ double LightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
     return probability;
 }
 
-// The chance of descending into the first child: in proportion to the children's importance,
-// or to their power where neither has any (the bounds are loose enough that a cluster may pass
-// the test its children all fail). So every descent ends at a light and the probabilities of
-// all lights sum to one; a light that cannot reach p then contributes nothing.
+// The chance of descending into the first child: the mean of the two children's shares of the
+// `most` bounds and of the `least` bounds (CompactLightBounds::importance; Cycles' light tree
+// does the same): the nearest-point bound alone would favour any big cluster around p, the
+// farthest-point bound alone any small one. Where neither child can light p (the bounds are loose
+// enough that a cluster may pass the test its children all fail), in proportion to power. So
+// every descent ends at a light and the probabilities of all lights sum to one; a light that
+// cannot reach p then contributes nothing.
 double LightSampler::first_child_probability(Vec3 p, Vec3 n, uint32_t node) const {
     const CompactLightBounds& a = nodes_[node + 1].bounds;
     const CompactLightBounds& b = nodes_[nodes_[node].index].bounds;
-    const double i0 = a.importance(p, n), i1 = b.importance(p, n);
-    if (i0 + i1 > 0) return i0 / (i0 + i1);
-    return double(a.phi) / (double(a.phi) + double(b.phi));
+    double most_a, least_a, most_b, least_b;
+    a.importance(p, n, &most_a, &least_a);
+    b.importance(p, n, &most_b, &least_b);
+    if (!(most_a + most_b > 0)) return double(a.phi) / (double(a.phi) + double(b.phi));
+    const double by_most = most_a / (most_a + most_b);
+    const double by_least = least_a + least_b > 0 ? least_a / (least_a + least_b) : by_most;
+    return 0.5 * (by_most + by_least);
 }
 
 size_t LightSampler::bytes() const {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <tuple>
 
 #include "bsdf.h"
 #include "lamp_shape.h"
@@ -58,30 +59,34 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
         for (uint32_t w = 0, n = static_cast<uint32_t>(building_wall_count(building)); w < n; ++w) {
             WallGeometry g;
             if (!derive_wall_geometry(b, w, &g) || g.layout.plain()) continue;
-            for (int first = 0; first < g.layout.floors; first += kFloorsPerStrip) {
-                const int count = std::min(kFloorsPerStrip, g.layout.floors - first);
-                double weight = 0;
-                for (int floor = first; floor < first + count; ++floor) {
-                    for (int slot = 0; slot < g.layout.slots; ++slot) {
-                        ++windows_;
-                        const double wgt = window_weight(g, floor, slot);
-                        lit_windows_ += wgt > 0;
-                        weight += wgt;
+            const WallLayout& L = g.layout;
+            for (int first = 0; first < L.floors; first += kFloorsPerStrip) {
+                const int count = std::min(kFloorsPerStrip, L.floors - first);
+                for (int first_slot = 0; first_slot < L.slots; first_slot += kSlotsPerStrip) {
+                    const int slot_count = std::min(kSlotsPerStrip, L.slots - first_slot);
+                    double weight = 0;
+                    for (int floor = first; floor < first + count; ++floor) {
+                        for (int slot = first_slot; slot < first_slot + slot_count; ++slot) {
+                            ++windows_;
+                            const double wgt = window_weight(g, floor, slot);
+                            lit_windows_ += wgt > 0;
+                            weight += wgt;
+                        }
                     }
+                    if (!(weight > 0)) continue;
+                    strips_.push_back({b, w, static_cast<uint16_t>(first), static_cast<uint16_t>(count),
+                                       static_cast<uint16_t>(first_slot), static_cast<uint16_t>(slot_count), float(weight)});
+                    // Bounds: the strip's cells of the wall at the pane depth, facing out of the building.
+                    const double v0 = L.grid_v0 + first * L.floor_height, v1 = v0 + count * L.floor_height;
+                    const double u0 = L.grid_u0 + first_slot * L.slot_width, u1 = u0 + slot_count * L.slot_width;
+                    LightBounds lb;
+                    lb.set_box(g.frame.to_world(u0, v0, L.recess), g.frame.to_world(u1, v1, L.recess));
+                    lb.set_axis(-g.frame.w_axis);
+                    lb.cos_theta_o = 1;
+                    lb.cos_theta_e = 0;
+                    lb.phi = static_cast<float>(kPi * weight * kNitsPerRadianceUnit);  // lumens, as the lamps
+                    bounds.push_back(lb);
                 }
-                if (!(weight > 0)) continue;
-                strips_.push_back({b, w, static_cast<uint16_t>(first), static_cast<uint16_t>(count), float(weight)});
-                // Bounds: the panes' band of the wall at the pane depth, facing out of the building.
-                const WallLayout& L = g.layout;
-                const double v0 = L.grid_v0 + first * L.floor_height, v1 = v0 + count * L.floor_height;
-                const double at = L.recess;
-                LightBounds lb;
-                lb.set_box(g.frame.to_world(L.grid_u0, v0, at), g.frame.to_world(L.grid_u1(), v1, at));
-                lb.set_axis(-g.frame.w_axis);
-                lb.cos_theta_o = 1;
-                lb.cos_theta_e = 0;
-                lb.phi = static_cast<float>(kPi * weight * kNitsPerRadianceUnit);  // lumens, as the lamps
-                bounds.push_back(lb);
             }
         }
     }
@@ -165,16 +170,14 @@ bool SceneLights::lit_window_at(const Hit& hit) const {
 }
 
 int64_t SceneLights::strip_light(const Hit& hit) const {
-    const int floor = static_cast<int>((hit.cell - 1) >> 16);
-    // A building's strips are ordered by (wall, first floor): the last one starting at or below.
+    const int floor = static_cast<int>((hit.cell - 1) >> 16), slot = static_cast<int>((hit.cell - 1) & 0xffff);
+    // A building's strips are ordered by (wall, first floor, first slot) on a regular grid.
+    const auto key = std::make_tuple(hit.wall, floor / kFloorsPerStrip * kFloorsPerStrip, slot / kSlotsPerStrip * kSlotsPerStrip);
+    auto order = [](const Strip& s) { return std::make_tuple(s.wall, int(s.first_floor), int(s.first_slot)); };
     const auto begin = strips_.begin() + building_strips_[hit.object], end = strips_.begin() + building_strips_[hit.object + 1];
-    auto after = std::upper_bound(begin, end, std::make_pair(hit.wall, floor), [](std::pair<uint32_t, int> key, const Strip& s) {
-        return key.first < s.wall || (key.first == s.wall && key.second < s.first_floor);
-    });
-    if (after == begin) return -1;
-    const Strip& s = *std::prev(after);
-    if (s.wall != hit.wall || floor >= s.first_floor + s.floor_count) return -1;
-    return static_cast<int64_t>(lamps_.size() + (std::prev(after) - strips_.begin()));
+    const auto at = std::lower_bound(begin, end, key, [&](const Strip& s, const auto& k) { return order(s) < k; });
+    if (at == end || order(*at) != key) return -1;
+    return static_cast<int64_t>(lamps_.size() + (at - strips_.begin()));
 }
 
 Color SceneLights::emitted(const Hit& hit) const {
@@ -235,7 +238,7 @@ bool SceneLights::sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) co
     [&] {
         double sum = 0;
         for (int f = strip.first_floor; f < strip.first_floor + strip.floor_count; ++f) {
-            for (int s = 0; s < g.layout.slots; ++s) {
+            for (int s = strip.first_slot; s < strip.first_slot + strip.slot_count; ++s) {
                 const double w = window_weight(g, f, s);
                 if (!(w > 0)) continue;
                 floor = f, slot = s, weight = w;  // the last lit one if rounding leaves target above the sum

@@ -1,9 +1,11 @@
 // The scene's emitters for next-event estimation: street-lamp globes (spheres, lamp_shape.h)
 // and lit windows, chosen through a LightSampler (tree, power or uniform).
 //
-// Lit windows store nothing per window: a light is a strip of up to kFloorsPerStrip (8) floors of
-// one wall, carrying the summed power of its lit windows; sampling it picks one lit window from
-// the facade rules (window_lit, window_glow.h) and a point on its pane.
+// Lit windows store nothing per window: a light is a strip of one wall, up to kFloorsPerStrip
+// floors by kSlotsPerStrip slots, carrying the summed power of its lit windows; sampling it picks
+// one lit window from the facade rules (window_lit, window_glow.h) and a point on its pane.
+// Strips are small (a few metres) so that the light BVH, not the choice inside a strip, tells
+// the near windows from the far ones, and the choice inside loops over a few windows only.
 // Sun, moon and sky are not here: the integrator samples them beside these.
 #pragma once
 
@@ -59,7 +61,7 @@ public:
     // Whether the pane at `hit` belongs to a lit window (tests).
     bool lit_window_at(const Hit& hit) const;
     // Lit windows decided by the rules, counted over the scene: (windows, lit) per cell kind.
-    static constexpr int kFloorsPerStrip = 8;
+    static constexpr int kFloorsPerStrip = 4, kSlotsPerStrip = 4;
 
 private:
     struct Lamp {
@@ -68,7 +70,7 @@ private:
     };
     struct Strip {
         uint32_t building, wall;
-        uint16_t first_floor, floor_count;
+        uint16_t first_floor, floor_count, first_slot, slot_count;
         float weight;  // sum of the lit windows' weights (window_weight)
     };
     struct WallGeometry {
@@ -92,7 +94,7 @@ private:
     LightOptions options_;
     Color lamp_radiance_{0, 0, 0};
     std::vector<Lamp> lamps_;             // light i < lamps_.size(): lamp i of the scene
-    std::vector<Strip> strips_;           // light lamps_.size() + j: strip j, by (building, wall, floor)
+    std::vector<Strip> strips_;           // light lamps_.size() + j: strip j, by (building, wall, floor, slot)
     std::vector<uint32_t> building_strips_;  // strips of building b: [building_strips_[b], building_strips_[b + 1])
     uint64_t lit_windows_ = 0, windows_ = 0;
     LightSampler sampler_;
