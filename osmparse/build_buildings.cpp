@@ -14,7 +14,6 @@ namespace citygen {
 
 namespace {
 
-
 Ring project_ring(const std::vector<LatLon>& points, const Projection& projection) {
     Ring ring;
     ring.reserve(points.size());

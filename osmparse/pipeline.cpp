@@ -45,7 +45,9 @@ auto timed(ParseReport& report, const char* stage, F&& f) {
 }
 
 // Runs groups of stages side by side (TBB), each reporting into a report of its own, merged into
-// `report` in the order given: the printed report is the one a run on one thread prints.
+// `report` in the order given: the printed report is the one a run on one thread prints. The
+// groups below name their parameter `report` on purpose: it hides the shared one, so no group
+// can write to it while others run.
 void side_by_side(ParseReport& report, const std::vector<std::function<void(ParseReport&)>>& groups) {
     std::vector<ParseReport> reports(groups.size());
     tbb::task_group tasks;

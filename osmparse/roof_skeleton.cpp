@@ -1,4 +1,5 @@
-// The one translation unit of osmparse that includes CGAL (its headers compile slowly).
+// CGAL's straight skeleton, in a translation unit of its own (its headers compile slowly; the
+// footprint operations are in cgal_footprint.cpp).
 #include "roof_skeleton.h"
 
 #include <algorithm>

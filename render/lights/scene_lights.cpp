@@ -51,10 +51,14 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
     }
 
     building_strips_.assign(scene.buildings.size() + 1, 0);
+    if (options.lit_windows > 0) {
+        walls_.reserve(scene.buildings.size());
+        for (const Building& building : scene.buildings) walls_.emplace_back(building);
+    }
     for (uint32_t b = 0; b < scene.buildings.size(); ++b) {
         building_strips_[b] = static_cast<uint32_t>(strips_.size());
         const Building& building = scene.buildings[b];
-        if (building.outer.size() < 3 || !(building.height > building.min_height)) continue;
+        if (!has_volume(building)) continue;
         if (!(options.lit_windows > 0)) continue;
         for (uint32_t w = 0, n = static_cast<uint32_t>(building_wall_count(building)); w < n; ++w) {
             WallGeometry g;
@@ -124,12 +128,14 @@ bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* 
 }
 
 bool SceneLights::derive_wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {
+    if (building >= walls_.size()) return false;  // no lit windows
     const Building& b = scene_->buildings[building];
-    if (wall >= building_wall_count(b)) return false;
+    const BuildingWalls& walls = walls_[building];
+    if (wall >= walls.count()) return false;
     Vec2 p, q;
-    building_wall(b, wall, &p, &q);
+    walls.wall(wall, &p, &q);
     if (p == q) return false;
-    out->layout = make_wall_layout(facades_, building_wall_input(b, wall));
+    out->layout = make_wall_layout(facades_, walls.input(wall));
     out->frame = wall_frame(p, q, scene_->ground.z + b.min_height);
     out->building_key = facade_building_key(b);
     out->wall = wall;

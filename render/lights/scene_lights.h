@@ -96,6 +96,9 @@ private:
     std::vector<Lamp> lamps_;             // light i < lamps_.size(): lamp i of the scene
     std::vector<Strip> strips_;           // light lamps_.size() + j: strip j, by (building, wall, floor, slot)
     std::vector<uint32_t> building_strips_;  // strips of building b: [building_strips_[b], building_strips_[b + 1])
+    // Walls of every building, ring orientations found once (with lit windows only): a wall's
+    // geometry is derived again whenever the per-thread cache misses.
+    std::vector<BuildingWalls> walls_;
     uint64_t lit_windows_ = 0, windows_ = 0;
     LightSampler sampler_;
 };
