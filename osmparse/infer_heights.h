@@ -24,9 +24,12 @@ struct LandUseArea {
     LandUse use = LandUse::None;
 };
 
+inline constexpr char kLandUseTooLarge[] = "land use area over 10 km across: not used";
+
 // The landuse=residential|commercial|retail|industrial areas of the map, projected (the same
-// OSM areas build_land_cover paints as built-up ground).
-std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection);
+// OSM areas build_land_cover paints as built-up ground). Areas over kMaxObjectExtent across
+// (a stray node) are left out and noted as kLandUseTooLarge under kBuildingHeights.
+std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection, ParseReport& report);
 
 // Replaces the random height of every ground-standing building with nothing tagged
 // (height_source Random, min_height 0) by the first rule that applies; height_rule records it:
