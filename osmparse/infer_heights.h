@@ -41,7 +41,9 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
 //     (at least 2), else such a footprint (at least 3), else any (at least 3: the street's scale);
 //  3. Neighbours, extract-wide: the median height of the tagged buildings of the same type and
-//     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3);
+//     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3).
+//     The scene format has one value for rules 2 and 3 (a new one would change its schema);
+//     the report's notes under kBuildingHeights tell them apart;
 //  4. TypeAndArea: a height by building type and, for `yes`/unknown types, by footprint area,
 //     where an untyped building on industrial or retail land counts as an industrial or retail
 //     hall (the land use of `land_use`, at the footprint's centroid);
