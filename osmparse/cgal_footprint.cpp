@@ -13,6 +13,7 @@
 #include <CGAL/Polyline_simplification_2/Stop_above_cost_threshold.h>
 #include <CGAL/Polyline_simplification_2/simplify.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <iterator>
@@ -226,6 +227,15 @@ std::vector<Ring> simplify_keeping_topology(const std::vector<Ring>& rings, doub
             ring.push_back({(*v)->point().x(), (*v)->point().y()});
         if (!ring.empty()) ring.pop_back();  // a closed constraint ends where it starts
         out.push_back(std::move(ring));
+    }
+    // Rings that cross (pieces rounded to float may, slightly) get their crossing points
+    // inserted by the triangulation: then nothing is simplified, as no point may move or appear.
+    for (size_t i = 0; i < rings.size(); ++i) {
+        std::vector<std::pair<double, double>> given;
+        for (Vec2 p : rings[i]) given.push_back({p.x, p.y});
+        std::sort(given.begin(), given.end());
+        for (Vec2 p : out[i])
+            if (!std::binary_search(given.begin(), given.end(), std::make_pair(p.x, p.y))) return rings;
     }
     return out;
 }

@@ -25,7 +25,8 @@ std::vector<Ring> split_at_crossings_exact(const Ring& ring);
 // one polygon) with CGAL's Polyline_simplification_2 on a constrained triangulation: vertices
 // are only removed, never moved, and a removal that would make a ring cross itself or another
 // ring is refused. A vertex goes when every original edge the new edge replaces points within
-// max_angle_deg of it. Each ring keeps its sharpest corner. Returns the rings in input order.
+// max_angle_deg of it. Each ring keeps its sharpest corner. Returns the rings in input order;
+// the input rings unchanged if they cross (the triangulation would add their crossing points).
 std::vector<Ring> simplify_keeping_topology(const std::vector<Ring>& rings, double max_angle_deg);
 
 // Area of a simple polygon `piece` inside (outer minus holes), by CGAL's Boolean set

@@ -83,6 +83,19 @@ std::vector<Ring> simplified_together(const std::vector<Ring>& rings, double sim
     return out;
 }
 
+// rings[0] is an outline, the others its holes: each hole strictly inside it and apart from
+// the other holes.
+bool holes_inside_and_apart(const std::vector<Ring>& rings) {
+    for (size_t i = 1; i < rings.size(); ++i) {
+        if (!ring_strictly_inside(rings[i], rings[0])) return false;
+        for (size_t j = 1; j < i; ++j)
+            if (!rings_disjoint_boundaries(rings[i], rings[j]) || point_in_ring(rings[i][0], rings[j]) ||
+                point_in_ring(rings[j][0], rings[i]))
+                return false;
+    }
+    return true;
+}
+
 // Steps 1-3 for one ring: simple pieces, orientation not yet fixed.
 std::vector<Piece> clean_ring(const Ring& input, double simplify_angle_deg, RingOutcome& outcome) {
     const Ring ring = remove_repeated_and_collinear(input);
@@ -332,7 +345,12 @@ std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring
         for (size_t i = 0; i < hole_candidates.size(); ++i)
             if (assignment.home[i] == static_cast<int>(p))
                 rings.push_back(together[p] ? hole_candidates[i].unsimplified : hole_candidates[i].ring);
-        if (together[p]) rings = simplified_together(rings, params.simplify_angle_deg);
+        if (together[p]) {
+            // CGAL keeps the rings apart, but the 1 cm clean-up after it may drop an outline
+            // vertex a hole was kept clear of: then the unsimplified rings.
+            std::vector<Ring> simplified = simplified_together(rings, params.simplify_angle_deg);
+            if (holes_inside_and_apart(simplified)) rings = std::move(simplified);
+        }
         Footprint f{oriented(std::move(rings[0]), true), {}};
         for (size_t k = 1; k < rings.size(); ++k) f.holes.push_back(oriented(std::move(rings[k]), false));
         polygons.push_back(std::move(f));

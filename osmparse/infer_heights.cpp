@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "rng.h"
+#include "scene_limits.h"
 
 namespace citygen {
 
@@ -175,7 +176,7 @@ private:
 
 }  // namespace
 
-std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection) {
+std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection, ParseReport& report) {
     std::vector<LandUseArea> out;
     for (const OsmArea& area : osm.land_cover_areas) {
         const char* landuse = area.tags.get("landuse");
@@ -197,7 +198,16 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
             a.outer = project(polygon.outer);
             for (const auto& inner : polygon.inners) a.holes.push_back(project(inner));
             a.use = use;
-            if (a.outer.size() >= 3) out.push_back(std::move(a));
+            if (a.outer.size() < 3) continue;
+            // The lookup grid holds every cell of an area's box: one stray node must not make
+            // that millions of cells. No real land use area is this large.
+            Box2 box;
+            for (Vec2 p : a.outer) box.extend(p);
+            if (std::max(box.max.x - box.min.x, box.max.y - box.min.y) > kMaxObjectExtent) {
+                report.note(kBuildingHeights, kLandUseTooLarge);
+                continue;
+            }
+            out.push_back(std::move(a));
         }
     }
     return out;

@@ -24,9 +24,12 @@ struct LandUseArea {
     LandUse use = LandUse::None;
 };
 
+inline constexpr char kLandUseTooLarge[] = "land use area over 10 km across: not used";
+
 // The landuse=residential|commercial|retail|industrial areas of the map, projected (the same
-// OSM areas build_land_cover paints as built-up ground).
-std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection);
+// OSM areas build_land_cover paints as built-up ground). Areas over kMaxObjectExtent across
+// (a stray node) are left out and noted as kLandUseTooLarge under kBuildingHeights.
+std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection, ParseReport& report);
 
 // Replaces the random height of every ground-standing building with nothing tagged
 // (height_source Random, min_height 0) by the first rule that applies; height_rule records it:
@@ -38,7 +41,9 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
 //     (at least 2), else such a footprint (at least 3), else any (at least 3: the street's scale);
 //  3. Neighbours, extract-wide: the median height of the tagged buildings of the same type and
-//     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3);
+//     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3).
+//     The scene format has one value for rules 2 and 3 (a new one would change its schema);
+//     the report's notes under kBuildingHeights tell them apart;
 //  4. TypeAndArea: a height by building type and, for `yes`/unknown types, by footprint area,
 //     where an untyped building on industrial or retail land counts as an industrial or retail
 //     hall (the land use of `land_use`, at the footprint's centroid);

@@ -115,15 +115,8 @@ private:
 
     // The earliest event over the whole wavefront; false when two come (nearly) together.
     bool next_event() {
-        Event best, second;
-        auto offer = [&](const Event& e) {
-            if (best.kind == Kind::None || e.t < best.t) {
-                second = best;
-                best = e;
-            } else if (second.kind == Kind::None || e.t < second.t) {
-                second = e;
-            }
-        };
+        std::vector<Event> events;
+        auto offer = [&](const Event& e) { events.push_back(e); };
         for (int i = 0; i < static_cast<int>(vertices_.size()); ++i) {
             const Vertex& u = vertices_[i];
             if (!u.alive) continue;
@@ -171,13 +164,20 @@ private:
                 offer(ev);
             }
         }
-        if (best.kind == Kind::None) return false;
+        if (events.empty()) return false;
+        size_t first = 0;  // the earliest; the first found of equal times
+        for (size_t k = 1; k < events.size(); ++k)
+            if (events[k].t < events[first].t) first = k;
+        const Event best = events[first];
         if (!(best.t > now_ - kTimeTie) || !std::isfinite(best.t)) return false;
-        // Simultaneous events far apart are independent (all events are found again after
-        // each); at one place their order would decide the skeleton's shape.
-        if (second.kind != Kind::None && second.t - best.t < kTimeTie && length(second.p - best.p) < kApart * scale_)
-            return false;
         if (best.vertex_event) return false;
+        // Simultaneous events far apart are independent (all events are found again after
+        // each); at one place their order would decide the skeleton's shape. Every event within
+        // the tie counts, not only the second earliest: a far one may come between two at one place.
+        for (size_t k = 0; k < events.size(); ++k) {
+            if (k == first || !(events[k].t < best.t + kTimeTie)) continue;
+            if (events[k].vertex_event || length(events[k].p - best.p) < kApart * scale_) return false;
+        }
         now_ = std::max(now_, best.t);
         return best.kind == Kind::Collapse ? collapse(best) : split(best);
     }
@@ -242,8 +242,9 @@ private:
 
 }  // namespace
 
-bool wavefront_skeleton_faces(const Ring& outer, std::vector<SkeletonFace>* faces) {
-    faces->clear();
+bool wavefront_skeleton_faces(const Ring& outer, std::vector<SkeletonFace>* faces_out) {
+    faces_out->clear();
+    std::vector<SkeletonFace> faces;  // moved to faces_out only on success, as promised
     const size_t n = outer.size();
     if (n < 4 || n > kMaxPoints || !(signed_area(outer) > 0)) return false;
     // Relative to the first point, as CGAL is given it (roof_skeleton.cpp): the same digits.
@@ -286,14 +287,12 @@ bool wavefront_skeleton_faces(const Ring& outer, std::vector<SkeletonFace>* face
         const double a = signed_area(flat);
         if (!(a > 0)) return false;
         area += a;
-        faces->push_back(std::move(face));
+        faces.push_back(std::move(face));
     }
-    if (std::fabs(area - signed_area(ring)) > 1e-7 * std::fabs(signed_area(ring))) {
-        faces->clear();
-        return false;
-    }
+    if (std::fabs(area - signed_area(ring)) > 1e-7 * std::fabs(signed_area(ring))) return false;
     // CGAL lists the last edge's face first.
-    std::rotate(faces->begin(), faces->end() - 1, faces->end());
+    std::rotate(faces.begin(), faces.end() - 1, faces.end());
+    *faces_out = std::move(faces);
     return true;
 }
 

@@ -145,3 +145,14 @@ TEST(CgalFootprint, ExactOverlapAgreesWithTheHandWrittenOne) {
     EXPECT_NEAR(overlap_area_exact(l_shape, b.outer, b.holes), 25 - 1, 1e-9);
     EXPECT_NEAR(overlap_area_exact(rectangle(20, 20, 30, 30), b.outer, b.holes), 0, 0);
 }
+
+// Rings that cross slightly (pieces rounded to float) made the triangulation insert their
+// crossing points, so the "simplified" rings held points that were in no input ring.
+TEST(CgalFootprint, SimplifyKeepingTopologyAddsNoPointsWhereRingsCross) {
+    const Ring square{{0, 0}, {5, 0.01}, {10, 0}, {10, 10}, {0, 10}};
+    const Ring crossing{{9.999, 4}, {12, 4}, {12, 6}, {9.999, 6}};  // 1 mm over the square's right side
+    const std::vector<Ring> out = simplify_keeping_topology({square, crossing}, 5);
+    ASSERT_EQ(out.size(), 2u);
+    EXPECT_EQ(out[0], square);
+    EXPECT_EQ(out[1], crossing);
+}

@@ -229,3 +229,24 @@ TEST(CleanFootprint, RandomTanglesAlwaysGiveValidPolygons) {
     EXPECT_GT(kept_polygons, 1000u);
     EXPECT_GT(repaired, 500u);
 }
+
+// CGAL's simplification keeps a hole apart from its outline, but the 1 cm clean-up after it
+// can then drop an outline vertex the hole was kept clear of: the rings must be checked
+// together again (here CGAL drops c, then b is within 1 cm of a-d, and the hole's tip, 5 mm
+// inside b, would end up outside). The unsimplified rings are kept instead.
+TEST(CleanFootprint, CleanUpAfterSimplifyingTogetherKeepsHolesInside) {
+    ParseReport report;
+    const Vec2 b{10, -0.009}, c{10.5, 0.02};
+    const Ring outer{{0, 0}, b, c, {20, 0}, {20, 20}, {0, 20}};
+    const Ring hole{{10, -0.004}, {8, 3}, {10, 6}, {12, 3}};
+    const auto polygons = clean(outer, {hole}, report);
+    ASSERT_EQ(polygons.size(), 1u);
+    ASSERT_EQ(polygons[0].holes.size(), 1u);
+    const Ring& out = polygons[0].outer;
+    const Ring& in = polygons[0].holes[0];
+    for (size_t i = 0; i < out.size(); ++i)
+        for (size_t j = 0; j < in.size(); ++j)
+            EXPECT_FALSE(segments_intersect(out[i], out[(i + 1) % out.size()], in[j], in[(j + 1) % in.size()]))
+                << "outline edge " << i << " meets hole edge " << j;
+    expect_valid(polygons);
+}

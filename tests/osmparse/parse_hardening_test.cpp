@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "clean_footprint.h"
+#include "infer_heights.h"
 #include "pipeline.h"
 #include "polygon_overlap.h"
 #include "scene_io.h"
@@ -59,4 +60,37 @@ TEST(Hardening, FixturesParseToTheGoldenBytes) {
         ++compared;
     }
     EXPECT_GE(compared, 10);
+}
+
+// The land use grid held every 250 m cell of each area's box: one stray node of a landuse=
+// polygon 500 km away made millions of cells (a stall, gigabytes). Such an area is left out and
+// counted; a normal one beside it is still used.
+TEST(Hardening, LandUseAreaWithAStrayNodeIsLeftOutAndCounted) {
+    TempDir dir;
+    const std::string input = dir.file("stray.osm");
+    write_text(input, R"(<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6">
+  <node id="1" lat="50.0000" lon="8.0000"/>
+  <node id="2" lat="50.0000" lon="8.0100"/>
+  <node id="3" lat="50.0100" lon="8.0100"/>
+  <node id="4" lat="54.0000" lon="14.0000"/>
+  <node id="5" lat="50.0100" lon="8.0000"/>
+  <node id="11" lat="50.0020" lon="8.0020"/>
+  <node id="12" lat="50.0020" lon="8.0030"/>
+  <node id="13" lat="50.0030" lon="8.0030"/>
+  <node id="14" lat="50.0030" lon="8.0020"/>
+  <way id="100"><nd ref="1"/><nd ref="2"/><nd ref="4"/><nd ref="5"/><nd ref="1"/><tag k="landuse" v="residential"/></way>
+  <way id="101"><nd ref="1"/><nd ref="2"/><nd ref="3"/><nd ref="1"/><tag k="landuse" v="industrial"/></way>
+  <way id="200"><nd ref="11"/><nd ref="12"/><nd ref="13"/><nd ref="14"/><nd ref="11"/><tag k="building" v="yes"/></way>
+</osm>
+)");
+    ParseJob job;
+    job.input = input;
+    job.quiet = true;
+    ParseReport report;
+    const Scene scene = parse_osm_to_scene(job, report);
+    EXPECT_EQ(report.note_count(kBuildingHeights, kLandUseTooLarge), 1);
+    ASSERT_EQ(scene.buildings.size(), 1u);
+    EXPECT_EQ(scene.buildings[0].height_rule, HeightRule::TypeAndArea);  // an industrial hall: 8 m +-10%
+    EXPECT_NEAR(scene.buildings[0].height, 8, 0.81);
 }

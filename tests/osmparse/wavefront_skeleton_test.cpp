@@ -95,6 +95,16 @@ TEST(WavefrontSkeleton, ExactTiesGoToCgal) {
     EXPECT_TRUE(faces.empty());
 }
 
+// The header promises empty faces on false; a footprint declined while its faces were being
+// ordered (after the first faces were listed) used to leave those first faces behind.
+TEST(WavefrontSkeleton, DeclinedLateLeavesNoFaces) {
+    const Ring star{{11, 7}, {12, 7}, {13, 6}, {11, 9}, {11, 10}, {13, 11}, {11, 11}, {11, 14}, {8, 13}, {9, 11}, {7, 12}};
+    std::vector<SkeletonFace> faces;
+    EXPECT_FALSE(wavefront_skeleton_faces(star, &faces));
+    EXPECT_TRUE(faces.empty()) << faces.size() << " faces left";
+    agrees_with_cgal(star);
+}
+
 TEST(WavefrontSkeleton, SameFacesEveryRun) {
     const Ring ring = jittered(kShapes[4], 0.3, 7);
     std::vector<SkeletonFace> a, b;
