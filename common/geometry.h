@@ -86,13 +86,6 @@ inline double distance_to_boundary(Vec2 p, const Ring& ring) {
 // True when segments [a,b] and [c,d] share any point.
 bool segments_intersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d);
 
-// True when the ring has >= 3 distinct points, no two non-adjacent edges touch and no two
-// adjacent edges fold back over each other. O(n log n) (common/ring_is_simple.cpp), exact on
-// float-rounded coordinates.
-bool ring_is_simple(const Ring& ring);
-// The sweep ring_is_simple uses for all but small rings (exposed for tests).
-bool ring_is_simple_sweep(const Ring& ring);
-
 // True for a convex ring (either orientation), allowing collinear vertices.
 bool ring_is_convex(const Ring& ring);
 

@@ -1,6 +1,7 @@
 #include "clean_footprint.h"
 
 #include "cgal_footprint.h"
+#include "ring_is_simple.h"
 
 #include <algorithm>
 #include <cmath>

@@ -10,6 +10,7 @@
 #include "clean_footprint.h"
 #include "infer_heights.h"
 #include "polygon_overlap.h"
+#include "ring_is_simple.h"
 #include "rng.h"
 #include "roof_geometry.h"
 #include "roof_skeleton.h"

@@ -5,6 +5,7 @@
 
 #include "layout_state.h"
 #include "polygon_overlap.h"
+#include "ring_is_simple.h"
 
 namespace citygen {
 

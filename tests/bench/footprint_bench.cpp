@@ -17,6 +17,7 @@
 #include "polygon_overlap.h"
 #include "projection.h"
 #include "read_osm.h"
+#include "ring_is_simple.h"
 
 using namespace citygen;
 

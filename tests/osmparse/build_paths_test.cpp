@@ -7,6 +7,7 @@
 
 #include "build_paths.h"
 #include "pipeline.h"
+#include "ring_is_simple.h"
 
 using namespace citygen;
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "clean_footprint.h"
+#include "ring_is_simple.h"
 #include "rng.h"
 
 using namespace citygen;

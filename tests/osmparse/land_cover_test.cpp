@@ -11,6 +11,7 @@
 #include "build_land_cover.h"
 #include "clean_footprint.h"
 #include "pipeline.h"
+#include "ring_is_simple.h"
 #include "scene_io.h"
 
 using namespace citygen;

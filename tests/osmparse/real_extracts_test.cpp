@@ -8,6 +8,7 @@
 
 #include "pipeline.h"
 #include "polygon_overlap.h"
+#include "ring_is_simple.h"
 #include "scene_io.h"
 
 using namespace citygen;

@@ -8,6 +8,7 @@
 
 #include "build_road_polygons.h"
 #include "polygon_overlap.h"
+#include "ring_is_simple.h"
 #include "road_geometry.h"
 #include "road_layout.h"
 

@@ -8,6 +8,7 @@
 
 #include "narrow_roads.h"
 #include "polygon_overlap.h"
+#include "ring_is_simple.h"
 #include "road_geometry.h"
 #include "scene.h"
 

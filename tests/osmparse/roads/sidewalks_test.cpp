@@ -1,6 +1,7 @@
 // Sidewalks (osmparse/roads/build_sidewalks.cpp) reuse the carriageway's layout: the
 // outline is shaped on the same nodes and joins, and the pieces fill the band between.
 #include "build_sidewalks.h"
+#include "ring_is_simple.h"
 #include "road_cases.h"
 
 namespace citygen {

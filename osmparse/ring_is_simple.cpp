@@ -1,9 +1,9 @@
 // ring_is_simple: a pairwise test for small rings, CGAL's sweep (is_simple_2, O(n log n)) for
 // the rest; a pairwise test took 48 s on a 100k-point outline. Both give the same answer
-// (tests/common/scene_hardening_test.cpp compares them). The pairwise test stays for small rings
-// for speed: the sweep for every ring took 1.7-2.6x as long on Kaiserslautern's footprints
-// (tests/bench/footprint_bench). The one translation unit of common/ that includes CGAL.
-#include "geometry.h"
+// (tests/osmparse/ring_is_simple_test.cpp compares them). The pairwise test stays for small
+// rings for speed: the sweep for every ring took 1.7-2.6x as long on Kaiserslautern's
+// footprints (tests/bench/footprint_bench).
+#include "ring_is_simple.h"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_2_algorithms.h>
