@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@ namespace citygen::test {
 
 inline std::string source_path(const std::string& relative) { return std::string(CITYGEN_SOURCE_DIR) + "/" + relative; }
 inline std::string osmparse_binary() { return std::string(CITYGEN_BIN_DIR) + "/osmparse"; }
+inline std::string render_binary() { return std::string(CITYGEN_BIN_DIR) + "/render"; }
 
 inline std::string read_text(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -57,5 +59,10 @@ inline CommandResult run_command(const std::string& command) {
 }
 
 inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+// Runs the renderer with `args` (already quoted where needed).
+inline CommandResult render(const std::string& args) { return run_command(quoted(render_binary()) + " " + args); }
+
+inline int count_lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 }  // namespace citygen::test

@@ -15,7 +15,6 @@ using namespace citygen::test;
 
 namespace {
 
-std::string render_binary() { return std::string(CITYGEN_BIN_DIR) + "/render"; }
 
 long info_value(const std::string& text, const std::string& key) {
     const size_t at = ("\n" + text).find("\n" + key + ": ");

@@ -20,7 +20,6 @@ using namespace citygen::test;
 
 namespace {
 
-std::string render_binary() { return std::string(CITYGEN_BIN_DIR) + "/render"; }
 
 // Renders `scene` with the given geometry mode flags to an EXR with AOVs.
 Exr render(const TempDir& dir, const std::string& scene, const std::string& name, const std::string& mode_flags,

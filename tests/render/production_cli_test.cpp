@@ -14,8 +14,6 @@ using namespace citygen::test;
 
 namespace {
 
-std::string render_binary() { return std::string(CITYGEN_BIN_DIR) + "/render"; }
-CommandResult render(const std::string& args) { return run_command(quoted(render_binary()) + " " + args); }
 
 struct Image {
     int width = 0, height = 0, channels = 0;
@@ -37,7 +35,6 @@ Image read_image(const std::string& path) {
     return image;
 }
 
-int count_lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 class ProductionCli : public ::testing::Test {
 protected:

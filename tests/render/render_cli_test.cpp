@@ -15,9 +15,6 @@ using namespace citygen::test;
 
 namespace {
 
-std::string render_binary() { return std::string(CITYGEN_BIN_DIR) + "/render"; }
-
-CommandResult render(const std::string& args) { return run_command(quoted(render_binary()) + " " + args); }
 
 // The tiny roundabout fixture parsed once for all tests of this file.
 class RenderCli : public ::testing::Test {
@@ -36,7 +33,6 @@ protected:
 };
 TempDir* RenderCli::dir_ = nullptr;
 
-int count_lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 }  // namespace
 
