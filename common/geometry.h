@@ -44,6 +44,17 @@ inline Vec3 cross(Vec3 a, Vec3 b) {
 inline double length(Vec3 a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalize(Vec3 a) { double l = length(a); return l > 0 ? a * (1.0 / l) : a; }
 
+// Newell's normal of a polygon in 3D, not normalised (zero when it has no area): robust for any
+// planar polygon, and it points to the side from which the points run counter-clockwise.
+inline Vec3 newell_normal(const std::vector<Vec3>& points) {
+    Vec3 n{0, 0, 0};
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Vec3 a = points[i] - points[0], b = points[(i + 1) % points.size()] - points[0];
+        n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+    }
+    return n;
+}
+
 // A ring is a closed polygon boundary stored without repeating the first point.
 using Ring = std::vector<Vec2>;
 

@@ -199,11 +199,6 @@ std::vector<RoofFace> revolution(const Ring& outer, double eaves_z, double heigh
     return faces;
 }
 
-// Gables on a skeleton roof (what Streets GL does): each end face that is a triangle (a footprint
-// edge a-b rising to one skeleton node P shared with only the two neighbouring faces) is folded
-// up into a vertical gable: P slides along the ridge the two neighbours' planes meet in, until
-// it stands over a-b. The neighbours stay planar (P stays on both planes) and now cover the
-// triangle; gable_walls() later builds the wall under the new roof edge. Returns the count.
 // The straight skeleton's faces. On a convex footprint without holes the skeleton roof is the
 // lower envelope of the planes rising from each edge at one slope, which the half-plane clipper
 // builds several times faster than CGAL (whose exact predicates dominate the parse otherwise).
@@ -240,6 +235,11 @@ bool skeleton_faces(const Ring& outer, const std::vector<Ring>& holes, std::vect
 // Skeleton nodes shared by faces: CGAL gives them bit-identical, the convex envelope nearly.
 bool same_point(Vec2 p, Vec2 q) { return std::fabs(p.x - q.x) < 1e-6 && std::fabs(p.y - q.y) < 1e-6; }
 
+// Gables on a skeleton roof (what Streets GL does): each end face that is a triangle (a footprint
+// edge a-b rising to one skeleton node P shared with only the two neighbouring faces) is folded
+// up into a vertical gable: P slides along the ridge the two neighbours' planes meet in, until
+// it stands over a-b. The neighbours stay planar (P stays on both planes) and now cover the
+// triangle; gable_walls() later builds the wall under the new roof edge. Returns the count.
 int fold_gables(std::vector<SkeletonFace>& skeleton) {
     auto contour_edge = [](const SkeletonFace& f, Vec2* u, Vec2* v) {
         for (size_t i = 0, n = f.points.size(); i < n; ++i)
@@ -345,13 +345,8 @@ bool split_off(const Ring& ring, Vec2 normal, double offset, std::vector<Ring>* 
 bool face_is_planar(const RoofFace& face, double tolerance) {
     const std::vector<Vec3>& p = face.points;
     if (p.size() < 3) return false;
-    Vec3 n{0, 0, 0};
-    for (size_t i = 0; i < p.size(); ++i) {
-        const Vec3 a = p[i] - p[0], b = p[(i + 1) % p.size()] - p[0];
-        n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
-    }
+    const Vec3 n = normalize(newell_normal(p));
     if (!(length(n) > 0)) return false;
-    n = normalize(n);
     for (Vec3 q : p)
         if (!(std::fabs(dot(n, q - p[0])) <= tolerance)) return false;
     return true;

@@ -6,12 +6,7 @@ namespace citygen {
 
 bool face_plane(const std::vector<Vec3>& points, FacePlane* plane) {
     if (points.size() < 3) return false;
-    // Newell's normal: robust for any planar polygon, its sign gives the front (CCW) side.
-    Vec3 n{0, 0, 0};
-    for (size_t i = 0; i < points.size(); ++i) {
-        const Vec3 a = points[i] - points[0], b = points[(i + 1) % points.size()] - points[0];
-        n = n + Vec3{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
-    }
+    const Vec3 n = newell_normal(points);
     if (!(length(n) > 0)) return false;
     plane->normal = normalize(n);
     const Vec3 m{std::fabs(plane->normal.x), std::fabs(plane->normal.y), std::fabs(plane->normal.z)};

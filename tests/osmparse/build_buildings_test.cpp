@@ -5,18 +5,16 @@
 
 #include "pipeline.h"
 #include "test_support.h"
+#include "parse_quietly.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 using citygen::test::source_path;
 
 namespace {
 
 Scene parse_fixture(const std::string& name, ParseReport& report, ParseParams params = ParseParams{}) {
-    ParseJob job;
-    job.input = source_path("tests/data/" + name + ".osm");
-    job.params = params;
-    job.quiet = true;
-    return parse_osm_to_scene(job, report);
+    return parse_quietly(source_path("tests/data/" + name + ".osm"), report, params);
 }
 
 std::vector<const Building*> find(const Scene& scene, OsmType type, int64_t id) {

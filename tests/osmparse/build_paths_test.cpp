@@ -6,19 +6,14 @@
 #include <filesystem>
 
 #include "build_paths.h"
+#include "parse_quietly.h"
 #include "pipeline.h"
 #include "ring_is_simple.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 
 namespace {
-
-Scene parse(const std::string& path, ParseReport& report) {
-    ParseJob job;
-    job.input = path;
-    job.quiet = true;
-    return parse_osm_to_scene(job, report);
-}
 
 OsmTags tags(std::vector<std::pair<std::string, std::string>> entries) {
     OsmTags t;
@@ -57,7 +52,7 @@ TEST(PathTags, ClassesAndWidths) {
 
 TEST(Paths, FootwayCrossingAStreetStepsAndARailwayButNoTunnel) {
     ParseReport report;
-    const Scene s = parse(std::string(CITYGEN_SOURCE_DIR) + "/tests/data/map_paths.osm", report);
+    const Scene s = parse_quietly(std::string(CITYGEN_SOURCE_DIR) + "/tests/data/map_paths.osm", report);
     size_t footways = 0, steps = 0, rails = 0;
     for (const PathEdge& p : s.paths) {
         footways += p.path_class == PathClass::Footway;
@@ -81,7 +76,7 @@ TEST(Paths, MonacoGivesValidStripsAndJoints) {
         const std::string path = std::string(CITYGEN_SHARED_DATA_DIR) + "/" + name;
         if (!std::filesystem::exists(path)) continue;
         ParseReport report;
-        const Scene s = parse(path, report);
+        const Scene s = parse_quietly(path, report);
         EXPECT_GT(s.paths.size(), 1000u) << name;
         expect_valid_strips(s);
     }

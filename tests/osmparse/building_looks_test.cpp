@@ -9,8 +9,10 @@
 #include "parse_colour.h"
 #include "pipeline.h"
 #include "test_support.h"
+#include "parse_quietly.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 using citygen::test::source_path;
 
 TEST(ParseColour, NamesAndHexAndGarbage) {
@@ -31,11 +33,8 @@ TEST(ParseColour, NamesAndHexAndGarbage) {
 }
 
 TEST(BuildingColours, TaggedDefaultAndGarbageCounted) {
-    ParseJob job;
-    job.input = source_path("tests/data/roofs.osm");
-    job.quiet = true;
     ParseReport report;
-    const Scene scene = parse_osm_to_scene(job, report);
+    const Scene scene = parse_quietly(source_path("tests/data/roofs.osm"), report);
     EXPECT_EQ(report.note_count("colours and materials", "bad building:colour: default"), 1);
     EXPECT_EQ(report.note_count("colours and materials", "bad roof:colour: default"), 1);
     bool tagged_seen = false;

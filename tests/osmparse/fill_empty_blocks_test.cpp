@@ -8,18 +8,18 @@
 #include "polygon_overlap.h"
 #include "scene_io.h"
 #include "test_support.h"
+#include "parse_quietly.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 using citygen::test::source_path;
 
 namespace {
 
 Scene parse(bool fill, ParseReport& report) {
-    ParseJob job;
-    job.input = source_path("tests/data/empty_block.osm");
-    job.quiet = true;
-    job.params.blocks.enabled = fill;
-    return parse_osm_to_scene(job, report);
+    ParseParams params;
+    params.blocks.enabled = fill;
+    return parse_quietly(source_path("tests/data/empty_block.osm"), report, params);
 }
 
 double overlap(const Ring& a, const Ring& b) {

@@ -10,23 +10,18 @@
 #include "assemble_sea.h"
 #include "build_land_cover.h"
 #include "clean_footprint.h"
+#include "parse_quietly.h"
 #include "pipeline.h"
 #include "ring_is_simple.h"
 #include "scene_io.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 
 namespace {
 
-Scene parse(const std::string& path, ParseReport& report) {
-    ParseJob job;
-    job.input = path;
-    job.quiet = true;
-    return parse_osm_to_scene(job, report);
-}
-
 Scene fixture(const std::string& name, ParseReport& report) {
-    return parse(std::string(CITYGEN_SOURCE_DIR) + "/tests/data/map_" + name + ".osm", report);
+    return parse_quietly(std::string(CITYGEN_SOURCE_DIR) + "/tests/data/map_" + name + ".osm", report);
 }
 
 // Inside the polygon (outer minus holes) of some land cover of class c.
@@ -231,7 +226,7 @@ TEST(LandCover, MonacoHasTheSeaInTheSouthEastAndValidPolygons) {
     const std::string path = std::string(CITYGEN_SHARED_DATA_DIR) + "/monaco.osm.pbf";
     if (!std::filesystem::exists(path)) GTEST_SKIP() << "no Monaco extract";
     ParseReport report;
-    const Scene s = parse(path, report);
+    const Scene s = parse_quietly(path, report);
     const Projection projection(s.header.origin_lat, s.header.origin_lon);
     ASSERT_GE(count(s, LandCoverClass::Sea), 1u);
     // Open sea off Monaco, the harbour basin; the casino, the palace and the stadium on land.

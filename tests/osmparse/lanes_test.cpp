@@ -7,8 +7,10 @@
 #include "lay_out_lanes.h"
 #include "pipeline.h"
 #include "test_scenes.h"
+#include "parse_quietly.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 using citygen::test::road_of_way;
 
 namespace {
@@ -65,11 +67,8 @@ TEST(LaneLayout, CycleBusAndParkingLanesWidenAnUntaggedRoad) {
 }
 
 TEST(Markings, FixtureHasLanesAZebraAndAStopLine) {
-    ParseJob job;
-    job.input = std::string(CITYGEN_SOURCE_DIR) + "/tests/data/map_lanes.osm";
-    job.quiet = true;
     ParseReport report;
-    const Scene s = parse_osm_to_scene(job, report);
+    const Scene s = parse_quietly(std::string(CITYGEN_SOURCE_DIR) + "/tests/data/map_lanes.osm", report);
     const RoadEdge* primary = road_of_way(s, 10);
     ASSERT_NE(primary, nullptr);
     EXPECT_DOUBLE_EQ(primary->width, 15.0);

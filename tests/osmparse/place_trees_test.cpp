@@ -10,17 +10,17 @@
 #include "place_trees.h"
 #include "polygon_overlap.h"
 #include "scene_io.h"
+#include "parse_quietly.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 
 namespace {
 
 Scene parse(const std::string& path, ParseReport& report, TreeMode mode = TreeMode::All) {
-    ParseJob job;
-    job.input = path;
-    job.quiet = true;
-    job.params.trees.mode = mode;
-    return parse_osm_to_scene(job, report);
+    ParseParams params;
+    params.trees.mode = mode;
+    return parse_quietly(path, report, params);
 }
 
 std::string fixture(const std::string& name) { return std::string(CITYGEN_SOURCE_DIR) + "/tests/data/map_" + name + ".osm"; }

@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "parse_quietly.h"
 #include "pipeline.h"
 #include "polygon_overlap.h"
 #include "ring_is_simple.h"
 #include "scene_io.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 namespace fs = std::filesystem;
 
 namespace {
@@ -40,13 +42,6 @@ std::string test_name(const testing::TestParamInfo<std::string>& info) {
     return name;
 }
 
-Scene parse(const std::string& path, ParseReport& report) {
-    ParseJob job;
-    job.input = path;
-    job.quiet = true;
-    return parse_osm_to_scene(job, report);
-}
-
 class RealExtract : public testing::TestWithParam<std::string> {
 protected:
     std::string path() const { return kShared + "/" + GetParam(); }
@@ -59,7 +54,7 @@ protected:
 
 TEST_P(RealExtract, EveryStoredRingIsSimpleOrientedAndPositive) {
     ParseReport report;
-    const Scene parsed = parse(path(), report);
+    const Scene parsed = parse_quietly(path(), report);
     // Check what is stored (float32 coordinates), not only what was computed.
     const std::vector<uint8_t> bytes = encode_scene(parsed);
     const Scene scene = decode_scene(bytes.data(), bytes.size(), GetParam());
@@ -117,8 +112,8 @@ TEST_P(RealExtract, EveryStoredRingIsSimpleOrientedAndPositive) {
 
 TEST_P(RealExtract, ParsingTwiceGivesTheSameBytes) {
     ParseReport first_report, second_report;
-    const std::vector<uint8_t> first = encode_scene(parse(path(), first_report));
-    const std::vector<uint8_t> second = encode_scene(parse(path(), second_report));
+    const std::vector<uint8_t> first = encode_scene(parse_quietly(path(), first_report));
+    const std::vector<uint8_t> second = encode_scene(parse_quietly(path(), second_report));
     EXPECT_TRUE(first == second);
 }
 
@@ -128,8 +123,8 @@ TEST(RealExtracts, XmlAndPbfOfMonacoGiveTheSameBuildings) {
     if (!fs::exists(kShared + "/monaco.osm.bz2") || !fs::exists(kShared + "/monaco.osm.pbf"))
         GTEST_SKIP() << "no Monaco extract at " << kShared;
     ParseReport xml_report, pbf_report;
-    const Scene xml = parse(kShared + "/monaco.osm.bz2", xml_report);
-    const Scene pbf = parse(kShared + "/monaco.osm.pbf", pbf_report);
+    const Scene xml = parse_quietly(kShared + "/monaco.osm.bz2", xml_report);
+    const Scene pbf = parse_quietly(kShared + "/monaco.osm.pbf", pbf_report);
     ASSERT_EQ(xml.buildings.size(), pbf.buildings.size());
     for (size_t i = 0; i < xml.buildings.size(); ++i) {
         EXPECT_EQ(xml.buildings[i].osm, pbf.buildings[i].osm);

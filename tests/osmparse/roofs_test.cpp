@@ -8,8 +8,10 @@
 #include "pipeline.h"
 #include "roof_geometry.h"
 #include "test_support.h"
+#include "parse_quietly.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 using citygen::test::source_path;
 
 namespace {
@@ -17,10 +19,7 @@ namespace {
 const Scene& roofs_scene(ParseReport* report_out = nullptr) {
     static ParseReport report;
     static const Scene scene = [] {
-        ParseJob job;
-        job.input = source_path("tests/data/roofs.osm");
-        job.quiet = true;
-        return parse_osm_to_scene(job, report);
+        return parse_quietly(source_path("tests/data/roofs.osm"), report);
     }();
     if (report_out) *report_out = report;
     return scene;

@@ -5,17 +5,16 @@
 
 #include "pipeline.h"
 #include "road_checks.h"
+#include "osmparse/parse_quietly.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 
 namespace {
 
 Scene parse_fixture(const std::string& name, bool strict_joins = true) {
-    ParseJob job;
-    job.input = std::string(CITYGEN_SOURCE_DIR) + "/tests/data/road_" + name + ".osm";
-    job.quiet = true;
     ParseReport report;
-    Scene scene = parse_osm_to_scene(job, report);
+    Scene scene = parse_quietly(std::string(CITYGEN_SOURCE_DIR) + "/tests/data/road_" + name + ".osm", report);
     check_road_network(scene, strict_joins);
     return scene;
 }

@@ -9,6 +9,7 @@
 #include "projection.h"
 #include "test_support.h"
 #include "write_geojson.h"
+#include "osmparse/parse_quietly.h"
 
 using namespace citygen;
 using namespace citygen::test;
@@ -22,11 +23,8 @@ size_t count(const std::string& text, const std::string& what) {
 }
 
 Scene parse(const std::string& fixture) {
-    ParseJob job;
-    job.input = source_path("tests/data/" + fixture);
-    job.quiet = true;
     ParseReport report;
-    return parse_osm_to_scene(job, report);
+    return parse_quietly(source_path("tests/data/" + fixture), report);
 }
 
 }  // namespace

@@ -8,8 +8,10 @@
 
 #include "pipeline.h"
 #include "road_checks.h"
+#include "osmparse/parse_quietly.h"
 
 using namespace citygen;
+using citygen::test::parse_quietly;
 
 namespace {
 
@@ -29,11 +31,8 @@ struct JoinLimits {
 void check_extract(const std::string& relative, JoinLimits limits) {
     const std::string path = std::string(CITYGEN_SHARED_DATA_DIR) + "/" + relative;
     if (!exists(path)) GTEST_SKIP() << path << " not present";
-    ParseJob job;
-    job.input = path;
-    job.quiet = true;
     ParseReport report;
-    const Scene scene = parse_osm_to_scene(job, report);
+    const Scene scene = parse_quietly(path, report);
     EXPECT_GT(scene.roads.size(), 0u);
     const RoadCheckCounts c = check_road_network(scene, false);
     std::printf("%s: %d quads (%d bad), %d joints (%d bad), %zu sidewalks (%d bad, %d touching a road), %zu lamps (%d inside), "
