@@ -112,18 +112,18 @@ double overlap_area(const Ring& piece, const Building& b) {
 BuildingIndex::BuildingIndex(const std::vector<Building>& buildings, double cell)
     : buildings_(buildings), cell_(cell) {
     boxes_.reserve(buildings.size());
-    seen_.assign(buildings.size(), 0);
+    first_cell_.reserve(buildings.size());
     for (uint32_t i = 0; i < buildings.size(); ++i) {
         const Box2 box = bounds_of(buildings[i].outer);
         boxes_.push_back(box);
+        first_cell_.push_back(box.empty() ? Cell{} : Cell{cell_of(box.min.x), cell_of(box.min.y)});
         if (box.empty()) continue;
         if (cells_spanned(box) > kMaxCellsPerObject) {
             large_.push_back(i);
             continue;
         }
-        for (int64_t cx = std::floor(box.min.x / cell_); cx <= std::floor(box.max.x / cell_); ++cx)
-            for (int64_t cy = std::floor(box.min.y / cell_); cy <= std::floor(box.max.y / cell_); ++cy)
-                grid_[key(cx, cy)].push_back(i);
+        for (int64_t cx = cell_of(box.min.x); cx <= cell_of(box.max.x); ++cx)
+            for (int64_t cy = cell_of(box.min.y); cy <= cell_of(box.max.y); ++cy) grid_[key(cx, cy)].push_back(i);
     }
 }
 

@@ -34,7 +34,8 @@ std::vector<Ring> triangulate(const Ring& polygon);
 // Area of a simple polygon `piece` that lies inside building `b` (outer minus holes).
 double overlap_area(const Ring& piece, const Building& b);
 
-// Buildings bucketed on a uniform grid by bounding box.
+// Buildings bucketed on a uniform grid by bounding box. Queries keep no state: several
+// threads may query one index at once.
 class BuildingIndex {
 public:
     explicit BuildingIndex(const std::vector<Building>& buildings, double cell = 50);
@@ -46,23 +47,26 @@ public:
     template <typename F>
     void for_each_near(const Box2& box, F&& f) const {
         if (box.empty()) return;
-        if (++epoch_ == 0) std::fill(seen_.begin(), seen_.end(), 0), epoch_ = 1;
-        auto visit = [&](uint32_t i) {
-            if (seen_[i] == epoch_ || !boxes_[i].overlaps(box)) return;
-            seen_[i] = epoch_;
-            f(i);
-        };
         if (cells_spanned(box) > std::max(kMaxCellsPerObject, static_cast<double>(boxes_.size()))) {
-            for (uint32_t i = 0; i < boxes_.size(); ++i) visit(i);
+            for (uint32_t i = 0; i < boxes_.size(); ++i)
+                if (boxes_[i].overlaps(box)) f(i);
             return;
         }
-        for (int64_t cx = cell_of(box.min.x); cx <= cell_of(box.max.x); ++cx)
-            for (int64_t cy = cell_of(box.min.y); cy <= cell_of(box.max.y); ++cy) {
+        const Cell low{cell_of(box.min.x), cell_of(box.min.y)};
+        for (int64_t cx = low.x; cx <= cell_of(box.max.x); ++cx)
+            for (int64_t cy = low.y; cy <= cell_of(box.max.y); ++cy) {
                 auto it = grid_.find(key(cx, cy));
                 if (it == grid_.end()) continue;
-                for (uint32_t i : it->second) visit(i);
+                for (uint32_t i : it->second) {
+                    // A building is listed in every cell its box spans: it is visited in the
+                    // first of them the query reaches, so once, with no marks to keep.
+                    const Cell first = first_cell_[i];
+                    if (cx != std::max(low.x, first.x) || cy != std::max(low.y, first.y)) continue;
+                    if (boxes_[i].overlaps(box)) f(i);
+                }
             }
-        for (uint32_t i : large_) visit(i);
+        for (uint32_t i : large_)
+            if (boxes_[i].overlaps(box)) f(i);
     }
     // Sum over nearby buildings of overlap_area; the largest single overlap in `max_one`.
     double overlap(const Ring& piece, double* max_one = nullptr) const;
@@ -74,19 +78,24 @@ public:
     static constexpr double kMaxCellsPerObject = 4096;
 
 private:
+    struct Cell {
+        int64_t x = 0, y = 0;
+    };
     double cells_spanned(const Box2& box) const {  // in double: a box may be absurdly large
         return (std::floor(box.max.x / cell_) - std::floor(box.min.x / cell_) + 1) *
                (std::floor(box.max.y / cell_) - std::floor(box.min.y / cell_) + 1);
     }
-    int64_t key(int64_t cx, int64_t cy) const { return cx * 73856093 ^ cy * 19349663; }
+    // One key per cell (no two cells share a list): cell coordinates stay far below 2^31.
+    static int64_t key(int64_t cx, int64_t cy) {
+        return static_cast<int64_t>((static_cast<uint64_t>(cx) << 32) ^ static_cast<uint32_t>(cy));
+    }
     int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
     const std::vector<Building>& buildings_;
     std::vector<Box2> boxes_;
+    std::vector<Cell> first_cell_;  // the lowest cell of each box, on both axes
     double cell_;
     std::unordered_map<int64_t, std::vector<uint32_t>> grid_;
     std::vector<uint32_t> large_;  // objects spanning more than kMaxCellsPerObject cells
-    mutable std::vector<uint32_t> seen_;  // for_each_near's "already visited" marks
-    mutable uint32_t epoch_ = 0;
 };
 
 }  // namespace citygen
