@@ -89,8 +89,8 @@ using Builder = flatbuffers::FlatBufferBuilder;
 
 flatbuffers::Offset<flatbuffers::Vector<const fb::Vec2*>> points(Builder& b,
                                                                  const std::vector<Vec2>& pts) {
-    std::vector<fb::Vec2> v;
-    v.reserve(pts.size());
+    thread_local std::vector<fb::Vec2> v;  // reused: a scene has hundreds of thousands of rings
+    v.clear();
     for (Vec2 p : pts) v.push_back(to_fb(p));
     return b.CreateVectorOfStructs(v);
 }
@@ -175,8 +175,9 @@ std::string str(const flatbuffers::String* s) { return s ? s->str() : std::strin
 flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<fb::RoofFace>>> encode_roof_faces(
     Builder& b, const std::vector<RoofFace>& faces) {
     std::vector<flatbuffers::Offset<fb::RoofFace>> out;
+    thread_local std::vector<fb::Vec3> pts;  // reused, as in points()
     for (const RoofFace& face : faces) {
-        std::vector<fb::Vec3> pts;
+        pts.clear();
         for (Vec3 p : face.points) pts.push_back(to_fb(p));
         out.push_back(fb::CreateRoofFace(b, b.CreateVectorOfStructs(pts), static_cast<fb::RoofFaceKind>(face.kind)));
     }
