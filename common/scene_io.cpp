@@ -89,8 +89,8 @@ using Builder = flatbuffers::FlatBufferBuilder;
 
 flatbuffers::Offset<flatbuffers::Vector<const fb::Vec2*>> points(Builder& b,
                                                                  const std::vector<Vec2>& pts) {
-    std::vector<fb::Vec2> v;
-    v.reserve(pts.size());
+    thread_local std::vector<fb::Vec2> v;  // reused: a scene has hundreds of thousands of rings
+    v.clear();
     for (Vec2 p : pts) v.push_back(to_fb(p));
     return b.CreateVectorOfStructs(v);
 }
@@ -175,8 +175,9 @@ std::string str(const flatbuffers::String* s) { return s ? s->str() : std::strin
 flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<fb::RoofFace>>> encode_roof_faces(
     Builder& b, const std::vector<RoofFace>& faces) {
     std::vector<flatbuffers::Offset<fb::RoofFace>> out;
+    thread_local std::vector<fb::Vec3> pts;  // reused, as in points()
     for (const RoofFace& face : faces) {
-        std::vector<fb::Vec3> pts;
+        pts.clear();
         for (Vec3 p : face.points) pts.push_back(to_fb(p));
         out.push_back(fb::CreateRoofFace(b, b.CreateVectorOfStructs(pts), static_cast<fb::RoofFaceKind>(face.kind)));
     }
@@ -218,10 +219,36 @@ void decode_building_look(const fb::Building* x, const Checker& check, Building&
     bld.generated = x->generated();
 }
 
-}  // namespace
+// A generous upper bound of the encoded size (points, a table per object, vectors, strings).
+// The builder reserves this once: it grows by half its size at a time, and each growth copies
+// the buffer while the old one is still held (Kaiserslautern: ~23 MB held for a 9.5 MB scene).
+// An unused tail costs nothing resident (the builder writes from the end down and never
+// touches it). A wrong bound costs only memory: the builder still grows when it must.
+size_t encoded_size_bound(const Scene& scene) {
+    constexpr size_t kTable = 160, kVector = 16, kPoint2 = 8, kPoint3 = 12;
+    auto ring_bytes = [&](const std::vector<Vec2>& r) { return kTable + kVector + kPoint2 * r.size(); };
+    size_t n = 1 << 16;
+    for (const auto& [k, v] : scene.header.options) n += kTable + 2 * kVector + k.size() + v.size();
+    for (const Building& x : scene.buildings) {
+        n += kTable + 3 * kVector + x.type.size() + ring_bytes(x.outer);
+        for (const Ring& r : x.holes) n += 4 + ring_bytes(r);
+        for (const RoofFace& f : x.roof_faces) n += 4 + kTable + kVector + kPoint3 * f.points.size();
+    }
+    for (const RoadEdge& x : scene.roads) n += 4 + kTable + 2 * kVector + kPoint2 * (x.quad.size() + x.centreline.size());
+    for (const Joint& x : scene.joints) n += 4 + kTable + 2 * kVector + kPoint2 * x.polygon.size() + 4 * x.edges.size();
+    for (const Sidewalk& x : scene.sidewalks) n += 4 + kTable + kVector + kPoint2 * x.polygon.size();
+    n += (4 + kTable) * scene.lamps.size() + 64 * scene.trees.size() + (4 + kTable) * scene.crossings.size();
+    for (const LandCover& x : scene.land_cover) {
+        n += 4 + kTable + kVector + ring_bytes(x.outer);
+        for (const Ring& r : x.holes) n += 4 + ring_bytes(r);
+    }
+    for (const PathEdge& x : scene.paths) n += 4 + kTable + 2 * kVector + kPoint2 * (x.quad.size() + x.centreline.size());
+    for (const Joint& x : scene.path_joints) n += 4 + kTable + 2 * kVector + kPoint2 * x.polygon.size() + 4 * x.edges.size();
+    return std::min<size_t>(n, FLATBUFFERS_MAX_BUFFER_SIZE / 2);
+}
 
-std::vector<uint8_t> encode_scene(const Scene& scene) {
-    Builder b(1 << 16);
+// Encodes `scene` into `b` and finishes the buffer.
+void encode_into(const Scene& scene, Builder& b) {
     b.ForceDefaults(true);  // a field equal to its default is still written: stable layout
     const SceneHeader& h = scene.header;
 
@@ -361,6 +388,13 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
                                 ground, land_cover_vector, tree_vector, path_vector, path_joint_vector,
                                 crossing_vector);
     fb::FinishSceneBuffer(b, root);
+}
+
+}  // namespace
+
+std::vector<uint8_t> encode_scene(const Scene& scene) {
+    Builder b(encoded_size_bound(scene));
+    encode_into(scene, b);
     return {b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize()};
 }
 
@@ -609,8 +643,9 @@ void write_file_atomically(const std::string& path, const void* data, size_t siz
 }
 
 void save_scene(const Scene& scene, const std::string& path) {
-    const std::vector<uint8_t> bytes = encode_scene(scene);
-    write_file_atomically(path, bytes.data(), bytes.size());
+    Builder b(encoded_size_bound(scene));
+    encode_into(scene, b);
+    write_file_atomically(path, b.GetBufferPointer(), b.GetSize());  // no copy of the bytes
 }
 
 }  // namespace citygen

@@ -8,6 +8,10 @@
 #include <chrono>
 #include <functional>
 
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
+
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
@@ -246,7 +250,14 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
 
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     tbb::task_arena arena(job.threads > 0 ? job.threads : tbb::task_arena::automatic);
-    return arena.execute([&] { return run_pipeline(job, report); });
+    Scene scene = arena.execute([&] { return run_pipeline(job, report); });
+#ifdef __GLIBC__
+    // The OSM data and the stages' working sets are freed now, in small pieces all over the heap
+    // (one arena, see main.cpp): hand their pages back before the scene is encoded, so encoding
+    // adds to what the scene holds, not to the stages' peak (Kaiserslautern: 92 MB -> 72 MB).
+    malloc_trim(0);
+#endif
+    return scene;
 }
 
 }  // namespace citygen

@@ -1,7 +1,14 @@
 #include "place_lamps.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
+#include <cstdint>
+#include <optional>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "build_buildings.h"
 #include "osm_units.h"
@@ -22,23 +29,35 @@ constexpr double kMinTaggedHeight = 2, kMaxTaggedHeight = 30;
 
 std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, const Scene& scene,
                               const LampParams& params, uint64_t seed, ParseReport& report) {
-    const BuildingIndex buildings(scene.buildings);
     std::vector<Building> surface_pieces;  // road quads and joints, indexed like footprints
-    for (const RoadEdge& r : scene.roads) surface_pieces.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
-    for (const Joint& j : scene.joints) surface_pieces.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
-    const BuildingIndex surface(surface_pieces);
     std::vector<Building> walk_pieces;
-    for (const Sidewalk& s : scene.sidewalks) walk_pieces.push_back({{}, s.polygon, {}, 0, 0, 0, {}, {}, false});
-    const BuildingIndex sidewalks(walk_pieces);
+    std::optional<BuildingIndex> buildings, surface, sidewalks;
+    tbb::parallel_invoke([&] { buildings.emplace(scene.buildings); },
+                         [&] {
+                             for (const RoadEdge& r : scene.roads)
+                                 surface_pieces.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
+                             for (const Joint& j : scene.joints)
+                                 surface_pieces.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
+                             surface.emplace(surface_pieces);
+                         },
+                         [&] {
+                             for (const Sidewalk& s : scene.sidewalks)
+                                 walk_pieces.push_back({{}, s.polygon, {}, 0, 0, 0, {}, {}, false});
+                             sidewalks.emplace(walk_pieces);
+                         });
 
+    // The first surface piece (in index order) containing p.
     auto surface_containing = [&](Vec2 p) -> const Ring* {
         Box2 box;
         box.extend(p);
-        for (uint32_t i : surface.near(box))
-            if (point_in_ring(p, surface_pieces[i].outer)) return &surface_pieces[i].outer;
-        return nullptr;
+        uint32_t first = UINT32_MAX;
+        surface->for_each_near(box, [&](uint32_t i) {
+            if (i < first && point_in_ring(p, surface_pieces[i].outer)) first = i;
+        });
+        return first == UINT32_MAX ? nullptr : &surface_pieces[first].outer;
     };
-    auto ground_z = [&](Vec2 p) { return sidewalks.contains(p) ? scene.sidewalks.front().curb_height : 0.0; };
+    auto blocked = [&](Vec2 p) { return surface_containing(p) || buildings->contains(p); };
+    auto ground_z = [&](Vec2 p) { return sidewalks->contains(p) ? scene.sidewalks.front().curb_height : 0.0; };
 
     std::vector<Lamp> lamps;
     PointGrid tagged(std::max(params.min_distance_to_tagged, 1.0));
@@ -52,7 +71,7 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
             p = push_out_of(*ring, p, kKerbOffset);
             report.note(kTaggedStreetLamps, kMovedOffRoad);
         }
-        if (surface_containing(p) || buildings.contains(p)) {
+        if (blocked(p)) {
             report.dropped(kTaggedStreetLamps, kInsideRoadOrBuilding);
             continue;
         }
@@ -69,41 +88,80 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
     }
     report.kept(kTaggedStreetLamps, static_cast<int64_t>(lamps.size()));
 
+    // Candidate spots: per road, `count` of them, each first on one side, then on the other.
+    // Whether a spot is inside a road or building, and its ground height, do not depend on the
+    // lamps placed before it: they are found for the first side of every spot in parallel. Only
+    // the distance to lamps already placed is decided in order, as one loop over the roads would.
+    struct Spot {
+        Vec2 first;
+        bool first_blocked = true;
+        double first_z = 0;
+    };
+    struct RoadSpots {
+        Vec2 from, d, n;
+        double t0 = 0, offset = 0, phase = 0;
+        uint64_t h = 0;
+        std::vector<Spot> spots;
+    };
+    auto side_point = [&](const RoadSpots& r, int k, bool left) {
+        const double t = r.t0 + (k + 1 - r.phase) * params.spacing;
+        return r.from + r.d * t + r.n * (left ? r.offset : -r.offset);
+    };
+    auto left_first = [](const RoadSpots& r, int k) { return ((k + (r.h >> 60)) & 1) == 0; };
+    std::vector<RoadSpots> roads(scene.roads.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, scene.roads.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t i = range.begin(); i != range.end(); ++i) {
+            const RoadEdge& road = scene.roads[i];
+            RoadSpots& r = roads[i];
+            r.from = road.centreline.front();
+            const Vec2 to = road.centreline.back();
+            r.d = normalize(to - r.from);
+            r.n = perp_left(r.d);
+            // Usable stretch: the quad's extent along the centreline.
+            r.t0 = std::max(dot(road.quad[0] - r.from, r.d), dot(road.quad[3] - r.from, r.d));
+            const double t1 = std::min(dot(road.quad[1] - r.from, r.d), dot(road.quad[2] - r.from, r.d));
+            if (t1 <= r.t0) continue;
+            // A random phase per edge keeps the average at one lamp per `spacing` even on
+            // edges shorter than it.
+            r.h = hash_keys(seed, static_cast<uint64_t>(road.osm.id), static_cast<uint64_t>(road.from_node),
+                            static_cast<uint64_t>(road.to_node));
+            r.phase = hash_to_unit(r.h);
+            r.offset = 0.5 * road.width + kKerbOffset;
+            const int count = static_cast<int>(std::floor((t1 - r.t0) / params.spacing + r.phase));
+            for (int k = 0; k < count; ++k) {
+                Spot s;
+                s.first = side_point(r, k, left_first(r, k));
+                s.first_blocked = blocked(s.first);
+                if (!s.first_blocked) s.first_z = ground_z(s.first);
+                r.spots.push_back(s);
+            }
+        }
+    });
+
     PointGrid generated(std::max(0.5 * params.spacing, 1.0));
     int64_t placed = 0;
-    for (const RoadEdge& road : scene.roads) {
-        const Vec2 from = road.centreline.front(), to = road.centreline.back();
-        const Vec2 d = normalize(to - from), n = perp_left(d);
-        // Usable stretch: the quad's extent along the centreline.
-        const double t0 = std::max(dot(road.quad[0] - from, d), dot(road.quad[3] - from, d));
-        const double t1 = std::min(dot(road.quad[1] - from, d), dot(road.quad[2] - from, d));
-        if (t1 <= t0) continue;
-        // A random phase per edge keeps the average at one lamp per `spacing` even on
-        // edges shorter than it.
-        const uint64_t h = hash_keys(seed, static_cast<uint64_t>(road.osm.id), static_cast<uint64_t>(road.from_node),
-                                     static_cast<uint64_t>(road.to_node));
-        const double phase = hash_to_unit(h);
-        const int count = static_cast<int>(std::floor((t1 - t0) / params.spacing + phase));
-        for (int k = 0; k < count; ++k) {
-            const double t = t0 + (k + 1 - phase) * params.spacing;
-            const bool left_first = ((k + (h >> 60)) & 1) == 0;
-            for (int attempt = 0; attempt < 2; ++attempt) {
-                const bool left = left_first != (attempt == 1);
-                const double offset = 0.5 * road.width + kKerbOffset;
-                const Vec2 p = from + d * t + n * (left ? offset : -offset);
-                if (surface_containing(p) || buildings.contains(p) ||
-                    tagged.any_within(p, params.min_distance_to_tagged) || generated.any_within(p, 0.5 * params.spacing))
-                    continue;
-                Lamp lamp;
-                lamp.osm = road.osm;
-                lamp.position = {p.x, p.y, ground_z(p)};
-                lamp.height = params.height;
-                lamp.source = LampSource::Generated;
-                lamps.push_back(lamp);
-                generated.add(p);
-                ++placed;
-                break;
+    auto too_close = [&](Vec2 p) {
+        return tagged.any_within(p, params.min_distance_to_tagged) || generated.any_within(p, 0.5 * params.spacing);
+    };
+    for (size_t i = 0; i < roads.size(); ++i) {
+        const RoadSpots& r = roads[i];
+        for (int k = 0; k < static_cast<int>(r.spots.size()); ++k) {
+            const Spot& s = r.spots[static_cast<size_t>(k)];
+            Vec2 p = s.first;
+            double z = s.first_z;
+            if (s.first_blocked || too_close(p)) {
+                p = side_point(r, k, !left_first(r, k));
+                if (blocked(p) || too_close(p)) continue;
+                z = ground_z(p);
             }
+            Lamp lamp;
+            lamp.osm = scene.roads[i].osm;
+            lamp.position = {p.x, p.y, z};
+            lamp.height = params.height;
+            lamp.source = LampSource::Generated;
+            lamps.push_back(lamp);
+            generated.add(p);
+            ++placed;
         }
     }
     report.kept(kGeneratedStreetLamps, placed);

@@ -112,18 +112,36 @@ double overlap_area(const Ring& piece, const Building& b) {
 BuildingIndex::BuildingIndex(const std::vector<Building>& buildings, double cell)
     : buildings_(buildings), cell_(cell) {
     boxes_.reserve(buildings.size());
-    seen_.assign(buildings.size(), 0);
+    first_cell_.reserve(buildings.size());
+    std::vector<std::pair<int64_t, uint32_t>> entries;  // (cell, building)
     for (uint32_t i = 0; i < buildings.size(); ++i) {
         const Box2 box = bounds_of(buildings[i].outer);
         boxes_.push_back(box);
+        first_cell_.push_back(box.empty() ? Cell{} : Cell{cell_of(box.min.x), cell_of(box.min.y)});
         if (box.empty()) continue;
         if (cells_spanned(box) > kMaxCellsPerObject) {
             large_.push_back(i);
             continue;
         }
-        for (int64_t cx = std::floor(box.min.x / cell_); cx <= std::floor(box.max.x / cell_); ++cx)
-            for (int64_t cy = std::floor(box.min.y / cell_); cy <= std::floor(box.max.y / cell_); ++cy)
-                grid_[key(cx, cy)].push_back(i);
+        for (int64_t cx = cell_of(box.min.x); cx <= cell_of(box.max.x); ++cx)
+            for (int64_t cy = cell_of(box.min.y); cy <= cell_of(box.max.y); ++cy) entries.push_back({key(cx, cy), i});
+    }
+    // By cell, each cell's buildings ascending (the order the queries visit them in).
+    std::sort(entries.begin(), entries.end());
+    members_.reserve(entries.size());
+    for (const auto& entry : entries) members_.push_back(entry.second);
+    for (size_t k = 0; k < entries.size(); ++k) cell_count_ += k == 0 || entries[k].first != entries[k - 1].first;
+    size_t size = 16;
+    shift_ = 60;
+    while (size < 2 * cell_count_) size *= 2, --shift_;
+    slots_.assign(cell_count_ ? size : 0, Slot{});
+    for (size_t k = 0; k < entries.size();) {
+        size_t end = k + 1;
+        while (end < entries.size() && entries[end].first == entries[k].first) ++end;
+        size_t s = slot_hash(entries[k].first) >> shift_;
+        while (slots_[s].range.begin != slots_[s].range.end) s = (s + 1) & (slots_.size() - 1);
+        slots_[s] = {entries[k].first, {static_cast<uint32_t>(k), static_cast<uint32_t>(end)}};
+        k = end;
     }
 }
 

@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -34,7 +33,8 @@ std::vector<Ring> triangulate(const Ring& polygon);
 // Area of a simple polygon `piece` that lies inside building `b` (outer minus holes).
 double overlap_area(const Ring& piece, const Building& b);
 
-// Buildings bucketed on a uniform grid by bounding box.
+// Buildings bucketed on a uniform grid by bounding box. Queries keep no state: several
+// threads may query one index at once.
 class BuildingIndex {
 public:
     explicit BuildingIndex(const std::vector<Building>& buildings, double cell = 50);
@@ -46,47 +46,76 @@ public:
     template <typename F>
     void for_each_near(const Box2& box, F&& f) const {
         if (box.empty()) return;
-        if (++epoch_ == 0) std::fill(seen_.begin(), seen_.end(), 0), epoch_ = 1;
-        auto visit = [&](uint32_t i) {
-            if (seen_[i] == epoch_ || !boxes_[i].overlaps(box)) return;
-            seen_[i] = epoch_;
-            f(i);
-        };
         if (cells_spanned(box) > std::max(kMaxCellsPerObject, static_cast<double>(boxes_.size()))) {
-            for (uint32_t i = 0; i < boxes_.size(); ++i) visit(i);
+            for (uint32_t i = 0; i < boxes_.size(); ++i)
+                if (boxes_[i].overlaps(box)) f(i);
             return;
         }
-        for (int64_t cx = cell_of(box.min.x); cx <= cell_of(box.max.x); ++cx)
-            for (int64_t cy = cell_of(box.min.y); cy <= cell_of(box.max.y); ++cy) {
-                auto it = grid_.find(key(cx, cy));
-                if (it == grid_.end()) continue;
-                for (uint32_t i : it->second) visit(i);
+        const Cell low{cell_of(box.min.x), cell_of(box.min.y)};
+        for (int64_t cx = low.x; cx <= cell_of(box.max.x); ++cx)
+            for (int64_t cy = low.y; cy <= cell_of(box.max.y); ++cy) {
+                const CellRange cell = cell_at(key(cx, cy));
+                for (uint32_t k = cell.begin; k != cell.end; ++k) {
+                    const uint32_t i = members_[k];
+                    // A building is listed in every cell its box spans: it is visited in the
+                    // first of them the query reaches, so once, with no marks to keep.
+                    const Cell first = first_cell_[i];
+                    if (cx != std::max(low.x, first.x) || cy != std::max(low.y, first.y)) continue;
+                    if (boxes_[i].overlaps(box)) f(i);
+                }
             }
-        for (uint32_t i : large_) visit(i);
+        for (uint32_t i : large_)
+            if (boxes_[i].overlaps(box)) f(i);
     }
     // Sum over nearby buildings of overlap_area; the largest single overlap in `max_one`.
     double overlap(const Ring& piece, double* max_one = nullptr) const;
     bool contains(Vec2 p) const;  // inside some building's footprint (not in a hole)
     const std::vector<Building>& buildings() const { return buildings_; }
-    size_t cell_count() const { return grid_.size(); }  // grid cells in use (for tests)
+    size_t cell_count() const { return cell_count_; }  // grid cells in use (for tests)
     // An object covering more cells than this is kept in one list that every query checks,
     // so no object's extent decides the index's memory or build time.
     static constexpr double kMaxCellsPerObject = 4096;
 
 private:
+    struct Cell {
+        int64_t x = 0, y = 0;
+    };
     double cells_spanned(const Box2& box) const {  // in double: a box may be absurdly large
         return (std::floor(box.max.x / cell_) - std::floor(box.min.x / cell_) + 1) *
                (std::floor(box.max.y / cell_) - std::floor(box.min.y / cell_) + 1);
     }
-    int64_t key(int64_t cx, int64_t cy) const { return cx * 73856093 ^ cy * 19349663; }
+    // One key per cell (no two cells share a list): cell coordinates stay far below 2^31.
+    static int64_t key(int64_t cx, int64_t cy) {
+        return static_cast<int64_t>((static_cast<uint64_t>(cx) << 32) ^ static_cast<uint32_t>(cy));
+    }
     int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
+    // The grid is flat (no container per cell; indexes are built a dozen times per parse):
+    // the buildings of each cell lie together in members_, ascending, and an open-addressing
+    // table finds a cell's run from its key.
+    struct CellRange {
+        uint32_t begin = 0, end = 0;
+    };
+    struct Slot {
+        int64_t key = 0;
+        CellRange range;  // empty: the slot is free
+    };
+    static uint64_t slot_hash(int64_t key) { return static_cast<uint64_t>(key) * 0x9E3779B97F4A7C15ull; }
+    CellRange cell_at(int64_t key) const {
+        if (slots_.empty()) return {};
+        for (size_t s = slot_hash(key) >> shift_;; s = (s + 1) & (slots_.size() - 1)) {
+            const Slot& slot = slots_[s];
+            if (slot.range.begin == slot.range.end || slot.key == key) return slot.key == key ? slot.range : CellRange{};
+        }
+    }
     const std::vector<Building>& buildings_;
     std::vector<Box2> boxes_;
+    std::vector<Cell> first_cell_;  // the lowest cell of each box, on both axes
     double cell_;
-    std::unordered_map<int64_t, std::vector<uint32_t>> grid_;
+    std::vector<uint32_t> members_;  // buildings by cell
+    std::vector<Slot> slots_;        // a power of two, at most half full
+    int shift_ = 64;                 // slot_hash(key) >> shift_: the first slot to probe
+    size_t cell_count_ = 0;
     std::vector<uint32_t> large_;  // objects spanning more than kMaxCellsPerObject cells
-    mutable std::vector<uint32_t> seen_;  // for_each_near's "already visited" marks
-    mutable uint32_t epoch_ = 0;
 };
 
 }  // namespace citygen

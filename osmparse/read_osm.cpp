@@ -2,8 +2,11 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <memory>
+#include <vector>
 
 #include <osmium/area/assembler.hpp>
 #include <osmium/area/multipolygon_manager.hpp>
@@ -13,6 +16,7 @@
 #include <osmium/relations/relations_manager.hpp>
 #include <osmium/tags/tags_filter.hpp>
 #include <osmium/visitor.hpp>
+#include <tbb/parallel_for.h>
 
 #include "build_land_cover.h"
 #include "error.h"
@@ -33,6 +37,80 @@ void check_input_file(const std::string& path) {
         throw Error(path + ": cannot open input (" + std::strerror(errno) + ")");
     if (S_ISDIR(st.st_mode)) throw Error(path + ": is a directory, not an OSM file");
     if (st.st_size == 0) throw Error(path + ": empty file, not OSM data");
+}
+
+// Where one area of the second pass comes from, in the order libosmium's multipolygon manager
+// makes them: a closed way (assembled later, `way`) or a relation (assembled at once into
+// `relation_areas`). Then the areas themselves: [begin, end) of `buffer`.
+struct AreaJob {
+    const osmium::Way* way = nullptr;
+    const osmium::memory::Buffer* buffer = nullptr;
+    size_t begin = 0, end = 0;
+};
+
+// The assembler the multipolygon manager runs (its template parameter). A closed way's area
+// depends on that way alone: it is only noted here, in the manager's order, and assembled by
+// assemble_way_areas in parallel; a relation's area is assembled at once, when its last member
+// arrives, as the manager would. Their areas reach the handlers in the manager's order.
+class DeferringAssembler {
+public:
+    struct config_type {
+        osmium::area::Assembler::config_type assembler;
+        std::vector<AreaJob>* jobs = nullptr;
+        osmium::memory::Buffer* relation_areas = nullptr;
+    };
+    explicit DeferringAssembler(const config_type& config) : config_(config) {}
+
+    bool operator()(const osmium::Way& way, osmium::memory::Buffer& /*manager's buffer*/) {
+        config_.jobs->push_back({&way});
+        return true;
+    }
+    bool operator()(const osmium::Relation& relation, const std::vector<const osmium::Way*>& members,
+                    osmium::memory::Buffer& /*manager's buffer*/) {
+        osmium::memory::Buffer& out = *config_.relation_areas;
+        const size_t begin = out.committed();
+        osmium::area::Assembler assembler{config_.assembler};
+        bool okay = false;
+        try {
+            okay = assembler(relation, members, out);
+        } catch (...) {
+            out.rollback();
+            throw;
+        }
+        stats_ += assembler.stats();
+        config_.jobs->push_back({nullptr, &out, begin, out.committed()});
+        return okay;
+    }
+    const osmium::area::area_stats& stats() const noexcept { return stats_; }
+
+private:
+    const config_type& config_;
+    osmium::area::area_stats stats_;
+};
+
+// The closed ways' areas, in parallel blocks of jobs, each block into a buffer of its own.
+std::vector<std::unique_ptr<osmium::memory::Buffer>> assemble_way_areas(
+    std::vector<AreaJob>& jobs, const osmium::area::Assembler::config_type& config) {
+    constexpr size_t kBlock = 256;
+    std::vector<std::unique_ptr<osmium::memory::Buffer>> buffers((jobs.size() + kBlock - 1) / kBlock);
+    tbb::parallel_for(size_t{0}, buffers.size(), [&](size_t block) {
+        buffers[block] = std::make_unique<osmium::memory::Buffer>(64 * 1024, osmium::memory::Buffer::auto_grow::yes);
+        osmium::memory::Buffer& out = *buffers[block];
+        for (size_t j = block * kBlock; j < std::min(jobs.size(), (block + 1) * kBlock); ++j) {
+            AreaJob& job = jobs[j];
+            if (!job.way) continue;
+            job.buffer = &out;
+            job.begin = out.committed();
+            try {
+                osmium::area::Assembler assembler{config};
+                assembler(*job.way, out);
+            } catch (const osmium::invalid_location&) {  // skipped, as the manager does
+                out.rollback();
+            }
+            job.end = out.committed();
+        }
+    });
+    return buffers;
 }
 
 // The header's box (<bounds> or the PBF header box), when the file gives one.
@@ -60,8 +138,10 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
         // Land cover goes through the same assembler (a superset of the keys that
         // land_cover_class reads; LandCoverHandler sorts the areas out).
         for (const char* key : land_cover_keys()) area_filter.add_rule(true, osmium::TagMatcher{key});
-        osmium::area::Assembler::config_type assembler_config;
-        osmium::area::MultipolygonManager<osmium::area::Assembler> multipolygons{assembler_config, area_filter};
+        std::vector<AreaJob> area_jobs;
+        osmium::memory::Buffer relation_areas{64 * 1024, osmium::memory::Buffer::auto_grow::yes};
+        const DeferringAssembler::config_type assembler_config{{}, &area_jobs, &relation_areas};
+        osmium::area::MultipolygonManager<DeferringAssembler> multipolygons{assembler_config, area_filter};
 
         LocationIndex positive, negative;
         LocationHandler locations{positive, negative};
@@ -102,10 +182,18 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
             reader.close();
         }
         multipolygons.prepare_for_lookup();
-        // Areas from closed ways and from the multipolygons whose members all arrived.
-        osmium::apply(ways, multipolygons.handler([&](osmium::memory::Buffer&& areas) {
-                          osmium::apply(areas, buildings, land_cover);
-                      }));
+        // Areas from closed ways and from the multipolygons whose members all arrived: the
+        // manager's second pass orders them, the closed ways' are assembled in parallel.
+        osmium::apply(ways, multipolygons.handler());
+        const auto way_areas = assemble_way_areas(area_jobs, assembler_config.assembler);
+        for (const AreaJob& job : area_jobs) {
+            if (job.begin == job.end) continue;
+            for (const osmium::Area& area : osmium::memory::ItemIteratorRange<const osmium::Area>{
+                     job.buffer->data() + job.begin, job.buffer->data() + job.end}) {
+                buildings.area(area);
+                land_cover.area(area);
+            }
+        }
 
         int64_t incomplete = 0, incomplete_cover = 0;
         multipolygons.for_each_incomplete_relation([&](const osmium::relations::RelationHandle& handle) {

@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include "narrow_roads.h"
 #include "polygon_overlap.h"
@@ -75,31 +80,42 @@ Frame frame_of(const RoadGraphEdge& e) {
 }
 
 // Step 1: sidewalk width per side, narrowed where the band would reach into a building.
+// The edges are searched in parallel and reported in order.
 std::vector<SideWidths> sidewalk_widths(const RoadGraph& graph, const BuildingIndex& buildings,
                                         const SidewalkParams& params, ParseReport& report) {
-    std::vector<SideWidths> walk(graph.edges.size());
+    std::vector<SideWidths> walk(graph.edges.size());  // the width found, or below kMinSidewalkWidth: no room
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, graph.edges.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t e = r.begin(); e != r.end(); ++e) {
+            const RoadGraphEdge& edge = graph.edges[e];
+            for (int side = 0; side < 2; ++side) {
+                if (!(side == 0 ? edge.sidewalk_left : edge.sidewalk_right)) continue;
+                double w = params.width;
+                for (; w >= kMinSidewalkWidth; w -= kSidewalkStep) {
+                    const Frame f = frame_of(edge);
+                    const double h = 0.5 * edge.width;
+                    const Vec2 off = side == 0 ? f.n : f.n * -1.0;
+                    Ring band{f.from + off * h, f.to + off * h, f.to + off * (h + w), f.from + off * (h + w)};
+                    if (signed_area(band) < 0) band = {band[3], band[2], band[1], band[0]};
+                    double largest = 0;
+                    buildings.overlap(band, &largest);
+                    if (largest <= kRoadBuildingOverlapTolerance) break;
+                }
+                (side == 0 ? walk[e].left : walk[e].right) = w;
+            }
+        }
+    });
     for (size_t e = 0; e < graph.edges.size(); ++e) {
         const RoadGraphEdge& edge = graph.edges[e];
         for (int side = 0; side < 2; ++side) {
             if (!(side == 0 ? edge.sidewalk_left : edge.sidewalk_right)) continue;
-            double w = params.width;
-            for (; w >= kMinSidewalkWidth; w -= kSidewalkStep) {
-                const Frame f = frame_of(edge);
-                const double h = 0.5 * edge.width;
-                const Vec2 off = side == 0 ? f.n : f.n * -1.0;
-                Ring band{f.from + off * h, f.to + off * h, f.to + off * (h + w), f.from + off * (h + w)};
-                if (signed_area(band) < 0) band = {band[3], band[2], band[1], band[0]};
-                double largest = 0;
-                buildings.overlap(band, &largest);
-                if (largest <= kRoadBuildingOverlapTolerance) break;
-            }
+            double& w = side == 0 ? walk[e].left : walk[e].right;
             if (w < kMinSidewalkWidth) {
                 report.dropped(kSidewalkSides, kNoRoomBesideBuilding);
+                w = 0;
                 continue;
             }
             if (w < params.width) report.note(kSidewalkSides, kSidewalkNarrowedBesideBuilding);
             report.kept(kSidewalkSides);
-            (side == 0 ? walk[e].left : walk[e].right) = w;
         }
     }
     return walk;
@@ -114,41 +130,54 @@ std::vector<Building> road_pieces_of(const RoadSurface& surface) {
     return pieces;
 }
 
-// What steps 2 and 3 share: the carriageway (`in`) and its outline (`out`), and where
-// finished pieces go.
+// A sidewalk piece as steps 2 and 3 cut it, before its checks. `in_cleared_band`: a strip
+// within the side's band, already cleared of buildings.
+struct Piece {
+    SidewalkKind kind;
+    Ring polygon;
+    int road, joint;
+    bool in_cleared_band;
+};
+
+// What steps 2 and 3 share: the carriageway (`in`) and its outline (`out`), and the pieces
+// they cut.
 struct SidewalkWork {
     const RoadGraph& graph;
     const RoadSurface& surface;
-    const SidewalkParams& params;
-    ParseReport& report;
-    const BuildingIndex& buildings;
     std::vector<SideWidths> inner, walk, outer;
     const RoadLayout& in;
     RoadLayout out;
-    const std::vector<Building>& road_pieces;
-    const BuildingIndex& road_index;
-    std::vector<Sidewalk> result;
+    std::vector<Piece> pieces;
 
-    // Checks a piece and keeps it. `in_cleared_band`: a strip within the side's band,
-    // already cleared of buildings.
-    void emit(SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band);
+    void emit(SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band) {
+        pieces.push_back({kind, std::move(polygon), road, joint, in_cleared_band});
+    }
 };
 
-void SidewalkWork::emit(SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band) {
-    const char* what = kind == SidewalkKind::Strip ? kSidewalkStrips : kSidewalkCorners;
+// How a piece fared in its checks (step 4), in the order the report counts them.
+enum class Verdict { NotAPiece, Tangled, OverlapsBuilding, OnAnotherRoad, Kept };
+struct Checked {
+    Verdict verdict = Verdict::NotAPiece;
+    bool trimmed = false;  // its part off the roads replaced it
+};
+
+// Step 4, for one piece: the checks, which read only the indexes (pieces are checked in parallel).
+Checked check_piece(Piece& piece, const BuildingIndex& buildings, const BuildingIndex& road_index,
+                    const std::vector<Building>& road_pieces) {
+    Checked out;
+    Ring& polygon = piece.polygon;
     // Nothing between carriageway and outline (e.g. where a road without sidewalks
     // cuts through): not a piece at all.
-    if (polygon.size() < 3 || std::fabs(signed_area(polygon)) < kMinPieceArea) return;
-    report.read(what);
+    if (polygon.size() < 3 || std::fabs(signed_area(polygon)) < kMinPieceArea) return out;
     if (signed_area(polygon) < 0 || !ring_is_simple(polygon)) {
-        report.dropped(what, kDegenerateTangledJunction);
-        return;
+        out.verdict = Verdict::Tangled;
+        return out;
     }
     double largest = 0;
-    if (!in_cleared_band) buildings.overlap(polygon, &largest);
+    if (!piece.in_cleared_band) buildings.overlap(polygon, &largest);
     if (largest > kRoadBuildingOverlapTolerance) {
-        report.dropped(what, kOverlapsBuilding);
-        return;
+        out.verdict = Verdict::OverlapsBuilding;
+        return out;
     }
     road_index.overlap(polygon, &largest);
     // Where roads lie closer than their sidewalks are wide (close or overlapping
@@ -156,17 +185,42 @@ void SidewalkWork::emit(SidewalkKind kind, Ring polygon, int road, int joint, bo
     if (largest > kRoadBuildingOverlapTolerance) {
         Ring trimmed = trim_off_roads(polygon, road_index, road_pieces);
         if (trimmed.size() >= 3 && signed_area(trimmed) >= kMinTrimmedArea && ring_is_simple(trimmed)) {
-            report.note(what, kTrimmedOffRoad);
+            out.trimmed = true;
             polygon = std::move(trimmed);
             road_index.overlap(polygon, &largest);
         }
     }
-    if (largest > kMaxRoadOverlap) {
-        report.dropped(what, kLiesOnAnotherRoad);
-        return;
+    out.verdict = largest > kMaxRoadOverlap ? Verdict::OnAnotherRoad : Verdict::Kept;
+    return out;
+}
+
+// Step 4: every piece checked (in parallel), then counted and kept in the order cut.
+std::vector<Sidewalk> check_pieces(std::vector<Piece> pieces, const BuildingIndex& buildings,
+                                   const BuildingIndex& road_index, const std::vector<Building>& road_pieces,
+                                   const SidewalkParams& params, ParseReport& report) {
+    std::vector<Checked> checked(pieces.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i)
+            checked[i] = check_piece(pieces[i], buildings, road_index, road_pieces);
+    });
+    std::vector<Sidewalk> result;
+    for (size_t i = 0; i < pieces.size(); ++i) {
+        Piece& piece = pieces[i];
+        const char* what = piece.kind == SidewalkKind::Strip ? kSidewalkStrips : kSidewalkCorners;
+        const Checked& c = checked[i];
+        if (c.verdict == Verdict::NotAPiece) continue;
+        report.read(what);
+        if (c.trimmed) report.note(what, kTrimmedOffRoad);
+        switch (c.verdict) {
+            case Verdict::Tangled: report.dropped(what, kDegenerateTangledJunction); break;
+            case Verdict::OverlapsBuilding: report.dropped(what, kOverlapsBuilding); break;
+            case Verdict::OnAnotherRoad: report.dropped(what, kLiesOnAnotherRoad); break;
+            default:
+                report.kept(what);
+                result.push_back({piece.kind, std::move(piece.polygon), piece.road, piece.joint, params.curb_height});
+        }
     }
-    report.kept(what);
-    result.push_back({kind, std::move(polygon), road, joint, params.curb_height});
+    return result;
 }
 
 // Step 2: strips along every edge side with a sidewalk, between the carriageway's side
@@ -276,19 +330,26 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
                                       ParseReport& report) {
     const BuildingIndex building_index(buildings);
     const std::vector<SideWidths> inner = carriageway_widths(graph);
-    std::vector<SideWidths> walk = sidewalk_widths(graph, building_index, params, report);
-    std::vector<SideWidths> outer(graph.edges.size());
-    for (size_t e = 0; e < graph.edges.size(); ++e)
-        outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
-    // The outline is shaped on the carriageway layout's nodes, joins and merged junctions.
-    RoadLayout out = lay_out_outline(graph, surface.layout, outer, miter_limit);
-    const std::vector<Building> road_pieces = road_pieces_of(surface);
-    const BuildingIndex road_index(road_pieces);
-    SidewalkWork work{graph, surface, params, report, building_index, inner, std::move(walk), std::move(outer),
-                      surface.layout, std::move(out), road_pieces, road_index, {}};
+    std::vector<SideWidths> walk, outer(graph.edges.size());
+    RoadLayout out;
+    std::vector<Building> road_pieces;
+    std::optional<BuildingIndex> road_index;
+    tbb::parallel_invoke(  // the outline beside the index of the road pieces
+        [&] {
+            walk = sidewalk_widths(graph, building_index, params, report);
+            for (size_t e = 0; e < graph.edges.size(); ++e)
+                outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
+            // The outline is shaped on the carriageway layout's nodes, joins and merged junctions.
+            out = lay_out_outline(graph, surface.layout, outer, miter_limit);
+        },
+        [&] {
+            road_pieces = road_pieces_of(surface);
+            road_index.emplace(road_pieces);
+        });
+    SidewalkWork work{graph, surface, inner, std::move(walk), std::move(outer), surface.layout, std::move(out), {}};
     add_strips(work);
     add_corners(work);
-    return std::move(work.result);
+    return check_pieces(std::move(work.pieces), building_index, *road_index, road_pieces, params, report);
 }
 
 }  // namespace citygen

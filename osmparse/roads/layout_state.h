@@ -86,6 +86,8 @@ void lay_out_all(LayoutState& state);
 std::set<int64_t> update_layout(LayoutState& state, const std::vector<uint32_t>& changed);
 // The layout as a RoadLayout (RoadLayout::nodes in id order).
 RoadLayout assemble_layout(LayoutState& state);
+// The same, moved out of a state that is not used again (no copy of the quads and joints).
+RoadLayout take_layout(LayoutState&& state);
 
 // --- The passes, in the order road_layout.cpp runs them. ---
 

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <set>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "build_road_polygons.h"
 #include "layout_state.h"
 #include "polygon_overlap.h"
@@ -26,27 +29,40 @@ bool overlaps(const BuildingIndex& index, const Ring& piece) {
 template <typename NeedsCheck>
 std::set<uint32_t> offending_edges(LayoutState& layout, const BuildingIndex& index, NeedsCheck needs_check) {
     const RoadGraph& graph = layout.graph;
-    std::set<uint32_t> offending;
-    for (uint32_t e = 0; e < graph.edges.size(); ++e) {
-        // A quad with no negative cut lies inside its rectangle, cleared in step 1.
-        const EdgeEndCut &a = layout.out.from_cut[e], &b = layout.out.to_cut[e];
-        const bool within_rectangle = std::min({a.t_left, a.t_right, b.t_left, b.t_right}) >= 0;
-        if (!layout.out.quads[e].empty() && !within_rectangle &&
-            (needs_check(graph.edges[e].from_node) || needs_check(graph.edges[e].to_node)) &&
-            overlaps(index, layout.out.quads[e]))
-            offending.insert(e);
-    }
-    layout.for_each_junction([&](const NodeLayout& node) {
-        bool check = needs_check(node.node);
-        for (int64_t m : node.members) check = check || needs_check(m);
-        if (check && !node.joint.empty() && overlaps(index, node.joint))
-            for (const NodeLayout::End& end : node.ends) offending.insert(end.edge);
+    // The pieces are checked in parallel (the overlap tests are most of the stage's time).
+    std::vector<char> quad_offends(graph.edges.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, graph.edges.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t e = r.begin(); e != r.end(); ++e) {
+            // A quad with no negative cut lies inside its rectangle, cleared in step 1.
+            const EdgeEndCut &a = layout.out.from_cut[e], &b = layout.out.to_cut[e];
+            const bool within_rectangle = std::min({a.t_left, a.t_right, b.t_left, b.t_right}) >= 0;
+            quad_offends[e] = !layout.out.quads[e].empty() && !within_rectangle &&
+                              (needs_check(graph.edges[e].from_node) || needs_check(graph.edges[e].to_node)) &&
+                              overlaps(index, layout.out.quads[e]);
+        }
     });
+    std::vector<const NodeLayout*> junctions;
+    layout.for_each_junction([&](const NodeLayout& node) { junctions.push_back(&node); });
+    std::vector<char> joint_offends(junctions.size(), 0);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, junctions.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t k = r.begin(); k != r.end(); ++k) {
+            const NodeLayout& node = *junctions[k];
+            bool check = needs_check(node.node);
+            for (int64_t m : node.members) check = check || needs_check(m);
+            joint_offends[k] = check && !node.joint.empty() && overlaps(index, node.joint);
+        }
+    });
+    std::set<uint32_t> offending;
+    for (uint32_t e = 0; e < graph.edges.size(); ++e)
+        if (quad_offends[e]) offending.insert(e);
+    for (size_t k = 0; k < junctions.size(); ++k)
+        if (joint_offends[k])
+            for (const NodeLayout::End& end : junctions[k]->ends) offending.insert(end.edge);
     return offending;
 }
 
 // The graph and layout without the edges `keep` leaves out, indices renumbered.
-NarrowedRoads without_dropped(const RoadGraph& graph, RoadLayout layout, const std::vector<bool>& keep) {
+NarrowedRoads without_dropped(const RoadGraph& graph, RoadLayout layout, const std::vector<char>& keep) {
     NarrowedRoads out;
     std::vector<uint32_t> index(graph.edges.size(), 0);
     for (size_t e = 0; e < graph.edges.size(); ++e) {
@@ -69,25 +85,28 @@ NarrowedRoads without_dropped(const RoadGraph& graph, RoadLayout layout, const s
 NarrowedRoads narrow_roads(RoadGraph graph, const std::vector<Building>& buildings,
                            const RoadParams& params, ParseReport& report) {
     const BuildingIndex index(buildings);
-    std::vector<bool> keep(graph.edges.size(), true), narrowed(graph.edges.size(), false);
+    // Per edge (char, not bool: edges are narrowed in parallel).
+    std::vector<char> keep(graph.edges.size(), true), narrowed(graph.edges.size(), false);
     auto narrow = [&](size_t e) {
         graph.edges[e].width *= kNarrowStep;
         narrowed[e] = true;
         if (graph.edges[e].width < std::max(params.min_width, kNarrowestRoad)) keep[e] = false;
     };
 
-    // 1. The edge's whole rectangle, as in the thesis.
-    for (size_t e = 0; e < graph.edges.size(); ++e) {
-        const RoadGraphEdge& edge = graph.edges[e];
-        while (keep[e]) {
-            const double h = 0.5 * edge.width;
-            if (!overlaps(index, quad_for_cuts(edge, {h, h}, {}, {}))) break;
-            narrow(e);
+    // 1. The edge's whole rectangle, as in the thesis. Edges are independent here.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, graph.edges.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t e = r.begin(); e != r.end(); ++e) {
+            const RoadGraphEdge& edge = graph.edges[e];
+            while (keep[e]) {
+                const double h = 0.5 * edge.width;
+                if (!overlaps(index, quad_for_cuts(edge, {h, h}, {}, {}))) break;
+                narrow(e);
+            }
         }
-    }
+    });
     {
         RoadGraph kept;
-        std::vector<bool> kept_narrowed;
+        std::vector<char> kept_narrowed;
         for (size_t e = 0; e < graph.edges.size(); ++e) {
             if (!keep[e]) continue;
             kept.edges.push_back(graph.edges[e]);
@@ -135,7 +154,7 @@ NarrowedRoads narrow_roads(RoadGraph graph, const std::vector<Building>& buildin
         count += narrowed[e] && keep[e];
     }
     if (count) report.note(kRoadEdges, kNarrowedBesideBuilding, count);
-    return without_dropped(graph, assemble_layout(layout), keep);
+    return without_dropped(graph, take_layout(std::move(layout)), keep);
 }
 
 }  // namespace citygen

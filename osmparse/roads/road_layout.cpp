@@ -185,6 +185,13 @@ RoadLayout assemble_layout(LayoutState& state) {
     return out;
 }
 
+RoadLayout take_layout(LayoutState&& state) {
+    RoadLayout out = std::move(state.out);
+    out.nodes.clear();
+    state.for_each_junction([&](NodeLayout& node) { out.nodes.push_back(std::move(node)); });
+    return out;
+}
+
 Ring quad_for_cuts(const RoadGraphEdge& e, SideWidths w, EdgeEndCut from, EdgeEndCut to) {
     const Vec2 d = normalize(e.to - e.from), n = perp_left(d);
     return {e.from - n * w.right + d * from.t_right, e.to - n * w.right - d * to.t_left,
@@ -194,7 +201,7 @@ Ring quad_for_cuts(const RoadGraphEdge& e, SideWidths w, EdgeEndCut from, EdgeEn
 RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWidths>& widths, double miter_limit) {
     LayoutState state(graph, widths, miter_limit);
     lay_out_all(state);
-    return assemble_layout(state);
+    return take_layout(std::move(state));
 }
 
 RoadLayout lay_out_outline(const RoadGraph& graph, const RoadLayout& carriageway,
@@ -206,7 +213,7 @@ RoadLayout lay_out_outline(const RoadGraph& graph, const RoadLayout& carriageway
         follow_join(state, copy, node.kind);
     }
     shape_everything(state);
-    return assemble_layout(state);
+    return take_layout(std::move(state));
 }
 
 namespace {

@@ -25,6 +25,10 @@ for f in monaco.osm.bz2 monaco.osm.pbf kaiserslautern.osm.gz; do
     [ -f "$shared/$f" ] || { echo "parse_bench.sh: $shared/$f not found" >&2; exit 1; }
 done
 
+# The older binary gets the same --threads when it has the option (older ones use every core).
+old_threads=()
+[ -n "$old" ] && "$old" --help 2>&1 | grep -q -- --threads && old_threads=(--threads "$threads")
+
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 bunzip2 -c "$shared/monaco.osm.bz2" > "$work/monaco.osm"
@@ -43,7 +47,7 @@ run_once() {
     case $tool in
         osmium) cmd=(osmium fileinfo -e "$work/$input") ;;
         new) cmd=("$osmparse" --threads "$threads" "$work/$input" -o "$work/out.scene") ;;
-        old) cmd=("$old" "$work/$input" -o "$work/out.scene") ;;
+        old) cmd=("$old" "${old_threads[@]}" "$work/$input" -o "$work/out.scene") ;;
     esac
     start=$(date +%s.%N)
     /usr/bin/time -f "%M %U %S" -o "$work/rss" "${cmd[@]}" > /dev/null 2> "$work/$tool.$input.report.$run"
