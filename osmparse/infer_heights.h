@@ -25,11 +25,17 @@ struct LandUseArea {
 };
 
 inline constexpr char kLandUseTooLarge[] = "land use area over 10 km across: not used";
+inline constexpr char kFromSurroundings[] = "from type, footprint area and surroundings";
 
 // The landuse=residential|commercial|retail|industrial areas of the map, projected (the same
 // OSM areas build_land_cover paints as built-up ground). Areas over kMaxObjectExtent across
 // (a stray node) are left out and noted as kLandUseTooLarge under kBuildingHeights.
 std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection, ParseReport& report);
+
+// The buildings (and parts) that house people for the night whatever their building=* says:
+// tourism=hotel|apartment|apartments (a `commercial` building of holiday flats is a block of
+// flats). Sorted, for infer_heights.
+std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 
 // Replaces the random height of every ground-standing building with nothing tagged
 // (height_source Random, min_height 0) by the first rule that applies; height_rule records it:
@@ -44,20 +50,29 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3).
 //     The scene format has one value for rules 2 and 3 (a new one would change its schema);
 //     the report's notes under kBuildingHeights tell them apart;
-//  4. TypeAndArea: a height by building type and, for `yes`/unknown types, by footprint area,
-//     where an untyped building on industrial or retail land counts as an industrial or retail
-//     hall (the land use of `land_use`, at the footprint's centroid);
-//  5. Random: the seeded random height in [random_min_height, random_max_height] stays (only
+//  4. TypeAndArea: an untyped building of hall size on industrial or retail land is an
+//     industrial or retail hall (the land use of `land_use`, at the footprint's centroid);
+//  5. TypeAndArea from the surroundings, for untyped buildings and homes (`yes`, `residential`,
+//     `apartments`, `dormitory`, `hotel`, or any type in `lodging`): levels_from_surroundings of
+//     its footprint, the grain of the town around it and whether it shares a wall;
+//  6. TypeAndArea: a height by building type (height_by_type_and_area);
+//  7. Random: the seeded random height in [random_min_height, random_max_height] stays (only
 //     reached for types the table does not know, with nothing tagged like it).
 // Only buildings whose height comes from their own tags are ever used, so a building whose tags
-// are hidden (--hide-height-tags) cannot see its own truth. Each guess is jittered by up to
-// +-10% (seeded per building) so a street is not one height. Levels are recomputed from the new
-// height. Counts go to kBuildingHeights in the report. The result does not depend on the order
-// of `buildings` beyond ties in distance.
+// are hidden (--hide-height-tags) cannot see its own truth (rule 5 reads footprints only). Each
+// guess is jittered by up to +-10% (seeded per building) so a street is not one height. Levels
+// are recomputed from the new height. Counts go to kBuildingHeights in the report. The result
+// does not depend on the order of `buildings` beyond ties in distance.
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report);
+                   const BuildingParams& params, ParseReport& report, const std::vector<OsmRef>& lodging = {});
 
-// Rule 1 and 4 alone (exposed for tests): the height of a building of `type` with a footprint of
+// Rule 5 alone (exposed for tests): storeys of an untyped building or a home with a footprint of
+// `area` m2 among buildings whose median footprint within 400 m is `grain` m2; `home` for the
+// residential types and lodging, `attached` when it shares a wall with another building. The
+// constants and their reasons are in infer_heights.cpp.
+double levels_from_surroundings(double area, double grain, bool home, bool attached);
+
+// Rule 1, 4 and 6 alone (exposed for tests): the height of a building of `type` with a footprint of
 // `area` m2 on land used as `use`, or 0 when the type says nothing; `sure` tells whether the rule
 // beats neighbours.
 double height_by_type_and_area(const std::string& type, double area, bool* sure, LandUse use = LandUse::None);
