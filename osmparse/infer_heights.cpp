@@ -37,17 +37,18 @@ enum Salt : uint64_t { kJitter = 201 };
 //    Denser fabric is built higher: storeys grow about as grain^0.7 (1.5 at 100 m2, 3.5 at 340);
 //  - area / grain: within one fabric a footprint ten times the usual is twice as tall
 //    (10^0.3 = 2): large footprints are blocks and halls, not towers in proportion;
+//  - untyped buildings and workplaces (office, commercial, civic, public, government) alike;
 //  - home: a building typed as flats or lodging, at least kMinBlockOfFlats large (a stair core
 //    with two flats a floor), is a multi-storey block, where an untyped one of the same size in
 //    the same fabric is as often a shop, a garage or a house: four times the storeys;
 //  - attached: a building sharing a wall (within kAttachedGap) stands in a closed block or a
 //    terrace, built higher than a detached one of the same footprint;
 //  - kMaxSurroundingLevels guards the extrapolation (Monaco's tallest tagged building: 37).
-constexpr double kBaseLevels = 1.5;
-constexpr double kGrainExponent = 0.7;
+constexpr double kBaseLevels = 1.6;
+constexpr double kGrainExponent = 0.65;
 constexpr double kAreaExponent = 0.3;
-constexpr double kHomeFactor = 4;
-constexpr double kAttachedFactor = 1.3;
+constexpr double kHomeFactor = 4.5;
+constexpr double kAttachedFactor = 1.35;
 constexpr double kMinBlockOfFlats = 200;   // m2
 constexpr double kMinGrain = 50;           // m2: a yard of sheds is no finer fabric than this
 constexpr double kMaxSurroundingLevels = 40;
@@ -144,6 +145,12 @@ Vec2 centroid(const Ring& ring) {
 }
 
 bool is_home(const std::string& type) { return is_one_of(type, {"residential", "apartments", "dormitory", "hotel"}); }
+
+// Workplaces whose height follows the fabric of their town like an untyped building's: a town
+// hall or an office in a village has two storeys, in a city six.
+bool is_workplace(const std::string& type) {
+    return is_one_of(type, {"office", "commercial", "civic", "public", "government"});
+}
 
 // Rule 5's inputs: the grain around a building and whether it shares a wall. Footprints only,
 // never heights, so no building's hidden truth can reach its guess.
@@ -437,7 +444,7 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
             height = by_type;
             b.height_rule = HeightRule::TypeAndArea;
             note = "from type, footprint area and land use";
-        } else if (is_untyped(b.type) || home) {
+        } else if (is_untyped(b.type) || home || is_workplace(b.type)) {
             height = params.level_height *
                      levels_from_surroundings(area, surroundings.grain(at), home, surroundings.attached(i));
             b.height_rule = HeightRule::TypeAndArea;

@@ -52,9 +52,10 @@ std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 //     the report's notes under kBuildingHeights tell them apart;
 //  4. TypeAndArea: an untyped building of hall size on industrial or retail land is an
 //     industrial or retail hall (the land use of `land_use`, at the footprint's centroid);
-//  5. TypeAndArea from the surroundings, for untyped buildings and homes (`yes`, `residential`,
-//     `apartments`, `dormitory`, `hotel`, or any type in `lodging`): levels_from_surroundings of
-//     its footprint, the grain of the town around it and whether it shares a wall;
+//  5. TypeAndArea from the surroundings, for untyped buildings, homes (`residential`,
+//     `apartments`, `dormitory`, `hotel`, or any type in `lodging`) and workplaces (`office`,
+//     `commercial`, `civic`, `public`, `government`): levels_from_surroundings of its footprint,
+//     the grain of the town around it and whether it shares a wall;
 //  6. TypeAndArea: a height by building type (height_by_type_and_area);
 //  7. Random: the seeded random height in [random_min_height, random_max_height] stays (only
 //     reached for types the table does not know, with nothing tagged like it).
