@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "rng.h"
 #include "scene_limits.h"
@@ -171,33 +170,39 @@ public:
                 {c, std::fabs(signed_area(b.outer))});
         }
     }
-    // Median footprint (the upper one of an even count) of the buildings within kGrainRadius of p.
-    double grain(Vec2 p) const {
-        std::vector<double> areas;
+    // Median footprint (the upper one of an even count) of the buildings within kGrainRadius of
+    // the centre of the kGrainCell square holding p: the grain is a property of the quarter, and
+    // one median per square instead of per building keeps this stage fast (Kaiserslautern:
+    // 15,000 buildings, 2,000 within 400 m of the centre).
+    double grain(Vec2 p) {
         const int64_t cx = cell(p.x, kGrainCell), cy = cell(p.y, kGrainCell);
+        auto [known, inserted] = grain_of_square_.try_emplace(key(cx, cy), 0.0);
+        if (!inserted) return known->second;
+        const Vec2 centre{(cx + 0.5) * kGrainCell, (cy + 0.5) * kGrainCell};
+        std::vector<double>& areas = scratch_;
+        areas.clear();
         const int64_t reach = static_cast<int64_t>(std::ceil(kGrainRadius / kGrainCell));
         for (int64_t dx = -reach; dx <= reach; ++dx)
             for (int64_t dy = -reach; dy <= reach; ++dy) {
                 auto it = grain_cells_.find(key(cx + dx, cy + dy));
                 if (it == grain_cells_.end()) continue;
                 for (const auto& [at, area] : it->second)
-                    if (length(at - p) <= kGrainRadius) areas.push_back(area);
+                    if (length(at - centre) <= kGrainRadius) areas.push_back(area);
             }
         if (areas.empty()) return 0;
         std::nth_element(areas.begin(), areas.begin() + areas.size() / 2, areas.end());
-        return areas[areas.size() / 2];
+        return known->second = areas[areas.size() / 2];
     }
     // Whether building i shares a wall with another building (of its own kind: parts with parts).
     bool attached(size_t i) const {
         const Building& b = buildings_[i];
         const Box2& box = boxes_[i];
-        std::unordered_set<size_t> seen;
         for (int64_t x = cell(box.min.x, kWallCell); x <= cell(box.max.x, kWallCell); ++x)
             for (int64_t y = cell(box.min.y, kWallCell); y <= cell(box.max.y, kWallCell); ++y) {
                 auto it = walls_.find(key(x, y));
                 if (it == walls_.end()) continue;
                 for (size_t j : it->second) {
-                    if (j == i || buildings_[j].is_part != b.is_part || !seen.insert(j).second) continue;
+                    if (j == i || buildings_[j].is_part != b.is_part) continue;
                     Box2 grown = boxes_[j];
                     grown.extend(grown.min - Vec2(kAttachedGap, kAttachedGap));
                     grown.extend(grown.max + Vec2(kAttachedGap, kAttachedGap));
@@ -208,9 +213,12 @@ public:
     }
 
 private:
-    static constexpr double kGrainCell = 200, kWallCell = 50;
+    static constexpr double kGrainCell = 100, kWallCell = 50;
     static int64_t cell(double v, double size) { return static_cast<int64_t>(std::floor(v / size)); }
-    static int64_t key(int64_t x, int64_t y) { return x * 73856093 ^ y * 19349663; }
+    // Exact (no two squares share a key: the cache below must not mix them up).
+    static int64_t key(int64_t x, int64_t y) {
+        return static_cast<int64_t>((static_cast<uint64_t>(x) << 32) | static_cast<uint32_t>(y));
+    }
     static double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
         const Vec2 d = b - a;
         const double len2 = dot(d, d);
@@ -232,6 +240,8 @@ private:
     std::vector<Box2> boxes_;
     std::unordered_map<int64_t, std::vector<size_t>> walls_;
     std::unordered_map<int64_t, std::vector<std::pair<Vec2, double>>> grain_cells_;
+    std::unordered_map<int64_t, double> grain_of_square_;
+    std::vector<double> scratch_;
 };
 
 // Rule 2: the like tagged buildings nearby, or 0 when there are too few.
@@ -411,7 +421,7 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
     };
     const TaggedGrid grid(std::move(tagged));
     const LandUseIndex uses(land_use);
-    const Surroundings surroundings(buildings);
+    Surroundings surroundings(buildings);
 
     for (size_t i = 0; i < buildings.size(); ++i) {
         Building& b = buildings[i];
