@@ -193,7 +193,8 @@ public:
         std::nth_element(areas.begin(), areas.begin() + areas.size() / 2, areas.end());
         return known->second = areas[areas.size() / 2];
     }
-    // Whether building i shares a wall with another building (of its own kind: parts with parts).
+    // Whether building i shares a wall with another building (of its own kind: parts with parts;
+    // not another piece of the same OSM building).
     bool attached(size_t i) const {
         const Building& b = buildings_[i];
         const Box2& box = boxes_[i];
@@ -202,7 +203,7 @@ public:
                 auto it = walls_.find(key(x, y));
                 if (it == walls_.end()) continue;
                 for (size_t j : it->second) {
-                    if (j == i || buildings_[j].is_part != b.is_part) continue;
+                    if (j == i || buildings_[j].is_part != b.is_part || buildings_[j].osm == b.osm) continue;
                     Box2 grown = boxes_[j];
                     grown.extend(grown.min - Vec2(kAttachedGap, kAttachedGap));
                     grown.extend(grown.max + Vec2(kAttachedGap, kAttachedGap));
@@ -423,6 +424,9 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
     const LandUseIndex uses(land_use);
     Surroundings surroundings(buildings);
 
+    // The pieces of one OSM building (a repaired bow-tie, a multipolygon's outers) are one
+    // building: one guess from their joint footprint.
+    std::map<std::pair<OsmRef, bool>, std::vector<size_t>> pieces;
     for (size_t i = 0; i < buildings.size(); ++i) {
         Building& b = buildings[i];
         if (b.height_source == HeightSource::Tagged) b.height_rule = HeightRule::Tagged;
@@ -430,8 +434,21 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         if (b.height_source != HeightSource::Random) continue;
         b.height_rule = HeightRule::Random;
         if (b.min_height > 0) continue;  // a raised part: building_heights gave it a storey
-        const double area = std::fabs(signed_area(b.outer));
-        const Vec2 at = centroid(b.outer);
+        pieces[{b.osm, b.is_part}].push_back(i);
+    }
+    for (const auto& [ref, indices] : pieces) {
+        double area = 0;
+        Vec2 at{0, 0};
+        bool attached = false;
+        for (size_t i : indices) {
+            const double a = std::fabs(signed_area(buildings[i].outer));
+            area += a;
+            at = at + centroid(buildings[i].outer) * a;
+            attached = attached || surroundings.attached(i);
+        }
+        at = area > 0 ? at * (1 / area) : centroid(buildings[indices[0]].outer);
+        const Building& b = buildings[indices[0]];  // the pieces share their tags
+        HeightRule rule = HeightRule::Random;
         bool sure = false;
         // Only untyped halls ask the land use (the lookup is most of this stage's time).
         const LandUse use = is_untyped(b.type) && area >= kHallArea ? uses.at(at) : LandUse::None;
@@ -443,35 +460,38 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         const char* note = "from type and footprint area";
         if (sure) {
             height = by_type;
-            b.height_rule = HeightRule::TypeAndArea;
+            rule = HeightRule::TypeAndArea;
         } else if ((height = height_from_neighbours(grid, at, b.type, area)) > 0) {
-            b.height_rule = HeightRule::Neighbours;
+            rule = HeightRule::Neighbours;
             note = "from tagged neighbours";
         } else if ((height = extract_median(b.type, area)) > 0) {
-            b.height_rule = HeightRule::Neighbours;
+            rule = HeightRule::Neighbours;
             note = "from tagged buildings of its type and size in the extract";
         } else if (hall_by_land_use) {
             height = by_type;
-            b.height_rule = HeightRule::TypeAndArea;
+            rule = HeightRule::TypeAndArea;
             note = "from type, footprint area and land use";
         } else if (is_untyped(b.type) || home || is_workplace(b.type)) {
-            height = params.level_height *
-                     levels_from_surroundings(area, surroundings.grain(at), home, surroundings.attached(i));
-            b.height_rule = HeightRule::TypeAndArea;
+            height = params.level_height * levels_from_surroundings(area, surroundings.grain(at), home, attached);
+            rule = HeightRule::TypeAndArea;
             note = kFromSurroundings;
         } else if (by_type > 0) {
             height = by_type;
-            b.height_rule = HeightRule::TypeAndArea;
+            rule = HeightRule::TypeAndArea;
         }
-        if (b.height_rule == HeightRule::Random) {
-            report.note(kBuildingHeights, "random (no rule applied)");
+        if (rule == HeightRule::Random) {
+            for (size_t n = indices.size(); n > 0; --n) report.note(kBuildingHeights, "random (no rule applied)");
             continue;
         }
         const double u = hash_to_unit(hash_keys(params.seed, static_cast<uint64_t>(b.osm.type),
                                                 static_cast<uint64_t>(b.osm.id), kJitter));
-        b.height = std::clamp(height * (0.9 + 0.2 * u), 2.5, params.max_height);
-        b.levels = std::max(1, static_cast<int>(std::lround(b.height / params.level_height)));
-        report.note(kBuildingHeights, note);
+        const double jittered = std::clamp(height * (0.9 + 0.2 * u), 2.5, params.max_height);
+        for (size_t i : indices) {
+            buildings[i].height = jittered;
+            buildings[i].height_rule = rule;
+            buildings[i].levels = std::max(1, static_cast<int>(std::lround(jittered / params.level_height)));
+            report.note(kBuildingHeights, note);
+        }
     }
 }
 

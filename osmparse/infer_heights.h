@@ -61,7 +61,9 @@ std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 //     reached for types the table does not know, with nothing tagged like it).
 // Only buildings whose height comes from their own tags are ever used, so a building whose tags
 // are hidden (--hide-height-tags) cannot see its own truth (rule 5 reads footprints only). Each
-// guess is jittered by up to +-10% (seeded per building) so a street is not one height. Levels
+// guess is jittered by up to +-10% (seeded per building) so a street is not one height. The
+// pieces of one OSM building (a repaired bow-tie, a multipolygon's outers) get one guess from
+// their joint footprint (its area, its area-weighted centroid, a wall shared by any). Levels
 // are recomputed from the new height. Counts go to kBuildingHeights in the report. The result
 // does not depend on the order of `buildings` beyond ties in distance.
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
