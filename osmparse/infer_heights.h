@@ -32,9 +32,9 @@ inline constexpr char kFromSurroundings[] = "from type, footprint area and surro
 // (a stray node) are left out and noted as kLandUseTooLarge under kBuildingHeights.
 std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection, ParseReport& report);
 
-// The buildings (and parts) that house people for the night whatever their building=* says:
-// tourism=hotel|apartment|apartments (a `commercial` building of holiday flats is a block of
-// flats). Sorted, for infer_heights.
+// The buildings (and parts) of holiday flats whatever their building=* says:
+// tourism=apartment|apartments (a `commercial` building of holiday flats is a block of flats).
+// Sorted, for infer_heights.
 std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 
 // Replaces the random height of every ground-standing building with nothing tagged
@@ -53,7 +53,7 @@ std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 //  4. TypeAndArea: an untyped building of hall size on industrial or retail land is an
 //     industrial or retail hall (the land use of `land_use`, at the footprint's centroid);
 //  5. TypeAndArea from the surroundings, for untyped buildings, homes (`residential`,
-//     `apartments`, `dormitory`, `hotel`, or any type in `lodging`) and workplaces (`office`,
+//     `apartments`, `dormitory`, or any type in `lodging`) and workplaces (`office`,
 //     `commercial`, `civic`, `public`, `government`): levels_from_surroundings of its footprint,
 //     the grain of the town around it and whether it shares a wall;
 //  6. TypeAndArea: a height by building type (height_by_type_and_area);
@@ -69,9 +69,9 @@ std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
                    const BuildingParams& params, ParseReport& report, const std::vector<OsmRef>& lodging = {});
 
-// Rule 5 alone (exposed for tests): storeys of an untyped building or a home with a footprint of
-// `area` m2 among buildings whose median footprint within 400 m is `grain` m2; `home` for the
-// residential types and lodging, `attached` when it shares a wall with another building. The
+// Rule 5 alone (exposed for tests): storeys of an untyped building, a workplace or a home with a
+// footprint of `area` m2 among buildings whose median footprint within 400 m is `grain` m2;
+// `home` for the residential types and lodging, `attached` when it shares a wall with another building. The
 // constants and their reasons are in infer_heights.cpp.
 double levels_from_surroundings(double area, double grain, bool home, bool attached);
 

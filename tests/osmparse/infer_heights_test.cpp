@@ -144,7 +144,13 @@ TEST(InferHeights, StoreysFromSurroundingsFollowFabricFootprintHomesAndWalls) {
     EXPECT_GE(house, 1.5);
     EXPECT_LE(house, 2.5);
     EXPECT_EQ(levels_from_surroundings(20, 50, false, false), 1);
-    EXPECT_EQ(levels_from_surroundings(1e6, 5000, true, true), 40);
+    EXPECT_EQ(levels_from_surroundings(1000, 500, true, true), 30);
+    // A fabric coarser than a city of blocks is an estate of halls, not a taller city; a
+    // footprint far beyond its fabric's is a hall or a complex; a huge home is a complex.
+    EXPECT_EQ(levels_from_surroundings(300, 5000, false, false), levels_from_surroundings(300, 500, false, false));
+    EXPECT_EQ(levels_from_surroundings(50000, 500, false, false), levels_from_surroundings(5000, 500, false, false));
+    EXPECT_LT(levels_from_surroundings(5000, 300, false, false), levels_from_surroundings(1000, 300, true, false));
+    EXPECT_EQ(levels_from_surroundings(3000, 300, true, false), levels_from_surroundings(3000, 300, false, false));
 }
 
 // n x n buildings of `side` metres on a grid of `pitch` metres, ids from `first`.
