@@ -15,6 +15,7 @@ namespace {
 constexpr double kNeighbourRadius = 150;  // metres
 constexpr size_t kMaxNeighbours = 8;
 constexpr size_t kMinNeighbours = 3;
+constexpr double kMaxNeighbourSpread = 2;  // upper over lower quartile of an agreeing group
 constexpr double kSimilarArea = 3;        // a neighbour's footprint within this factor is "like" it
 constexpr double kLandUseCell = 250;      // metres: grid cell of the land use index
 constexpr double kHallArea = 200;         // m2: an untyped building this large on industrial land is a hall
@@ -274,11 +275,20 @@ double height_from_neighbours(const TaggedGrid& grid, Vec2 at, const std::string
     }
     // Two of the same type say something (12 pooled half-hidden splits of Monaco: 6.6 m mean
     // error on 146 buildings with two, 7.3 m on 83 with three); a mixed group needs three.
-    if (same_both.size() >= 2) return weighted_median(same_both);
+    // A group that disagrees (its upper quartile over twice its lower: houses beside towers)
+    // says nothing about one more building; the footprint rules decide then (12 half-hidden
+    // splits: Kaiserslautern's campus 10.8 -> 8.3 m mean error, Monaco 9.20 -> 9.17 m).
+    auto agreed = [](const std::vector<std::pair<double, double>>& group) {
+        std::vector<double> h;
+        for (const auto& v : group) h.push_back(v.first);
+        std::sort(h.begin(), h.end());
+        return h[3 * h.size() / 4] <= kMaxNeighbourSpread * h[h.size() / 4] ? weighted_median(group) : 0.0;
+    };
+    if (same_both.size() >= 2) return agreed(same_both);
     // (`yes` is no type: two untyped buildings of any size are not alike.)
-    if (same_type.size() >= 2 && !is_untyped(type)) return weighted_median(same_type);
+    if (same_type.size() >= 2 && !is_untyped(type)) return agreed(same_type);
     for (const auto* group : {&same_size, &any})
-        if (group->size() >= kMinNeighbours) return weighted_median(*group);
+        if (group->size() >= kMinNeighbours) return agreed(*group);
     return 0;
 }
 

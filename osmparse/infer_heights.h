@@ -46,6 +46,8 @@ std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 //     (height or building:levels) within 150 m that are most like it: the same type and a
 //     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
 //     (at least 2), else such a footprint (at least 3), else any (at least 3: the street's scale);
+//     when the chosen group disagrees (its upper quartile over twice its lower: houses beside
+//     towers) it says nothing and the later rules decide;
 //  3. Neighbours, extract-wide: the median height of the tagged buildings of the same type and
 //     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3).
 //     The scene format has one value for rules 2 and 3 (a new one would change its schema);

@@ -53,13 +53,25 @@ TEST(InferHeights, TaggedNeighboursOfTheSameKindDecide) {
     EXPECT_EQ(by_id(v, 1).height_rule, HeightRule::Tagged);
     EXPECT_EQ(by_id(v, 2).height_rule, HeightRule::Levels);
 
-    // Only one like it (and the tower): all three tagged near count, the tower is outvoted.
+    // Only one like it: all three tagged near count, and they agree (15, 21, 24 m).
     v.erase(v.begin() + 2);
     v.erase(v.begin() + 1);
     v.push_back(building(6, 40, 0, "office", 15, HeightSource::Tagged));
+    v.push_back(building(7, 40, 20, "school", 24, HeightSource::Tagged));
+    const Building tower = by_id(v, 4);
+    v.erase(std::find_if(v.begin(), v.end(), [](const Building& b) { return b.osm.id == 4; }));
     infer_heights(v, {}, params, report);
     EXPECT_EQ(by_id(v, 5).height_rule, HeightRule::Neighbours);
-    expect_near_guess(by_id(v, 5), 21);  // the weighted median of 15, 21 and 120
+    expect_near_guess(by_id(v, 5), 21);  // the weighted median of 15, 21 and 24
+
+    // With the tower instead of the school they disagree (15, 21, 120 m: houses beside a
+    // tower say nothing about one more building): the footprint rule decides.
+    v.pop_back();
+    v.push_back(tower);
+    infer_heights(v, {}, params, report);
+    EXPECT_EQ(by_id(v, 5).height_rule, HeightRule::TypeAndArea);
+    // (The tower's footprint reaches its wall.)
+    expect_near_guess(by_id(v, 5), params.level_height * levels_from_surroundings(225, 225, false, true));
 }
 
 TEST(InferHeights, SameTypeNeighboursBeatOtherTypes) {
