@@ -47,7 +47,7 @@ std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 //     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
 //     (at least 2), else such a footprint (at least 3), else any (at least 3: the street's scale);
 //     when the chosen group disagrees (its upper quartile over twice its lower: houses beside
-//     towers) it says nothing and the later rules decide;
+//     towers) it says nothing and the later rules decide (it comes back as rule 7);
 //  3. Neighbours, extract-wide: the median height of the tagged buildings of the same type and
 //     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3).
 //     The scene format has one value for rules 2 and 3 (a new one would change its schema);
@@ -59,7 +59,8 @@ std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 //     `commercial`, `civic`, `public`, `government`): levels_from_surroundings of its footprint,
 //     the grain of the town around it and whether it shares a wall;
 //  6. TypeAndArea: a height by building type (height_by_type_and_area);
-//  7. Random: the seeded random height in [random_min_height, random_max_height] stays (only
+//  7. Neighbours that disagree (rule 2's group): their weighted median;
+//  8. Random: the seeded random height in [random_min_height, random_max_height] stays (only
 //     reached for types the table does not know, with nothing tagged like it).
 // Only buildings whose height comes from their own tags are ever used, so a building whose tags
 // are hidden (--hide-height-tags) cannot see its own truth (rule 5 reads footprints only). Each

@@ -74,6 +74,20 @@ TEST(InferHeights, TaggedNeighboursOfTheSameKindDecide) {
     expect_near_guess(by_id(v, 5), params.level_height * levels_from_surroundings(225, 225, false, true));
 }
 
+TEST(InferHeights, NeighboursThatDisagreeStillBeatARandomHeight) {
+    BuildingParams params;
+    // A type no table knows, among tagged buildings of 6, 9 and 60 m (20 m away each).
+    std::vector<Building> v{building(1, 20, 0, "yes", 6, HeightSource::Tagged),
+                            building(2, -20, 0, "yes", 9, HeightSource::Tagged),
+                            building(3, 0, 20, "yes", 60, HeightSource::Tagged),
+                            building(4, 0, 0, "ice_rink", 30, HeightSource::Random)};
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    EXPECT_EQ(by_id(v, 4).height_rule, HeightRule::Neighbours);
+    expect_near_guess(by_id(v, 4), 9);
+    EXPECT_EQ(report.note_count(kBuildingHeights, "from tagged neighbours that disagree"), 1);
+}
+
 TEST(InferHeights, SameTypeNeighboursBeatOtherTypes) {
     BuildingParams params;
     std::vector<Building> v{building(1, 0, 0, "apartments", 45, HeightSource::Tagged),
