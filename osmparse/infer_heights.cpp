@@ -25,13 +25,13 @@ constexpr size_t kMinExtractSamples = 10;
 enum Salt : uint64_t { kJitter = 201 };
 
 // Rule 5, storeys from the surroundings: levels = kBaseLevels * (grain / 100 m2)^kGrainExponent
-// * (area / grain)^kAreaExponent, times kHomeFactor for homes, times kAttachedFactor for a building
-// that shares a wall, in [1, kMaxSurroundingLevels]. The five numbers are a least-absolute-error
-// fit (on log storeys) to the tagged buildings of Monaco and Kaiserslautern pooled, rounded
-// (1.62, 0.65, 0.31, 4.46, 1.35; with the guards below the fit moves to 1.45, 0.74, 0.37, 4.2,
-// 1.46). Fitted on Monaco alone (1.20, 0.82, 0.38, 4.7, 1.55) they predict Kaiserslautern
-// nearly as well; Kaiserslautern alone cannot fit them: its 17 tagged buildings all stand in
-// one grain (120-200 m2). tests/bench/height_bench.sh measures the result.
+// * (area / grain)^kAreaExponent, times kAttachedFactor for a building that shares a wall, in
+// at least 1. The numbers are a least-absolute-error fit (on log storeys) to the
+// tagged buildings of Monaco and Kaiserslautern pooled, rounded. Homes (residential, apartments,
+// dormitory) keep the type table: the tagged homes of both extracts are mostly towers (mappers
+// tag the notable ones), and a factor fitted to them (x4.5) made the ordinary blocks of flats of
+// the bundled Berlin example 4x worse (its MAE with every tag hidden went from 2.3 m to 9.0 m).
+// tests/bench/height_bench.sh measures the result.
 //  - grain, the median footprint of the buildings within kGrainRadius: the fabric of the town.
 //    A suburb or village of houses has a grain of 100-150 m2 (Kaiserslautern, 2013: 116 m2 over
 //    the whole extract), a city of blocks of flats 300-400 (Monaco: 277, 340 around its towers).
@@ -42,27 +42,15 @@ enum Salt : uint64_t { kJitter = 201 };
 //    (10^0.3 = 2): large footprints are blocks and halls, not towers in proportion; beyond
 //    kMaxRelativeArea times the grain a footprint is a hall or a complex of wings, no taller;
 //  - untyped buildings and workplaces (office, commercial, civic, public, government) alike;
-//  - home: a building typed as flats (residential, apartments, dormitory, or holiday flats) with
-//    a footprint from kMinBlockOfFlats (a stair core with two flats a floor) to kMaxTowerFloor
-//    (a tower's floor plate; a larger home is a complex of wings): four and a half times the
-//    storeys of an untyped building of that size in that fabric, which is as often a shop, a
-//    garage or a house. This factor is the least general number here: the tagged homes of both
-//    extracts are mostly towers (Monaco's 78-111 m residences, Kaiserslautern's student towers),
-//    as mappers tag the notable ones; hotels keep the type table's 18 m;
 //  - attached: a building sharing a wall (within kAttachedGap) stands in a closed block or a
 //    terrace, built higher than a detached one of the same footprint;
-//  - kMaxSurroundingLevels (90 m) guards the extrapolation.
 constexpr double kBaseLevels = 1.6;
 constexpr double kGrainExponent = 0.65;
 constexpr double kAreaExponent = 0.3;
-constexpr double kHomeFactor = 4.5;
 constexpr double kAttachedFactor = 1.35;
-constexpr double kMinBlockOfFlats = 200;   // m2
-constexpr double kMaxTowerFloor = 1500;    // m2
 constexpr double kMinGrain = 50;           // m2: a yard of sheds is no finer fabric than this
 constexpr double kMaxGrain = 500;          // m2
 constexpr double kMaxRelativeArea = 10;
-constexpr double kMaxSurroundingLevels = 30;
 constexpr double kGrainRadius = 400;       // metres: a town quarter
 constexpr double kAttachedGap = 0.5;       // metres
 
@@ -154,8 +142,6 @@ Vec2 centroid(const Ring& ring) {
     for (Vec2 p : ring) c = c + p;
     return ring.empty() ? c : c * (1.0 / ring.size());
 }
-
-bool is_home(const std::string& type) { return is_one_of(type, {"residential", "apartments", "dormitory"}); }
 
 // Workplaces whose height follows the fabric of their town like an untyped building's: a town
 // hall or an office in a village has two storeys, in a city six.
@@ -371,23 +357,12 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
     return out;
 }
 
-std::vector<OsmRef> lodging_buildings(const OsmData& osm) {
-    std::vector<OsmRef> out;
-    for (const OsmArea& area : osm.building_areas) {
-        const char* tourism = area.tags.get("tourism");
-        if (tourism && is_one_of(tourism, {"apartment", "apartments"})) out.push_back(area.ref);
-    }
-    std::sort(out.begin(), out.end());
-    return out;
-}
-
-double levels_from_surroundings(double area, double grain, bool home, bool attached) {
+double levels_from_surroundings(double area, double grain, bool attached) {
     grain = std::clamp(grain, kMinGrain, kMaxGrain);
     double levels = kBaseLevels * std::pow(grain / 100, kGrainExponent) *
                     std::pow(std::min(area / grain, kMaxRelativeArea), kAreaExponent);
-    if (home && area >= kMinBlockOfFlats && area <= kMaxTowerFloor) levels *= kHomeFactor;
     if (attached) levels *= kAttachedFactor;
-    return std::clamp(levels, 1.0, kMaxSurroundingLevels);
+    return std::max(levels, 1.0);
 }
 
 double height_by_type_and_area(const std::string& type, double area, bool* sure, LandUse use) {
@@ -424,7 +399,7 @@ double height_by_type_and_area(const std::string& type, double area, bool* sure,
 }
 
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report, const std::vector<OsmRef>& lodging) {
+                   const BuildingParams& params, ParseReport& report) {
     // Only heights from a building's own tags (never a guess, never a raised part's).
     std::vector<Tagged> tagged;
     for (const Building& b : buildings)
@@ -481,7 +456,6 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         const double by_type = height_by_type_and_area(b.type, area, &sure, use);
         bool ignored = false;
         const bool hall_by_land_use = by_type > 0 && by_type != height_by_type_and_area(b.type, area, &ignored);
-        const bool home = is_home(b.type) || std::binary_search(lodging.begin(), lodging.end(), b.osm);
         double height = 0, disagreeing = 0;
         const char* note = "from type and footprint area";
         if (sure) {
@@ -497,8 +471,8 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
             height = by_type;
             rule = HeightRule::TypeAndArea;
             note = "from type, footprint area and land use";
-        } else if (is_untyped(b.type) || home || is_workplace(b.type)) {
-            height = params.level_height * levels_from_surroundings(area, surroundings.grain(at), home, attached);
+        } else if (is_untyped(b.type) || is_workplace(b.type)) {
+            height = params.level_height * levels_from_surroundings(area, surroundings.grain(at), attached);
             rule = HeightRule::TypeAndArea;
             note = kFromSurroundings;
         } else if (by_type > 0) {

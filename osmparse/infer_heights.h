@@ -32,11 +32,6 @@ inline constexpr char kFromSurroundings[] = "from type, footprint area and surro
 // (a stray node) are left out and noted as kLandUseTooLarge under kBuildingHeights.
 std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection, ParseReport& report);
 
-// The buildings (and parts) of holiday flats whatever their building=* says:
-// tourism=apartment|apartments (a `commercial` building of holiday flats is a block of flats).
-// Sorted, for infer_heights.
-std::vector<OsmRef> lodging_buildings(const OsmData& osm);
-
 // Replaces the random height of every ground-standing building with nothing tagged
 // (height_source Random, min_height 0) by the first rule that applies; height_rule records it:
 //  1. TypeAndArea for sure things: a footprint under 30 m2, or a garage/shed/carport/kiosk-like
@@ -54,8 +49,7 @@ std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 //     the report's notes under kBuildingHeights tell them apart;
 //  4. TypeAndArea: an untyped building of hall size on industrial or retail land is an
 //     industrial or retail hall (the land use of `land_use`, at the footprint's centroid);
-//  5. TypeAndArea from the surroundings, for untyped buildings, homes (`residential`,
-//     `apartments`, `dormitory`, or any type in `lodging`) and workplaces (`office`,
+//  5. TypeAndArea from the surroundings, for untyped buildings and workplaces (`office`,
 //     `commercial`, `civic`, `public`, `government`): levels_from_surroundings of its footprint,
 //     the grain of the town around it and whether it shares a wall;
 //  6. TypeAndArea: a height by building type (height_by_type_and_area);
@@ -70,13 +64,13 @@ std::vector<OsmRef> lodging_buildings(const OsmData& osm);
 // are recomputed from the new height. Counts go to kBuildingHeights in the report. The result
 // does not depend on the order of `buildings` beyond ties in distance.
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report, const std::vector<OsmRef>& lodging = {});
+                   const BuildingParams& params, ParseReport& report);
 
-// Rule 5 alone (exposed for tests): storeys of an untyped building, a workplace or a home with a
+// Rule 5 alone (exposed for tests): storeys of an untyped building or a workplace with a
 // footprint of `area` m2 among buildings whose median footprint within 400 m is `grain` m2;
-// `home` for the residential types and lodging, `attached` when it shares a wall with another building. The
-// constants and their reasons are in infer_heights.cpp.
-double levels_from_surroundings(double area, double grain, bool home, bool attached);
+// `attached` when it shares a wall with another building. The constants and their reasons are
+// in infer_heights.cpp.
+double levels_from_surroundings(double area, double grain, bool attached);
 
 // Rule 1, 4 and 6 alone (exposed for tests): the height of a building of `type` with a footprint of
 // `area` m2 on land used as `use`, or 0 when the type says nothing; `sure` tells whether the rule

@@ -71,7 +71,7 @@ TEST(InferHeights, TaggedNeighboursOfTheSameKindDecide) {
     infer_heights(v, {}, params, report);
     EXPECT_EQ(by_id(v, 5).height_rule, HeightRule::TypeAndArea);
     // (The tower's footprint reaches its wall.)
-    expect_near_guess(by_id(v, 5), params.level_height * levels_from_surroundings(225, 225, false, true));
+    expect_near_guess(by_id(v, 5), params.level_height * levels_from_surroundings(225, 225, true));
 }
 
 TEST(InferHeights, NeighboursThatDisagreeStillBeatARandomHeight) {
@@ -132,8 +132,9 @@ TEST(InferHeights, ExtractWideMedianOfTheSameKindWhenNoneIsNear) {
     EXPECT_EQ(by_id(v, 4).height_rule, HeightRule::Neighbours);
     expect_near_guess(by_id(v, 4), 21);  // the median of 12, 14, ..., 30
     EXPECT_EQ(by_id(v, 5).height_rule, HeightRule::TypeAndArea);
-    // Alone: its own footprint is the grain around it; a dormitory is a home.
-    expect_near_guess(by_id(v, 5), params.level_height * levels_from_surroundings(225, 225, true, false));
+    // Too few tagged dormitories: a home takes the type table.
+    bool sure = false;
+    expect_near_guess(by_id(v, 5), height_by_type_and_area("dormitory", 225, &sure));
     EXPECT_EQ(report.note_count(kBuildingHeights, "from tagged buildings of its type and size in the extract"), 1);
 }
 
@@ -150,33 +151,26 @@ TEST(InferHeights, UntypedHallsOnIndustrialLand) {
     bool sure = false;
     EXPECT_EQ(by_id(v, 1).height_rule, HeightRule::TypeAndArea);
     expect_near_guess(by_id(v, 1), height_by_type_and_area("industrial", 625, &sure));
-    expect_near_guess(by_id(v, 2), params.level_height * levels_from_surroundings(625, 625, false, false));
+    expect_near_guess(by_id(v, 2), params.level_height * levels_from_surroundings(625, 625, false));
     EXPECT_LT(height_by_type_and_area("yes", 625, &sure, LandUse::Industrial), height_by_type_and_area("yes", 625, &sure));
     expect_near_guess(by_id(v, 3), 8);
 }
 
-TEST(InferHeights, StoreysFromSurroundingsFollowFabricFootprintHomesAndWalls) {
+TEST(InferHeights, StoreysFromSurroundingsFollowFabricFootprintAndWalls) {
     // A coarser fabric is built higher, a larger footprint within it too.
-    EXPECT_LT(levels_from_surroundings(300, 100, false, false), levels_from_surroundings(300, 400, false, false));
-    EXPECT_LT(levels_from_surroundings(150, 200, false, false), levels_from_surroundings(1500, 200, false, false));
-    // A block of flats has several times the storeys of an untyped building of its size...
-    EXPECT_GT(levels_from_surroundings(600, 300, true, false), 3 * levels_from_surroundings(600, 300, false, false));
-    // ... but a footprint too small for one is not a block of flats.
-    EXPECT_EQ(levels_from_surroundings(120, 300, true, false), levels_from_surroundings(120, 300, false, false));
+    EXPECT_LT(levels_from_surroundings(300, 100, false), levels_from_surroundings(300, 400, false));
+    EXPECT_LT(levels_from_surroundings(150, 200, false), levels_from_surroundings(1500, 200, false));
     // A shared wall adds height: a closed block or a terrace.
-    EXPECT_GT(levels_from_surroundings(200, 200, false, true), 1.2 * levels_from_surroundings(200, 200, false, false));
-    // A house among houses: one or two storeys; a shed: one; never above the guard.
-    const double house = levels_from_surroundings(120, 120, false, false);
+    EXPECT_GT(levels_from_surroundings(200, 200, true), 1.2 * levels_from_surroundings(200, 200, false));
+    // A house among houses: one or two storeys; a shed: one.
+    const double house = levels_from_surroundings(120, 120, false);
     EXPECT_GE(house, 1.5);
     EXPECT_LE(house, 2.5);
-    EXPECT_EQ(levels_from_surroundings(20, 50, false, false), 1);
-    EXPECT_EQ(levels_from_surroundings(1000, 500, true, true), 30);
+    EXPECT_EQ(levels_from_surroundings(20, 50, false), 1);
     // A fabric coarser than a city of blocks is an estate of halls, not a taller city; a
-    // footprint far beyond its fabric's is a hall or a complex; a huge home is a complex.
-    EXPECT_EQ(levels_from_surroundings(300, 5000, false, false), levels_from_surroundings(300, 500, false, false));
-    EXPECT_EQ(levels_from_surroundings(50000, 500, false, false), levels_from_surroundings(5000, 500, false, false));
-    EXPECT_LT(levels_from_surroundings(5000, 300, false, false), levels_from_surroundings(1000, 300, true, false));
-    EXPECT_EQ(levels_from_surroundings(3000, 300, true, false), levels_from_surroundings(3000, 300, false, false));
+    // footprint far beyond its fabric's is a hall or a complex.
+    EXPECT_EQ(levels_from_surroundings(300, 5000, false), levels_from_surroundings(300, 500, false));
+    EXPECT_EQ(levels_from_surroundings(50000, 500, false), levels_from_surroundings(5000, 500, false));
 }
 
 // n x n buildings of `side` metres on a grid of `pitch` metres, ids from `first`.
@@ -198,30 +192,30 @@ TEST(InferHeights, UntypedBuildingsTakeTheirTownsFabric) {
     infer_heights(v, {}, params, report);
     for (int64_t id : {1, 2}) EXPECT_EQ(by_id(v, id).height_rule, HeightRule::TypeAndArea);
     EXPECT_GT(by_id(v, 2).height, 1.5 * by_id(v, 1).height);
-    expect_near_guess(by_id(v, 1), params.level_height * levels_from_surroundings(400, 100, false, false));
-    expect_near_guess(by_id(v, 2), params.level_height * levels_from_surroundings(400, 400, false, false));
+    expect_near_guess(by_id(v, 1), params.level_height * levels_from_surroundings(400, 100, false));
+    expect_near_guess(by_id(v, 2), params.level_height * levels_from_surroundings(400, 400, false));
     EXPECT_EQ(report.note_count(kBuildingHeights, kFromSurroundings), 74);
 }
 
-TEST(InferHeights, SharedWallsLodgingAndWorkplaces) {
+TEST(InferHeights, SharedWallsAndWorkplaces) {
     BuildingParams params;
     // Two buildings wall to wall (10 cm apart: drawn by hand), one standing 5 m off.
     std::vector<Building> v{building(1, 0, 0, "yes", 10, HeightSource::Random),
                             building(2, 15.1, 0, "yes", 10, HeightSource::Random),
                             building(3, 0, 20, "yes", 10, HeightSource::Random),
-                            // A commercial building of holiday flats, an office, a church.
+                            // Workplaces (commercial, office) follow the fabric, a church its type.
                             building(4, 300, 0, "commercial", 10, HeightSource::Random),
                             building(5, 300, 100, "office", 10, HeightSource::Random),
                             building(6, 300, 200, "church", 10, HeightSource::Random)};
     ParseReport report;
-    infer_heights(v, {}, params, report, {{OsmType::Way, 4}});
+    infer_heights(v, {}, params, report);
     const double grain = 225;  // every footprint is 15 x 15 m
     const double h = params.level_height;
-    expect_near_guess(by_id(v, 1), h * levels_from_surroundings(225, grain, false, true));
-    expect_near_guess(by_id(v, 2), h * levels_from_surroundings(225, grain, false, true));
-    expect_near_guess(by_id(v, 3), h * levels_from_surroundings(225, grain, false, false));
-    expect_near_guess(by_id(v, 4), h * levels_from_surroundings(225, grain, true, false));
-    expect_near_guess(by_id(v, 5), h * levels_from_surroundings(225, grain, false, false));
+    expect_near_guess(by_id(v, 1), h * levels_from_surroundings(225, grain, true));
+    expect_near_guess(by_id(v, 2), h * levels_from_surroundings(225, grain, true));
+    expect_near_guess(by_id(v, 3), h * levels_from_surroundings(225, grain, false));
+    expect_near_guess(by_id(v, 4), h * levels_from_surroundings(225, grain, false));
+    expect_near_guess(by_id(v, 5), h * levels_from_surroundings(225, grain, false));
     bool sure = false;
     expect_near_guess(by_id(v, 6), height_by_type_and_area("church", 225, &sure));
     EXPECT_EQ(height_by_type_and_area("supermarket", 1500, &sure), 3) << "one storey";
