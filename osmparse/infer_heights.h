@@ -25,6 +25,7 @@ struct LandUseArea {
 };
 
 inline constexpr char kLandUseTooLarge[] = "land use area over 10 km across: not used";
+inline constexpr char kFromSurroundings[] = "from type, footprint area and surroundings";
 
 // The landuse=residential|commercial|retail|industrial areas of the map, projected (the same
 // OSM areas build_land_cover paints as built-up ground). Areas over kMaxObjectExtent across
@@ -40,24 +41,38 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //     (height or building:levels) within 150 m that are most like it: the same type and a
 //     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
 //     (at least 2), else such a footprint (at least 3), else any (at least 3: the street's scale);
+//     when the chosen group disagrees (its upper quartile over twice its lower: houses beside
+//     towers) it says nothing and the later rules decide (it comes back as rule 7);
 //  3. Neighbours, extract-wide: the median height of the tagged buildings of the same type and
 //     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3).
 //     The scene format has one value for rules 2 and 3 (a new one would change its schema);
 //     the report's notes under kBuildingHeights tell them apart;
-//  4. TypeAndArea: a height by building type and, for `yes`/unknown types, by footprint area,
-//     where an untyped building on industrial or retail land counts as an industrial or retail
-//     hall (the land use of `land_use`, at the footprint's centroid);
-//  5. Random: the seeded random height in [random_min_height, random_max_height] stays (only
+//  4. TypeAndArea: an untyped building of hall size on industrial or retail land is an
+//     industrial or retail hall (the land use of `land_use`, at the footprint's centroid);
+//  5. TypeAndArea from the surroundings, for untyped buildings and workplaces (`office`,
+//     `commercial`, `civic`, `public`, `government`): levels_from_surroundings of its footprint,
+//     the grain of the town around it and whether it shares a wall;
+//  6. TypeAndArea: a height by building type (height_by_type_and_area);
+//  7. Neighbours that disagree (rule 2's group): their weighted median;
+//  8. Random: the seeded random height in [random_min_height, random_max_height] stays (only
 //     reached for types the table does not know, with nothing tagged like it).
 // Only buildings whose height comes from their own tags are ever used, so a building whose tags
-// are hidden (--hide-height-tags) cannot see its own truth. Each guess is jittered by up to
-// +-10% (seeded per building) so a street is not one height. Levels are recomputed from the new
-// height. Counts go to kBuildingHeights in the report. The result does not depend on the order
-// of `buildings` beyond ties in distance.
+// are hidden (--hide-height-tags) cannot see its own truth (rule 5 reads footprints only). Each
+// guess is jittered by up to +-10% (seeded per building) so a street is not one height. The
+// pieces of one OSM building (a repaired bow-tie, a multipolygon's outers) get one guess from
+// their joint footprint (its area, its area-weighted centroid, a wall shared by any). Levels
+// are recomputed from the new height. Counts go to kBuildingHeights in the report. The result
+// does not depend on the order of `buildings` beyond ties in distance.
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
                    const BuildingParams& params, ParseReport& report);
 
-// Rule 1 and 4 alone (exposed for tests): the height of a building of `type` with a footprint of
+// Rule 5 alone (exposed for tests): storeys of an untyped building or a workplace with a
+// footprint of `area` m2 among buildings whose median footprint within 400 m is `grain` m2;
+// `attached` when it shares a wall with another building. The constants and their reasons are
+// in infer_heights.cpp.
+double levels_from_surroundings(double area, double grain, bool attached);
+
+// Rule 1, 4 and 6 alone (exposed for tests): the height of a building of `type` with a footprint of
 // `area` m2 on land used as `use`, or 0 when the type says nothing; `sure` tells whether the rule
 // beats neighbours.
 double height_by_type_and_area(const std::string& type, double area, bool* sure, LandUse use = LandUse::None);

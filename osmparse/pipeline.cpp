@@ -135,9 +135,12 @@ void set_bounds_and_ground(Scene& scene) {
 
 // For the height benchmark (tests/bench/height_bench.sh): forget every height-like tag of a
 // seeded `fraction` of the buildings, so the rules for untagged buildings can be compared with
-// the truth.
-const char* const kHeightKeys[] = {"height", "building:levels", "min_height", "building:min_level",
-                                   "roof:height", "roof:levels", "est_height", "building:height"};
+// the truth. Height-like: every key that names a height or a level (height, min_height,
+// roof:height, est_height, building:levels, building:levels:underground, roof:levels,
+// building:min_level, level, ...), so no variant a rule might read later is left behind.
+bool is_height_like(const std::string& key) {
+    return key.find("height") != std::string::npos || key.find("level") != std::string::npos;
+}
 
 void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
     for (OsmArea& area : osm.building_areas) {
@@ -146,11 +149,7 @@ void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
         if (hash_to_unit(key) >= fraction) continue;
         auto& entries = area.tags.entries;
         entries.erase(std::remove_if(entries.begin(), entries.end(),
-                                     [](const auto& kv) {
-                                         for (const char* k : kHeightKeys)
-                                             if (kv.first == k) return true;
-                                         return false;
-                                     }),
+                                     [](const auto& kv) { return is_height_like(kv.first); }),
                       entries.end());
     }
 }

@@ -53,13 +53,39 @@ TEST(InferHeights, TaggedNeighboursOfTheSameKindDecide) {
     EXPECT_EQ(by_id(v, 1).height_rule, HeightRule::Tagged);
     EXPECT_EQ(by_id(v, 2).height_rule, HeightRule::Levels);
 
-    // Only one like it (and the tower): all three tagged near count, the tower is outvoted.
+    // Only one like it: all three tagged near count, and they agree (15, 21, 24 m).
     v.erase(v.begin() + 2);
     v.erase(v.begin() + 1);
     v.push_back(building(6, 40, 0, "office", 15, HeightSource::Tagged));
+    v.push_back(building(7, 40, 20, "school", 24, HeightSource::Tagged));
+    const Building tower = by_id(v, 4);
+    v.erase(std::find_if(v.begin(), v.end(), [](const Building& b) { return b.osm.id == 4; }));
     infer_heights(v, {}, params, report);
     EXPECT_EQ(by_id(v, 5).height_rule, HeightRule::Neighbours);
-    expect_near_guess(by_id(v, 5), 21);  // the weighted median of 15, 21 and 120
+    expect_near_guess(by_id(v, 5), 21);  // the weighted median of 15, 21 and 24
+
+    // With the tower instead of the school they disagree (15, 21, 120 m: houses beside a
+    // tower say nothing about one more building): the footprint rule decides.
+    v.pop_back();
+    v.push_back(tower);
+    infer_heights(v, {}, params, report);
+    EXPECT_EQ(by_id(v, 5).height_rule, HeightRule::TypeAndArea);
+    // (The tower's footprint reaches its wall.)
+    expect_near_guess(by_id(v, 5), params.level_height * levels_from_surroundings(225, 225, true));
+}
+
+TEST(InferHeights, NeighboursThatDisagreeStillBeatARandomHeight) {
+    BuildingParams params;
+    // A type no table knows, among tagged buildings of 6, 9 and 60 m (20 m away each).
+    std::vector<Building> v{building(1, 20, 0, "yes", 6, HeightSource::Tagged),
+                            building(2, -20, 0, "yes", 9, HeightSource::Tagged),
+                            building(3, 0, 20, "yes", 60, HeightSource::Tagged),
+                            building(4, 0, 0, "ice_rink", 30, HeightSource::Random)};
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    EXPECT_EQ(by_id(v, 4).height_rule, HeightRule::Neighbours);
+    expect_near_guess(by_id(v, 4), 9);
+    EXPECT_EQ(report.note_count(kBuildingHeights, "from tagged neighbours that disagree"), 1);
 }
 
 TEST(InferHeights, SameTypeNeighboursBeatOtherTypes) {
@@ -106,6 +132,7 @@ TEST(InferHeights, ExtractWideMedianOfTheSameKindWhenNoneIsNear) {
     EXPECT_EQ(by_id(v, 4).height_rule, HeightRule::Neighbours);
     expect_near_guess(by_id(v, 4), 21);  // the median of 12, 14, ..., 30
     EXPECT_EQ(by_id(v, 5).height_rule, HeightRule::TypeAndArea);
+    // Too few tagged dormitories: a home takes the type table.
     bool sure = false;
     expect_near_guess(by_id(v, 5), height_by_type_and_area("dormitory", 225, &sure));
     EXPECT_EQ(report.note_count(kBuildingHeights, "from tagged buildings of its type and size in the extract"), 1);
@@ -124,9 +151,74 @@ TEST(InferHeights, UntypedHallsOnIndustrialLand) {
     bool sure = false;
     EXPECT_EQ(by_id(v, 1).height_rule, HeightRule::TypeAndArea);
     expect_near_guess(by_id(v, 1), height_by_type_and_area("industrial", 625, &sure));
-    expect_near_guess(by_id(v, 2), height_by_type_and_area("yes", 625, &sure));
+    expect_near_guess(by_id(v, 2), params.level_height * levels_from_surroundings(625, 625, false));
     EXPECT_LT(height_by_type_and_area("yes", 625, &sure, LandUse::Industrial), height_by_type_and_area("yes", 625, &sure));
     expect_near_guess(by_id(v, 3), 8);
+}
+
+TEST(InferHeights, StoreysFromSurroundingsFollowFabricFootprintAndWalls) {
+    // A coarser fabric is built higher, a larger footprint within it too.
+    EXPECT_LT(levels_from_surroundings(300, 100, false), levels_from_surroundings(300, 400, false));
+    EXPECT_LT(levels_from_surroundings(150, 200, false), levels_from_surroundings(1500, 200, false));
+    // A shared wall adds height: a closed block or a terrace.
+    EXPECT_GT(levels_from_surroundings(200, 200, true), 1.2 * levels_from_surroundings(200, 200, false));
+    // A house among houses: one or two storeys; a shed: one.
+    const double house = levels_from_surroundings(120, 120, false);
+    EXPECT_GE(house, 1.5);
+    EXPECT_LE(house, 2.5);
+    EXPECT_EQ(levels_from_surroundings(20, 50, false), 1);
+    // A fabric coarser than a city of blocks is an estate of halls, not a taller city; a
+    // footprint far beyond its fabric's is a hall or a complex.
+    EXPECT_EQ(levels_from_surroundings(300, 5000, false), levels_from_surroundings(300, 500, false));
+    EXPECT_EQ(levels_from_surroundings(50000, 500, false), levels_from_surroundings(5000, 500, false));
+}
+
+// n x n buildings of `side` metres on a grid of `pitch` metres, ids from `first`.
+void add_field(std::vector<Building>& v, int64_t first, double x0, int n, double side, double pitch) {
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            v.push_back(building(first + i * n + j, x0 + pitch * i, pitch * j, "yes", 10, HeightSource::Random, side));
+}
+
+TEST(InferHeights, UntypedBuildingsTakeTheirTownsFabric) {
+    BuildingParams params;
+    std::vector<Building> v;
+    add_field(v, 1000, 0, 6, 10, 25);       // a suburb of 100 m2 houses
+    add_field(v, 2000, 5000, 6, 20, 40);    // a town of 400 m2 blocks
+    // The same 20 x 20 m building beside each, touching none.
+    v.push_back(building(1, 150, 50, "yes", 10, HeightSource::Random, 20));
+    v.push_back(building(2, 5240, 50, "yes", 10, HeightSource::Random, 20));
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    for (int64_t id : {1, 2}) EXPECT_EQ(by_id(v, id).height_rule, HeightRule::TypeAndArea);
+    EXPECT_GT(by_id(v, 2).height, 1.5 * by_id(v, 1).height);
+    expect_near_guess(by_id(v, 1), params.level_height * levels_from_surroundings(400, 100, false));
+    expect_near_guess(by_id(v, 2), params.level_height * levels_from_surroundings(400, 400, false));
+    EXPECT_EQ(report.note_count(kBuildingHeights, kFromSurroundings), 74);
+}
+
+TEST(InferHeights, SharedWallsAndWorkplaces) {
+    BuildingParams params;
+    // Two buildings wall to wall (10 cm apart: drawn by hand), one standing 5 m off.
+    std::vector<Building> v{building(1, 0, 0, "yes", 10, HeightSource::Random),
+                            building(2, 15.1, 0, "yes", 10, HeightSource::Random),
+                            building(3, 0, 20, "yes", 10, HeightSource::Random),
+                            // Workplaces (commercial, office) follow the fabric, a church its type.
+                            building(4, 300, 0, "commercial", 10, HeightSource::Random),
+                            building(5, 300, 100, "office", 10, HeightSource::Random),
+                            building(6, 300, 200, "church", 10, HeightSource::Random)};
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    const double grain = 225;  // every footprint is 15 x 15 m
+    const double h = params.level_height;
+    expect_near_guess(by_id(v, 1), h * levels_from_surroundings(225, grain, true));
+    expect_near_guess(by_id(v, 2), h * levels_from_surroundings(225, grain, true));
+    expect_near_guess(by_id(v, 3), h * levels_from_surroundings(225, grain, false));
+    expect_near_guess(by_id(v, 4), h * levels_from_surroundings(225, grain, false));
+    expect_near_guess(by_id(v, 5), h * levels_from_surroundings(225, grain, false));
+    bool sure = false;
+    expect_near_guess(by_id(v, 6), height_by_type_and_area("church", 225, &sure));
+    EXPECT_EQ(height_by_type_and_area("supermarket", 1500, &sure), 3) << "one storey";
 }
 
 TEST(InferHeights, SameResultWhateverTheOrder) {
