@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "rng.h"
+#include "grid_cell_key.h"
 #include "scene_limits.h"
 
 namespace citygen {
@@ -90,7 +91,7 @@ struct Tagged {
 class TaggedGrid {
 public:
     explicit TaggedGrid(std::vector<Tagged> items) : items_(std::move(items)) {
-        for (size_t i = 0; i < items_.size(); ++i) cells_[key(cell(items_[i].at.x), cell(items_[i].at.y))].push_back(i);
+        for (size_t i = 0; i < items_.size(); ++i) cells_[grid_cell_key(cell(items_[i].at.x), cell(items_[i].at.y))].push_back(i);
     }
     // All within the radius, nearest first (ties by index: deterministic).
     std::vector<std::pair<double, size_t>> nearest(Vec2 p) const {
@@ -98,7 +99,7 @@ public:
         const int64_t cx = cell(p.x), cy = cell(p.y);
         for (int64_t dx = -1; dx <= 1; ++dx)
             for (int64_t dy = -1; dy <= 1; ++dy) {
-                auto it = cells_.find(key(cx + dx, cy + dy));
+                auto it = cells_.find(grid_cell_key(cx + dx, cy + dy));
                 if (it == cells_.end()) continue;
                 for (size_t i : it->second) {
                     const double d = length(items_[i].at - p);
@@ -113,7 +114,6 @@ public:
 
 private:
     static int64_t cell(double v) { return static_cast<int64_t>(std::floor(v / kNeighbourRadius)); }
-    static int64_t key(int64_t x, int64_t y) { return x * 73856093 ^ y * 19349663; }
     std::vector<Tagged> items_;
     std::unordered_map<int64_t, std::vector<size_t>> cells_;
 };
@@ -161,10 +161,10 @@ public:
             const Box2& box = boxes_.back();
             for (int64_t x = cell(box.min.x - kAttachedGap, kWallCell); x <= cell(box.max.x + kAttachedGap, kWallCell); ++x)
                 for (int64_t y = cell(box.min.y - kAttachedGap, kWallCell); y <= cell(box.max.y + kAttachedGap, kWallCell); ++y)
-                    walls_[key(x, y)].push_back(i);
+                    walls_[grid_cell_key(x, y)].push_back(i);
             if (b.is_part) continue;  // parts are pieces of a building, not buildings of the town
             const Vec2 c = centroid(b.outer);
-            grain_cells_[key(cell(c.x, kGrainCell), cell(c.y, kGrainCell))].push_back(
+            grain_cells_[grid_cell_key(cell(c.x, kGrainCell), cell(c.y, kGrainCell))].push_back(
                 {c, std::fabs(signed_area(b.outer))});
         }
     }
@@ -174,7 +174,7 @@ public:
     // 15,000 buildings, 2,000 within 400 m of the centre).
     double grain(Vec2 p) {
         const int64_t cx = cell(p.x, kGrainCell), cy = cell(p.y, kGrainCell);
-        auto [known, inserted] = grain_of_square_.try_emplace(key(cx, cy), 0.0);
+        auto [known, inserted] = grain_of_square_.try_emplace(grid_cell_key(cx, cy), 0.0);
         if (!inserted) return known->second;
         const Vec2 centre{(cx + 0.5) * kGrainCell, (cy + 0.5) * kGrainCell};
         std::vector<double>& areas = scratch_;
@@ -182,7 +182,7 @@ public:
         const int64_t reach = static_cast<int64_t>(std::ceil(kGrainRadius / kGrainCell));
         for (int64_t dx = -reach; dx <= reach; ++dx)
             for (int64_t dy = -reach; dy <= reach; ++dy) {
-                auto it = grain_cells_.find(key(cx + dx, cy + dy));
+                auto it = grain_cells_.find(grid_cell_key(cx + dx, cy + dy));
                 if (it == grain_cells_.end()) continue;
                 for (const auto& [at, area] : it->second)
                     if (length(at - centre) <= kGrainRadius) areas.push_back(area);
@@ -198,7 +198,7 @@ public:
         const Box2& box = boxes_[i];
         for (int64_t x = cell(box.min.x, kWallCell); x <= cell(box.max.x, kWallCell); ++x)
             for (int64_t y = cell(box.min.y, kWallCell); y <= cell(box.max.y, kWallCell); ++y) {
-                auto it = walls_.find(key(x, y));
+                auto it = walls_.find(grid_cell_key(x, y));
                 if (it == walls_.end()) continue;
                 for (size_t j : it->second) {
                     if (j == i || buildings_[j].is_part != b.is_part || buildings_[j].osm == b.osm) continue;
@@ -214,10 +214,6 @@ public:
 private:
     static constexpr double kGrainCell = 100, kWallCell = 50;
     static int64_t cell(double v, double size) { return static_cast<int64_t>(std::floor(v / size)); }
-    // Exact (no two squares share a key: the cache below must not mix them up).
-    static int64_t key(int64_t x, int64_t y) {
-        return static_cast<int64_t>((static_cast<uint64_t>(x) << 32) | static_cast<uint32_t>(y));
-    }
     static double point_segment_distance(Vec2 p, Vec2 a, Vec2 b) {
         const Vec2 d = b - a;
         const double len2 = dot(d, d);

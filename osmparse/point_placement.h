@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "geometry.h"
+#include "grid_cell_key.h"
 
 namespace citygen {
 
@@ -17,12 +18,12 @@ namespace citygen {
 class PointGrid {
 public:
     explicit PointGrid(double cell) : cell_(cell) {}
-    void add(Vec2 p) { cells_[key(cell_of(p.x), cell_of(p.y))].push_back(p); }
+    void add(Vec2 p) { cells_[grid_cell_key(cell_of(p.x), cell_of(p.y))].push_back(p); }
     bool any_within(Vec2 p, double r) const {
         const int64_t cx = cell_of(p.x), cy = cell_of(p.y), reach = static_cast<int64_t>(std::ceil(r / cell_));
         for (int64_t x = cx - reach; x <= cx + reach; ++x)
             for (int64_t y = cy - reach; y <= cy + reach; ++y) {
-                auto it = cells_.find(key(x, y));
+                auto it = cells_.find(grid_cell_key(x, y));
                 if (it == cells_.end()) continue;
                 for (Vec2 q : it->second)
                     if (length(q - p) < r) return true;
@@ -32,7 +33,6 @@ public:
 
 private:
     int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
-    static int64_t key(int64_t x, int64_t y) { return x * 73856093 ^ y * 19349663; }
     double cell_;
     std::unordered_map<int64_t, std::vector<Vec2>> cells_;
 };

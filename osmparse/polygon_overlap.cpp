@@ -124,7 +124,7 @@ BuildingIndex::BuildingIndex(const std::vector<Building>& buildings, double cell
             continue;
         }
         for (int64_t cx = cell_of(box.min.x); cx <= cell_of(box.max.x); ++cx)
-            for (int64_t cy = cell_of(box.min.y); cy <= cell_of(box.max.y); ++cy) entries.push_back({key(cx, cy), i});
+            for (int64_t cy = cell_of(box.min.y); cy <= cell_of(box.max.y); ++cy) entries.push_back({grid_cell_key(cx, cy), i});
     }
     // By cell, each cell's buildings ascending (the order the queries visit them in).
     std::sort(entries.begin(), entries.end());

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "geometry.h"
+#include "grid_cell_key.h"
 #include "scene.h"
 
 namespace citygen {
@@ -54,7 +55,7 @@ public:
         const Cell low{cell_of(box.min.x), cell_of(box.min.y)};
         for (int64_t cx = low.x; cx <= cell_of(box.max.x); ++cx)
             for (int64_t cy = low.y; cy <= cell_of(box.max.y); ++cy) {
-                const CellRange cell = cell_at(key(cx, cy));
+                const CellRange cell = cell_at(grid_cell_key(cx, cy));
                 for (uint32_t k = cell.begin; k != cell.end; ++k) {
                     const uint32_t i = members_[k];
                     // A building is listed in every cell its box spans: it is visited in the
@@ -83,10 +84,6 @@ private:
     double cells_spanned(const Box2& box) const {  // in double: a box may be absurdly large
         return (std::floor(box.max.x / cell_) - std::floor(box.min.x / cell_) + 1) *
                (std::floor(box.max.y / cell_) - std::floor(box.min.y / cell_) + 1);
-    }
-    // One key per cell (no two cells share a list): cell coordinates stay far below 2^31.
-    static int64_t key(int64_t cx, int64_t cy) {
-        return static_cast<int64_t>((static_cast<uint64_t>(cx) << 32) ^ static_cast<uint32_t>(cy));
     }
     int64_t cell_of(double v) const { return static_cast<int64_t>(std::floor(v / cell_)); }
     // The grid is flat (no container per cell; indexes are built a dozen times per parse):
