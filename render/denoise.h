@@ -20,9 +20,9 @@ namespace citygen {
 struct DenoiseSettings {
     int levels = 4;            // taps 1, 2, 4, 8 pixels apart
     double sigma_luminance = 4;  // luminance difference, in standard deviations of the pixel's noise
-    double sigma_normal = 0.2; // length of the difference of unit normals
+    double sigma_normal = 0.7; // length of the difference of unit normals
     double sigma_depth = 0.03; // depth difference relative to depth, per pixel of tap distance
-    double sigma_albedo = 0.3; // albedo difference
+    double sigma_albedo = 0.2; // albedo difference
 };
 
 // How far (in pixels, each way) a filtered pixel sees: a region rendered this much larger and
