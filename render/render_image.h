@@ -50,6 +50,7 @@ struct Film {
     std::vector<float> guide_albedo, guide_normal, guide_depth;
     std::vector<float> guide_direct;    // 3 per pixel, emission and haze seen directly (noise-free)
     std::vector<float> guide_variance;  // of each pixel's mean luminance, from its samples
+    std::vector<float> guide_sample_direct;  // 3 per pixel, guide_direct's light along the sample rays (mean)
 };
 
 struct RenderStats {

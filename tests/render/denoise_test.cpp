@@ -158,3 +158,34 @@ TEST(Denoise, AddsTheDirectLightBackUnfiltered) {
         ASSERT_NEAR(lit.rgb[k], film.rgb[k] + lit.guide_direct[k], 1e-5f * (1 + lit.guide_direct[k])) << k / 3;
     EXPECT_LT(mean_abs_error(film, 0, 64, 0.2f), 0.02) << "the wall is still filtered";
 }
+
+TEST(Denoise, CancelsWhereTheSamplesFellOnTheDirectLight) {
+    // A lamp globe covers part of a few pixels: the samples saw more or less of it than the
+    // guide's fixed grid. With the direct light along the samples known, that difference is
+    // not noise to spread: the result equals the one from samples that saw exactly the grid's
+    // share, and the globe comes back at the grid's value.
+    Film exact = flat_film(0.2f, 0.2f, 0.2f);
+    add_noise(exact, 7, 0.8);
+    exact.guide_direct.assign(exact.rgb.size(), 0.f);
+    for (int x = 20; x < 24; ++x)
+        for (int c = 0; c < 3; ++c) {
+            const size_t k = 3 * (10 * 64 + x) + c;
+            exact.guide_direct[k] = 30.f;
+            exact.rgb[k] += 30.f;
+        }
+    exact.guide_sample_direct = exact.guide_direct;
+    Film sampled = exact;
+    Rng rng(9);
+    for (int x = 20; x < 24; ++x) {
+        const float seen = static_cast<float>(60 * rng.next_double());  // 0..60 instead of 30
+        for (int c = 0; c < 3; ++c) {
+            const size_t k = 3 * (10 * 64 + x) + c;
+            sampled.guide_sample_direct[k] = seen;
+            sampled.rgb[k] += seen - 30.f;
+        }
+    }
+    denoise(exact, 1.0);
+    denoise(sampled, 1.0);
+    for (size_t k = 0; k < exact.rgb.size(); ++k) ASSERT_NEAR(sampled.rgb[k], exact.rgb[k], 1e-4f) << k / 3;
+    EXPECT_NE(sampled.raw_rgb, exact.raw_rgb);
+}
