@@ -38,6 +38,7 @@ Film crop(const Film& film, const PixelRegion& region) {
     copy(film.guide_depth, out.guide_depth, 1);
     copy(film.guide_direct, out.guide_direct, 3);
     copy(film.guide_variance, out.guide_variance, 1);
+    copy(film.guide_sample_direct, out.guide_sample_direct, 3);
     return out;
 }
 

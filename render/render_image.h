@@ -46,10 +46,11 @@ struct Film {
     std::vector<float> object_kind;  // ObjectKind as a number (0: sky)
     std::vector<float> object_index; // index of the object in the scene file's list of its kind
     // Denoiser guides, present when RenderSettings::denoise_guides: albedo, normal and depth
-    // averaged over 3x3 positions in the pixel, so a window narrower than a pixel still shows.
+    // averaged over 6x6 positions in the pixel, so a window narrower than a pixel still shows.
     std::vector<float> guide_albedo, guide_normal, guide_depth;
     std::vector<float> guide_direct;    // 3 per pixel, emission and haze seen directly (noise-free)
     std::vector<float> guide_variance;  // of each pixel's mean luminance, from its samples
+    std::vector<float> guide_sample_direct;  // 3 per pixel, guide_direct's light along the sample rays (mean)
 };
 
 struct RenderStats {

@@ -4,7 +4,9 @@
 # samples with every test image and flatter them). PSNR on the 8-bit tone-mapped PNGs (idiff),
 # for raw renders at 16..256 spp and --denoise at 16 and 64 spp; the equal-quality factor is the
 # raw spp (log-interpolated) that matches denoised 16 spp, over 16. Filter seconds: median of
-# RUNS (default 3) denoise_seconds from --stats (the filter alone, 2 threads here).
+# RUNS (default 3) denoise_seconds from --stats (the filter alone, 2 threads here). CPU with
+# --denoise: median render_cpu_seconds of 16 spp with --denoise over that without (the guides' extra
+# rays and the filter).
 #   tests/bench/denoise_bench.sh
 #   REF_SPP=256 WIDTH=320 HEIGHT=180 tests/bench/denoise_bench.sh   # a quicker look
 # CACHE=DIR keeps the reference and the raw renders (which the denoiser does not change) in DIR
@@ -26,8 +28,8 @@ render() { build/bin/render "$work/city.scene" --width "$WIDTH" --height "$HEIGH
 psnr() { { idiff "$1" "$2" || true; } | awk '/Peak SNR/ { print $4 }'; }
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
-echo "| view | raw 16 | raw 32 | raw 64 | raw 128 | raw 256 | denoised 16 | denoised 64 | equal-quality spp of denoised 16 | factor | filter seconds |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| view | raw 16 | raw 32 | raw 64 | raw 128 | raw 256 | denoised 16 | denoised 64 | equal-quality spp of denoised 16 | factor | filter seconds | CPU with --denoise |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for view in day night; do
   ref="$CACHE/${view}_${WIDTH}x${HEIGHT}_spp${REF_SPP}_seed1000.png"
   [ -s "$ref" ] || { render --time "$view" --spp "$REF_SPP" --seed 1000 -o "$work/ref.png" && mv "$work/ref.png" "$ref"; }
@@ -38,9 +40,13 @@ for view in day night; do
     [ -s "$cached" ] || { render --time "$view" --spp "$spp" -o "$work/raw.png" && mv "$work/raw.png" "$cached"; }
     raw[$spp]=$(psnr "$work/ref_$view.png" "$cached")
   done
-  seconds=$(for run in $(seq "$RUNS"); do
-    render --time "$view" --spp 16 --denoise --stats -o "$work/dn16.png" | awk '/denoise_seconds/ { print $2 }'
-  done | median)
+  for run in $(seq "$RUNS"); do
+    render --time "$view" --spp 16 --denoise --stats -o "$work/dn16.png" > "$work/dn16_$run.stats"
+    render --time "$view" --spp 16 --stats -o "$work/raw16.png" > "$work/raw16_$run.stats"
+  done
+  median_of() { awk -v key="$1:" '$1 == key { print $2 }' "$work"/$2_*.stats | median; }
+  seconds=$(median_of denoise_seconds dn16)
+  cost=$(awk -v a="$(median_of render_cpu_seconds dn16)" -v b="$(median_of render_cpu_seconds raw16)" 'BEGIN { printf "%.2fx", a / b }')
   dn16=$(psnr "$work/ref_$view.png" "$work/dn16.png")
   render --time "$view" --spp 64 --denoise -o "$work/dn64.png"
   dn64=$(psnr "$work/ref_$view.png" "$work/dn64.png")
@@ -53,6 +59,6 @@ for view in day night; do
         if (target <= p[i]) { f = (target - p[i-1]) / (p[i] - p[i-1]); printf "%.0f\n", 2 ^ (log(spp[i-1]) / log(2) + f); exit }
       print ">256" }')
   factor=$(awk -v e="$equal" 'BEGIN { if (e ~ /^[0-9.]+$/) printf "%.1f", e / 16; else print "-" }')
-  echo "| $view | ${raw[16]} | ${raw[32]} | ${raw[64]} | ${raw[128]} | ${raw[256]} | $dn16 | $dn64 | $equal | $factor | $seconds |"
+  echo "| $view | ${raw[16]} | ${raw[32]} | ${raw[64]} | ${raw[128]} | ${raw[256]} | $dn16 | $dn64 | $equal | $factor | $seconds | $cost |"
 done
 echo "(PSNR in dB against ${REF_SPP} spp, ${WIDTH}x${HEIGHT}; night is the --time night of this branch)"

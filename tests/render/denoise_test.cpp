@@ -158,3 +158,58 @@ TEST(Denoise, AddsTheDirectLightBackUnfiltered) {
         ASSERT_NEAR(lit.rgb[k], film.rgb[k] + lit.guide_direct[k], 1e-5f * (1 + lit.guide_direct[k])) << k / 3;
     EXPECT_LT(mean_abs_error(film, 0, 64, 0.2f), 0.02) << "the wall is still filtered";
 }
+
+TEST(Denoise, CancelsWhereTheSamplesFellOnTheDirectLight) {
+    // A lamp globe covers part of a few pixels: the samples saw more or less of it than the
+    // guide's fixed grid. With the direct light along the samples known, that difference is
+    // not noise to spread: the result equals the one from samples that saw exactly the grid's
+    // share, and the globe comes back at the grid's value.
+    Film exact = flat_film(0.2f, 0.2f, 0.2f);
+    add_noise(exact, 7, 0.8);
+    exact.guide_direct.assign(exact.rgb.size(), 0.f);
+    for (int x = 20; x < 24; ++x)
+        for (int c = 0; c < 3; ++c) {
+            const size_t k = 3 * (10 * 64 + x) + c;
+            exact.guide_direct[k] = 30.f;
+            exact.rgb[k] += 30.f;
+        }
+    exact.guide_sample_direct = exact.guide_direct;
+    Film sampled = exact;
+    Rng rng(9);
+    for (int x = 20; x < 24; ++x) {
+        const float seen = static_cast<float>(60 * rng.next_double());  // 0..60 instead of 30
+        for (int c = 0; c < 3; ++c) {
+            const size_t k = 3 * (10 * 64 + x) + c;
+            sampled.guide_sample_direct[k] = seen;
+            sampled.rgb[k] += seen - 30.f;
+        }
+    }
+    denoise(exact, 1.0);
+    denoise(sampled, 1.0);
+    for (size_t k = 0; k < exact.rgb.size(); ++k) ASSERT_NEAR(sampled.rgb[k], exact.rgb[k], 1e-4f) << k / 3;
+    EXPECT_NE(sampled.raw_rgb, exact.raw_rgb);
+}
+
+TEST(Denoise, KeepsAStepThatNoGuideKnows) {
+    // The edge of a soft shadow on one flat wall: the light steps from 0.2 to 0.3 at x = 32 and
+    // only the luminance tells. The noise goes, the step stays: the columns beside it keep
+    // their own level (the tolerance shrinks with each level, so the wide ones do not cross it).
+    Film film = flat_film(0.2f, 0.2f, 0.2f);
+    for (int y = 0; y < 48; ++y)
+        for (int x = 32; x < 64; ++x)
+            for (int c = 0; c < 3; ++c) film.rgb[3 * (y * 64 + x) + c] = 0.3f;
+    add_noise(film, 13, 0.8);
+    const double noise_before = mean_abs_error(film, 0, 24, 0.2f);
+    denoise(film, 1.0);
+    auto column_mean = [&](int x) {
+        double sum = 0;
+        for (int y = 0; y < 48; ++y) sum += film.rgb[3 * (y * 64 + x)];
+        return sum / 48;
+    };
+    EXPECT_LT(mean_abs_error(film, 0, 24, 0.2f), 0.3 * noise_before);
+    // Beside the step, within a pixel or two, it is softened by at most half; further away,
+    // each side keeps its level.
+    EXPECT_GT(column_mean(32) - column_mean(31), 0.04);
+    for (int x = 0; x < 30; ++x) EXPECT_NEAR(column_mean(x), 0.2, 0.01) << x;
+    for (int x = 34; x < 64; ++x) EXPECT_NEAR(column_mean(x), 0.3, 0.012) << x;
+}
