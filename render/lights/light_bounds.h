@@ -24,7 +24,7 @@ struct LightBounds {
 
 };
 
-// What the light BVH keeps per node (64 bytes, floats: the descent evaluates two per level),
+// What the light BVH keeps per node (60 bytes, floats: the descent evaluates two per level),
 // with what importance() needs of the box and the cone worked out once.
 // Our emitters are one-sided (panes) or spheres (globes), so two-sided bounds are not kept.
 struct CompactLightBounds {
