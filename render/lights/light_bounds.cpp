@@ -39,12 +39,12 @@ CompactLightBounds::CompactLightBounds(const LightBounds& b) {
         w[i] = b.w[i];
     }
     // Rounded outwards a little: the sphere must hold the box.
-    radius2 = (half[0] * half[0] + half[1] * half[1] + half[2] * half[2]) * (1 + 1e-5f);
-    radius = std::sqrt(radius2);
+    radius = std::sqrt((half[0] * half[0] + half[1] * half[1] + half[2] * half[2]) * (1 + 1e-5f));
     phi = b.phi;
-    cos_theta_o = b.two_sided ? -1 : b.cos_theta_o;  // two-sided: any direction (conservative)
+    // Two-sided or wider than a hemisphere: any direction (conservative). Narrower: the
+    // hemisphere (conservative too).
+    cos_theta_o = b.two_sided || b.cos_theta_e < 0 ? -1 : b.cos_theta_o;
     sin_theta_o = std::sqrt(std::max(0.f, 1 - cos_theta_o * cos_theta_o));
-    cos_theta_e = b.cos_theta_e;
 }
 
 void CompactLightBounds::importance(Vec3 p, Vec3 n, double* most, double* least) const {
@@ -57,13 +57,13 @@ void CompactLightBounds::importance(Vec3 p, Vec3 n, double* most, double* least)
     const float inv_dist = dist > 0 ? 1 / dist : 0;
     const float wx = dist > 0 ? tx * inv_dist : 0, wy = dist > 0 ? ty * inv_dist : 0, wz = dist > 0 ? tz * inv_dist : 1;
     // The cone of directions from p that the bounds' sphere subtends (all of them from inside).
-    const bool inside = dist2 <= radius2;
+    const bool inside = dist2 <= radius * radius;
     const float sin_b = inside ? 0 : radius * inv_dist;
     const float cos_b = inside ? -1 : std::sqrt(std::max(0.f, 1 - sin_b * sin_b));
     // The box itself, tighter than its sphere up close (a wall's own windows from a point on the
     // wall): wholly behind emitters that all face w, or wholly below the horizon of n, it sends p
     // nothing. The extremes of a linear function over a box are centre +- half extents.
-    if (cos_theta_o >= 1 && cos_theta_e >= 0 &&
+    if (cos_theta_o >= 1 &&
         w[0] * tx + w[1] * ty + w[2] * tz + hx * std::fabs(w[0]) + hy * std::fabs(w[1]) + hz * std::fabs(w[2]) <= 0)
         return;
     if ((n.x != 0 || n.y != 0 || n.z != 0) &&
@@ -79,7 +79,7 @@ void CompactLightBounds::importance(Vec3 p, Vec3 n, double* most, double* least)
         const float cos_x = within_o ? 1 : cos_w * cos_theta_o + sin_w * sin_theta_o;
         const float sin_x = within_o ? 0 : sin_w * cos_theta_o - cos_w * sin_theta_o;
         cos_p = cos_x > cos_b ? 1 : cos_x * cos_b + sin_x * sin_b;
-        if (cos_p <= cos_theta_e) return;
+        if (cos_p <= 0) return;  // theta_e = 90 degrees
     }
     float factor = phi * cos_p;
     if (n.x != 0 || n.y != 0 || n.z != 0) {

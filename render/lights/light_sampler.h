@@ -34,7 +34,7 @@ public:
     size_t bytes() const;
 
 private:
-    struct alignas(64) Node {  // one cache line; siblings share two
+    struct Node {
         CompactLightBounds bounds;
         uint32_t index = 0;  // leaf: kLeaf | the light; interior: its first child (the second follows it)
         bool leaf() const { return index & kLeaf; }
