@@ -13,6 +13,7 @@
 #include "error.h"
 #include "bsdf.h"
 #include "lights/scene_lights.h"
+#include "pixel_jitter.h"
 #include "progress.h"
 
 namespace citygen {
@@ -120,14 +121,16 @@ void fill_guides(const PathContext& context, const Camera& camera, int x, int y,
 // thread renders it, and whether its samples come in one go or one pass at a time.
 struct PixelSamples {
     Rng rng;
+    uint64_t jitter_key = 0;  // where in the pixel its samples go (pixel_jitter)
+    uint32_t count = 0;       // samples taken so far
     Color sum{0, 0, 0};
     double luminance_squares = 0;  // sum of the samples' squared luminance (for the variance)
     Color direct_sum{0, 0, 0};     // direct_light_at along the sample rays (for --denoise)
 };
 
 PixelSamples start_pixel(const RenderSettings& settings, int x, int y) {
-    return {Rng(hash_keys(settings.seed, static_cast<uint64_t>(x), static_cast<uint64_t>(y))), Color{0, 0, 0}, 0,
-            Color{0, 0, 0}};
+    const uint64_t key = hash_keys(settings.seed, static_cast<uint64_t>(x), static_cast<uint64_t>(y));
+    return {Rng(key), hash_keys(key, 0x6a177e4), 0, Color{0, 0, 0}, 0, Color{0, 0, 0}};
 }
 
 // With `direct`, also sums direct_light_at along each sample's ray (it takes no random numbers,
@@ -136,8 +139,8 @@ PixelSamples start_pixel(const RenderSettings& settings, int x, int y) {
 void add_samples(const PathContext& context, const Camera& camera, int x, int y, int count, PixelSamples& pixel,
                  uint64_t& rays, bool direct) {
     for (int s = 0; s < count; ++s) {
-        const double jx = pixel.rng.next_double(), jy = pixel.rng.next_double();
-        const Ray ray = camera.generate_ray(x + jx, y + jy);
+        const Vec2 j = pixel_jitter(pixel.jitter_key, pixel.count++);
+        const Ray ray = camera.generate_ray(x + j.x, y + j.y);
         const Color L = trace_path(context, ray, pixel.rng, rays);
         // A lone non-finite sample would poison the pixel; count it as black.
         if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {

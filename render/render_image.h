@@ -1,5 +1,6 @@
 // Rendering a whole image: tiles in parallel (TBB), one random stream per pixel so the result
-// does not depend on the thread count, optional AOVs from the ray through each pixel centre.
+// does not depend on the thread count (and per pixel a scrambled Sobol sequence placing its
+// samples, pixel_jitter.h), optional AOVs from the ray through each pixel centre.
 #pragma once
 
 #include <cstdint>

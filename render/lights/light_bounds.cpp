@@ -34,43 +34,52 @@ void LightBounds::set_axis(Vec3 v) {
 
 CompactLightBounds::CompactLightBounds(const LightBounds& b) {
     for (int i = 0; i < 3; ++i) {
-        lo[i] = b.lo[i];
-        hi[i] = b.hi[i];
+        center[i] = 0.5f * (b.lo[i] + b.hi[i]);
+        half[i] = 0.5f * (b.hi[i] - b.lo[i]);
         w[i] = b.w[i];
     }
+    // Rounded outwards a little: the sphere must hold the box.
+    radius = std::sqrt((half[0] * half[0] + half[1] * half[1] + half[2] * half[2]) * (1 + 1e-5f));
     phi = b.phi;
-    cos_theta_o = b.two_sided ? -1 : b.cos_theta_o;  // two-sided: any direction (conservative)
-    cos_theta_e = b.cos_theta_e;
+    // Two-sided or wider than a hemisphere: any direction (conservative). Narrower: the
+    // hemisphere (conservative too).
+    cos_theta_o = b.two_sided || b.cos_theta_e < 0 ? -1 : b.cos_theta_o;
+    sin_theta_o = std::sqrt(std::max(0.f, 1 - cos_theta_o * cos_theta_o));
 }
 
 void CompactLightBounds::importance(Vec3 p, Vec3 n, double* most, double* least) const {
     *most = *least = 0;
     // Float throughout: two of these per level of every descent.
-    const float px = float(p.x), py = float(p.y), pz = float(p.z);
-    const float cx = 0.5f * (lo[0] + hi[0]), cy = 0.5f * (lo[1] + hi[1]), cz = 0.5f * (lo[2] + hi[2]);
-    const float hx = 0.5f * (hi[0] - lo[0]), hy = 0.5f * (hi[1] - lo[1]), hz = 0.5f * (hi[2] - lo[2]);
-    const float tx = px - cx, ty = py - cy, tz = pz - cz;  // from the centre towards p
+    const float tx = float(p.x) - center[0], ty = float(p.y) - center[1], tz = float(p.z) - center[2];  // towards p
+    const float hx = half[0], hy = half[1], hz = half[2];
     const float dist2 = tx * tx + ty * ty + tz * tz;
-    // Rounded outwards a little: the sphere must hold the box.
-    const float radius2 = (hx * hx + hy * hy + hz * hz) * (1 + 1e-5f);
-    const float dist = std::sqrt(dist2), radius = std::sqrt(radius2);
+    const float dist = std::sqrt(dist2);
     const float inv_dist = dist > 0 ? 1 / dist : 0;
     const float wx = dist > 0 ? tx * inv_dist : 0, wy = dist > 0 ? ty * inv_dist : 0, wz = dist > 0 ? tz * inv_dist : 1;
     // The cone of directions from p that the bounds' sphere subtends (all of them from inside).
-    const bool inside = dist2 <= radius2;
+    const bool inside = dist2 <= radius * radius;
     const float sin_b = inside ? 0 : radius * inv_dist;
     const float cos_b = inside ? -1 : std::sqrt(std::max(0.f, 1 - sin_b * sin_b));
+    // The box itself, tighter than its sphere up close (a wall's own windows from a point on the
+    // wall): wholly behind emitters that all face w, or wholly below the horizon of n, it sends p
+    // nothing. The extremes of a linear function over a box are centre +- half extents.
+    if (cos_theta_o >= 1 &&
+        w[0] * tx + w[1] * ty + w[2] * tz + hx * std::fabs(w[0]) + hy * std::fabs(w[1]) + hz * std::fabs(w[2]) <= 0)
+        return;
+    if ((n.x != 0 || n.y != 0 || n.z != 0) &&
+        -(tx * float(n.x) + ty * float(n.y) + tz * float(n.z)) + hx * std::fabs(float(n.x)) +
+                hy * std::fabs(float(n.y)) + hz * std::fabs(float(n.z)) <= 0)
+        return;
     float cos_p = 1;  // normals pointing everywhere (any cluster holding a lamp's globe): no bound
     if (cos_theta_o > -1) {
         const float cos_w = w[0] * wx + w[1] * wy + w[2] * wz;
         const float sin_w = std::sqrt(std::max(0.f, 1 - cos_w * cos_w));
-        const float sin_theta_o = std::sqrt(std::max(0.f, 1 - cos_theta_o * cos_theta_o));
         // theta_x = max(0, theta_w - theta_o), then cos(max(0, theta_x - theta_b)).
         const bool within_o = cos_w > cos_theta_o;
         const float cos_x = within_o ? 1 : cos_w * cos_theta_o + sin_w * sin_theta_o;
         const float sin_x = within_o ? 0 : sin_w * cos_theta_o - cos_w * sin_theta_o;
         cos_p = cos_x > cos_b ? 1 : cos_x * cos_b + sin_x * sin_b;
-        if (cos_p <= cos_theta_e) return;
+        if (cos_p <= 0) return;  // theta_e = 90 degrees
     }
     float factor = phi * cos_p;
     if (n.x != 0 || n.y != 0 || n.z != 0) {

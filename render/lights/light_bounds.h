@@ -24,11 +24,15 @@ struct LightBounds {
 
 };
 
-// What the light BVH keeps per node (52 bytes, floats: the descent evaluates two per level).
-// Our emitters are one-sided (panes) or spheres (globes), so two-sided bounds are not kept.
+// What the light BVH keeps per node (52 bytes, floats: the descent evaluates two per level),
+// with what importance() needs of the box and the cone worked out once.
+// Our emitters are one-sided panes lighting the hemisphere around their normal or spheres
+// (globes), so theta_e is 90 degrees: bounds that emit wider (two-sided, theta_e > 90) are kept
+// as emitting in every direction (conservative).
 struct CompactLightBounds {
-    float lo[3], hi[3];
-    float w[3], phi, cos_theta_o, cos_theta_e;
+    float center[3], half[3];  // of the box
+    float radius;              // of the sphere around the box (rounded outwards)
+    float w[3], phi, cos_theta_o, sin_theta_o;
 
     explicit CompactLightBounds(const LightBounds& b);
     CompactLightBounds() = default;

@@ -36,7 +36,7 @@ public:
 private:
     struct Node {
         CompactLightBounds bounds;
-        uint32_t index = 0;  // leaf: kLeaf | the light; interior: the second child (the first follows)
+        uint32_t index = 0;  // leaf: kLeaf | the light; interior: its first child (the second follows it)
         bool leaf() const { return index & kLeaf; }
         uint32_t light() const { return index & ~kLeaf; }
     };
@@ -46,8 +46,10 @@ private:
         uint32_t light;
     };
     double first_child_probability(Vec3 p, Vec3 n, uint32_t node) const;
-    // Builds the subtree of items [begin, end); returns its node and (in bounds) its bounds.
-    uint32_t build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth, LightBounds* bounds);
+    // Builds the subtree of items [begin, end) in node `self`; its bounds go to `bounds`.
+    // Siblings are stored side by side, so each step down reads one place in memory.
+    void build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth, uint32_t self,
+               LightBounds* bounds);
 
     LightSamplerKind kind_ = LightSamplerKind::Tree;
     size_t light_count_ = 0;

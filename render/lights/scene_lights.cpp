@@ -113,8 +113,8 @@ bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* 
         bool ok = false;
         WallGeometry geometry;
     };
-    thread_local Cached cache[64];
-    Cached& slot = cache[(building * 31u + wall) & 63u];
+    thread_local Cached cache[256];
+    Cached& slot = cache[(building * 31u + wall) & 255u];
     if (slot.owner == id_ && slot.building == building && slot.wall == wall) {
         *out = slot.geometry;
         return slot.ok;
