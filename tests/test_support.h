@@ -63,6 +63,11 @@ inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
 // Runs the renderer with `args` (already quoted where needed).
 inline CommandResult render(const std::string& args) { return run_command(quoted(render_binary()) + " " + args); }
 
+// Runs the osmparse binary on a fixture (relative to the source tree) into `scene`, quietly.
+inline CommandResult parse_fixture_to(const std::string& fixture, const std::string& scene) {
+    return run_command(quoted(osmparse_binary()) + " " + quoted(source_path(fixture)) + " -q -o " + quoted(scene));
+}
+
 inline int count_lines(const std::string& text) { return static_cast<int>(std::count(text.begin(), text.end(), '\n')); }
 
 }  // namespace citygen::test

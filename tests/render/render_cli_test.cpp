@@ -21,9 +21,7 @@ class RenderCli : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         dir_ = new TempDir;
-        const CommandResult r = run_command(quoted(osmparse_binary()) + " " +
-                                            quoted(source_path("tests/data/tiny_roundabout.osm")) + " -q -o " +
-                                            quoted(scene()));
+        const CommandResult r = parse_fixture_to("tests/data/tiny_roundabout.osm", scene());
         ASSERT_EQ(r.exit_code, 0) << r.err;
     }
     static void TearDownTestSuite() { delete dir_; }
