@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -553,6 +554,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             s.land_cover.push_back(std::move(c));
         }
 
+    // The verifier aligns a vector of structs to 4 bytes only; a Tree holds a long and needs 8.
+    if (in->trees() && reinterpret_cast<uintptr_t>(in->trees()->Data()) % alignof(fb::Tree) != 0)
+        check.fail("corrupt scene (misaligned tree list)");
     if (in->trees())
         for (const fb::Tree* x : *in->trees()) {
             Tree t;
