@@ -555,7 +555,8 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
         }
 
     // The verifier aligns a vector of structs to 4 bytes only; a Tree holds a long and needs 8.
-    if (in->trees() && reinterpret_cast<uintptr_t>(in->trees()->Data()) % alignof(fb::Tree) != 0)
+    if (in->trees() && in->trees()->size() > 0 &&
+        reinterpret_cast<uintptr_t>(in->trees()->Data()) % alignof(fb::Tree) != 0)
         check.fail("corrupt scene (misaligned tree list)");
     if (in->trees())
         for (const fb::Tree* x : *in->trees()) {
