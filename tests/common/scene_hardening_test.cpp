@@ -8,10 +8,12 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "error.h"
 #include "output_target.h"
+#include "scene_generated.h"
 #include "scene_io.h"
 #include "scene_limits.h"
 #include "test_scenes.h"
@@ -70,6 +72,37 @@ TEST(Hardening, DecodeRefusesValuesBeyondTheSceneLimits) {
     lamp.lamps.push_back({});
     lamp.lamps.back().height = 1e9;
     EXPECT_NE(decode_error(lamp).find("lamp height"), std::string::npos);
+}
+
+// Found by scene_loader_fuzz under UBSan: FlatBuffers' verifier aligns a vector of structs to 4
+// bytes only, but a Tree holds a 64-bit id. The tree list is moved to an offset that is 4 but
+// not 8 bytes aligned, with the table pointing at it; everything else stays valid.
+TEST(Hardening, DecodeRefusesAMisalignedTreeList) {
+    Scene scene = scene_with(box_building(0, 0, 10, 10));
+    scene.trees.push_back({});
+    scene.trees.back().position = {20, 20};
+    std::vector<uint8_t> bytes = encode_scene(scene);
+    ASSERT_EQ(reinterpret_cast<uintptr_t>(bytes.data()) % 8, 0u);
+    const fb::Scene* root = fb::GetScene(bytes.data());
+    ASSERT_TRUE(root->trees() && root->trees()->size() == 1);
+    const size_t field = static_cast<size_t>(reinterpret_cast<const uint8_t*>(root) - bytes.data()) +
+                         reinterpret_cast<const flatbuffers::Table*>(root)->GetOptionalFieldOffset(fb::Scene::VT_TREES);
+    const size_t old_data = static_cast<size_t>(reinterpret_cast<const uint8_t*>(root->trees()->Data()) - bytes.data());
+    EXPECT_EQ(decode_error(scene), "");
+
+    const size_t moved = (bytes.size() + 7) / 8 * 8;  // length prefix 8-aligned: the data after it is not
+    bytes.resize(moved + 4 + sizeof(fb::Tree));
+    const uint32_t count = 1, offset = static_cast<uint32_t>(moved - field);
+    std::memcpy(bytes.data() + moved, &count, 4);
+    std::memcpy(bytes.data() + moved + 4, bytes.data() + old_data, sizeof(fb::Tree));
+    std::memcpy(bytes.data() + field, &offset, 4);
+    ASSERT_NE(reinterpret_cast<uintptr_t>(fb::GetScene(bytes.data())->trees()->Data()) % alignof(fb::Tree), 0u);
+    try {
+        decode_scene(bytes.data(), bytes.size(), "test.scene");
+        ADD_FAILURE() << "a misaligned tree list was accepted";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("misaligned tree list"), std::string::npos) << e.what();
+    }
 }
 
 TEST(Hardening, LoadingADirectorySaysSo) {
