@@ -55,6 +55,25 @@ constexpr double kMaxRelativeArea = 10;
 constexpr double kGrainRadius = 400;       // metres: a town quarter
 constexpr double kAttachedGap = 0.5;       // metres
 
+// Point blocks: a home whose plan is deep in every direction is a residential tower. A flat is
+// daylit from one facade to about 12-13 m deep, so a slab of flats (Berlin's blocks, terraces)
+// is at most two such depths across: its plan depth 2 * area / perimeter (half the side of a
+// square, the width of a long strip) stays under 13 m. A plan at least 26 m across both ways
+// (kPointBlockDepth) puts flats around a central core of lifts and stairs, and a core only pays
+// for itself on a tall building. Of the homes tagged in Monaco, Kaiserslautern and the Berlin
+// example, the nine this deep (all in Monaco) stand 27-111 m (median 90); no home of the other
+// two is this deep. 15 storeys is a common residential high-rise, below Monaco's towers
+// (tests/bench/height_bench.sh: 20 storeys would suit Monaco better; we do not fit one city).
+constexpr double kPointBlockDepth = 13;    // metres
+constexpr double kPointBlockLevels = 15;
+// In a village fabric (houses, grain under kPointBlockMinGrain) a deep home is a farmstead or a
+// care home, not a tower.
+constexpr double kPointBlockMinGrain = 200;  // m2
+// A house has a house-sized footprint: a "terrace" or "house" over kMaxHouseArea is a block
+// (Monaco's 44 m Les Eucalyptus, 2,965 m2, is tagged terrace) and gets the rules of a building
+// of flats instead of the two-storey house rule.
+constexpr double kMaxHouseArea = 1000;     // m2: ten row houses of 100 m2
+
 bool is_one_of(const std::string& value, std::initializer_list<const char*> list) {
     for (const char* s : list)
         if (value == s) return true;
@@ -147,6 +166,14 @@ Vec2 centroid(const Ring& ring) {
 // hall or an office in a village has two storeys, in a city six.
 bool is_workplace(const std::string& type) {
     return is_one_of(type, {"office", "commercial", "civic", "public", "government"});
+}
+
+bool is_home(const std::string& type) { return is_one_of(type, {"apartments", "residential", "dormitory"}); }
+
+double perimeter(const Ring& ring) {
+    double sum = 0;
+    for (size_t k = 0; k < ring.size(); ++k) sum += length(ring[(k + 1) % ring.size()] - ring[k]);
+    return sum;
 }
 
 // Rule 5's inputs: the grain around a building and whether it shares a wall. Footprints only,
@@ -361,8 +388,16 @@ double levels_from_surroundings(double area, double grain, bool attached) {
     return std::max(levels, 1.0);
 }
 
+bool is_point_block(const std::string& type, double area, double perimeter, double grain) {
+    return is_home(type) && perimeter > 0 && 2 * area / perimeter >= kPointBlockDepth && grain >= kPointBlockMinGrain;
+}
+
+double point_block_height(const BuildingParams& params) { return kPointBlockLevels * params.level_height; }
+
 double height_by_type_and_area(const std::string& type, double area, bool* sure, LandUse use) {
     *sure = true;
+    if (area > kMaxHouseArea && is_one_of(type, {"house", "detached", "semidetached_house", "terrace", "bungalow", "villa"}))
+        return height_by_type_and_area("residential", area, sure, use);
     if (area < 30 || is_one_of(type, {"garage", "garages", "carport", "shed", "kiosk", "hut", "toilets",
                                       "transformer_tower", "service", "greenhouse", "cabin"}))
         return 3;
@@ -434,7 +469,7 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         pieces[{b.osm, b.is_part}].push_back(i);
     }
     for (const auto& [ref, indices] : pieces) {
-        double area = 0;
+        double area = 0, plan_area = 0, plan_perimeter = 0;  // plan: courtyards left out
         Vec2 at{0, 0};
         bool attached = false;
         for (size_t i : indices) {
@@ -442,6 +477,12 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
             area += a;
             at = at + centroid(buildings[i].outer) * a;
             attached = attached || surroundings.attached(i);
+            plan_area += a;
+            plan_perimeter += perimeter(buildings[i].outer);
+            for (const Ring& hole : buildings[i].holes) {
+                plan_area -= std::fabs(signed_area(hole));
+                plan_perimeter += perimeter(hole);
+            }
         }
         at = area > 0 ? at * (1 / area) : centroid(buildings[indices[0]].outer);
         const Building& b = buildings[indices[0]];  // the pieces share their tags
@@ -457,6 +498,11 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         if (sure) {
             height = by_type;
             rule = HeightRule::TypeAndArea;
+        } else if (is_home(b.type) && is_point_block(b.type, plan_area, plan_perimeter, surroundings.grain(at))) {
+            // Before the neighbours: a tower says more about itself than the blocks around it.
+            height = point_block_height(params);
+            rule = HeightRule::TypeAndArea;
+            note = kPointBlock;
         } else if ((height = height_from_neighbours(grid, at, b.type, area, &disagreeing)) > 0) {
             rule = HeightRule::Neighbours;
             note = "from tagged neighbours";

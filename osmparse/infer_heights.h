@@ -26,6 +26,7 @@ struct LandUseArea {
 
 inline constexpr char kLandUseTooLarge[] = "land use area over 10 km across: not used";
 inline constexpr char kFromSurroundings[] = "from type, footprint area and surroundings";
+inline constexpr char kPointBlock[] = "point block: a home with a deep plan in a town of blocks";
 
 // The landuse=residential|commercial|retail|industrial areas of the map, projected (the same
 // OSM areas build_land_cover paints as built-up ground). Areas over kMaxObjectExtent across
@@ -35,8 +36,12 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 // Replaces the random height of every ground-standing building with nothing tagged
 // (height_source Random, min_height 0) by the first rule that applies; height_rule records it:
 //  1. TypeAndArea for sure things: a footprint under 30 m2, or a garage/shed/carport/kiosk-like
-//     type, is a one-storey shed; a house-like type is a two-storey house (both rules first
+//     type, is a one-storey shed; a house-like type under 1,000 m2 is a two-storey house (a
+//     larger one is a block: the rules of `residential`) (both rules first
 //     because a neighbour's height says little about a garage beside a tower);
+//  1b. TypeAndArea for point blocks: a home (apartments, residential, dormitory) whose plan is
+//     deep in every direction (is_point_block) in a town of blocks is a residential tower of
+//     point_block_height (before the neighbours: a tower among blocks is not their height);
 //  2. Neighbours: the distance-weighted median height of the nearest (up to 8) tagged buildings
 //     (height or building:levels) within 150 m that are most like it: the same type and a
 //     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
@@ -71,6 +76,14 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
 // `attached` when it shares a wall with another building. The constants and their reasons are
 // in infer_heights.cpp.
 double levels_from_surroundings(double area, double grain, bool attached);
+
+// Rule 1b alone (exposed for tests): whether a building of `type` whose plan (courtyards left
+// out) has `area` m2 and `perimeter` m (holes included) among buildings of median footprint
+// `grain` m2 is a point block: a home whose plan depth 2 * area / perimeter is at least 13 m
+// (26 m across both ways: flats around a core) where the grain is at least 200 m2.
+bool is_point_block(const std::string& type, double area, double perimeter, double grain);
+// The height rule 1b gives a point block (15 storeys).
+double point_block_height(const BuildingParams& params);
 
 // Rule 1, 4 and 6 alone (exposed for tests): the height of a building of `type` with a footprint of
 // `area` m2 on land used as `use`, or 0 when the type says nothing; `sure` tells whether the rule
