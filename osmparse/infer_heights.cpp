@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 #include "rng.h"
@@ -55,6 +56,10 @@ constexpr double kMaxRelativeArea = 10;
 constexpr double kGrainRadius = 400;       // metres: a town quarter
 constexpr double kAttachedGap = 0.5;       // metres
 
+// Residential towers, rule 1b. 15 storeys (kTowerLevels) is a common residential high-rise,
+// below Monaco's towers (tests/bench/height_bench.sh: 20 storeys would suit Monaco better, 15
+// suits Kaiserslautern's; we do not fit one city).
+constexpr double kTowerLevels = 15;
 // Point blocks: a home whose plan is deep in every direction is a residential tower. A flat is
 // daylit from one facade to about 12-13 m deep, so a slab of flats (Berlin's blocks, terraces)
 // is at most two such depths across: its plan depth 2 * area / perimeter (half the side of a
@@ -62,13 +67,19 @@ constexpr double kAttachedGap = 0.5;       // metres
 // (kPointBlockDepth) puts flats around a central core of lifts and stairs, and a core only pays
 // for itself on a tall building. Of the homes tagged in Monaco, Kaiserslautern and the Berlin
 // example, the nine this deep (all in Monaco) stand 27-111 m (median 90); no home of the other
-// two is this deep. 15 storeys is a common residential high-rise, below Monaco's towers
-// (tests/bench/height_bench.sh: 20 storeys would suit Monaco better; we do not fit one city).
+// two is this deep.
 constexpr double kPointBlockDepth = 13;    // metres
-constexpr double kPointBlockLevels = 15;
 // In a village fabric (houses, grain under kPointBlockMinGrain) a deep home is a farmstead or a
 // care home, not a tower.
 constexpr double kPointBlockMinGrain = 200;  // m2
+// Landmark homes: mappers name the homes that are landmarks (towers, halls of residence, large
+// estates: Monaco's Millefiori and Annonciade, Kaiserslautern's Wohnheim towers); an ordinary
+// block of flats carries only an address (none of the Berlin example's blocks has a name). A
+// name of fewer than kMinNameLength characters is a block's letter ("A", "B2"), and a named home
+// under kLandmarkMinArea a villa. Homes named and that large in the three extracts: Monaco 36-111 m
+// (7), Kaiserslautern 43 and 53 m; the rule was chosen on Monaco and checked on Kaiserslautern.
+constexpr size_t kMinNameLength = 3;       // characters
+constexpr double kLandmarkMinArea = 500;   // m2
 // A house has a house-sized footprint: a "terrace" or "house" over kMaxHouseArea is a block
 // (Monaco's 44 m Les Eucalyptus, 2,965 m2, is tagged terrace) and gets the rules of a building
 // of flats instead of the two-storey house rule.
@@ -392,7 +403,23 @@ bool is_point_block(const std::string& type, double area, double perimeter, doub
     return is_home(type) && perimeter > 0 && 2 * area / perimeter >= kPointBlockDepth && grain >= kPointBlockMinGrain;
 }
 
-double point_block_height(const BuildingParams& params) { return kPointBlockLevels * params.level_height; }
+double tower_height(const BuildingParams& params) { return kTowerLevels * params.level_height; }
+
+bool is_landmark_home(const std::string& type, double area, bool named) {
+    return is_home(type) && named && area >= kLandmarkMinArea;
+}
+
+std::set<OsmRef> named_buildings(const OsmData& osm) {
+    std::set<OsmRef> out;
+    for (const OsmArea& area : osm.building_areas) {
+        const char* name = area.tags.get("name");
+        if (!name || !area.tags.get("building")) continue;
+        size_t characters = 0;  // UTF-8: count the bytes that start a character
+        for (const char* c = name; *c; ++c) characters += (static_cast<unsigned char>(*c) & 0xC0) != 0x80;
+        if (characters >= kMinNameLength) out.insert(area.ref);
+    }
+    return out;
+}
 
 double height_by_type_and_area(const std::string& type, double area, bool* sure, LandUse use) {
     *sure = true;
@@ -430,7 +457,7 @@ double height_by_type_and_area(const std::string& type, double area, bool* sure,
 }
 
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report) {
+                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named) {
     // Only heights from a building's own tags (never a guess, never a raised part's).
     std::vector<Tagged> tagged;
     for (const Building& b : buildings)
@@ -500,9 +527,13 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
             rule = HeightRule::TypeAndArea;
         } else if (is_home(b.type) && is_point_block(b.type, plan_area, plan_perimeter, surroundings.grain(at))) {
             // Before the neighbours: a tower says more about itself than the blocks around it.
-            height = point_block_height(params);
+            height = tower_height(params);
             rule = HeightRule::TypeAndArea;
             note = kPointBlock;
+        } else if (is_landmark_home(b.type, area, named.count(b.osm) > 0)) {
+            height = tower_height(params);
+            rule = HeightRule::TypeAndArea;
+            note = kLandmarkHome;
         } else if ((height = height_from_neighbours(grid, at, b.type, area, &disagreeing)) > 0) {
             rule = HeightRule::Neighbours;
             note = "from tagged neighbours";

@@ -260,13 +260,58 @@ TEST(InferHeights, PointBlockBeatsItsTaggedNeighbours) {
     ParseReport report;
     infer_heights(v, {}, params, report);
     EXPECT_EQ(by_id(v, 1).height_rule, HeightRule::TypeAndArea);
-    expect_near_guess(by_id(v, 1), point_block_height(params));
-    EXPECT_GE(point_block_height(params), 10 * params.level_height) << "a tower";
+    expect_near_guess(by_id(v, 1), tower_height(params));
+    EXPECT_GE(tower_height(params), 10 * params.level_height) << "a tower";
     EXPECT_EQ(by_id(v, 2).height_rule, HeightRule::Neighbours);
     expect_near_guess(by_id(v, 2), 15);
     EXPECT_EQ(by_id(v, 3).height_rule, HeightRule::Neighbours);
     expect_near_guess(by_id(v, 3), 15);
     EXPECT_EQ(report.note_count(kBuildingHeights, kPointBlock), 1);
+}
+
+TEST(InferHeights, NamedHomesOfABlocksFootprintAreLandmarkTowers) {
+    BuildingParams params;
+    std::vector<Building> v;
+    // Homes of 25 x 25 m (plan depth 12.5 m: no point block) among tagged 15 m blocks of flats.
+    for (int i = 0; i < 4; ++i) v.push_back(building(100 + i, 30.0 * i, 0, "apartments", 15, HeightSource::Tagged, 25));
+    v.push_back(building(1, 0, 30, "apartments", 10, HeightSource::Random, 25));  // named
+    v.push_back(building(2, 30, 30, "dormitory", 10, HeightSource::Random, 25));  // named
+    v.push_back(building(3, 60, 30, "apartments", 10, HeightSource::Random, 25));  // no name
+    v.push_back(building(4, 90, 30, "apartments", 10, HeightSource::Random, 20));  // named, 400 m2: a villa
+    v.push_back(building(5, 0, 60, "yes", 10, HeightSource::Random, 25));          // named, not a home
+    const std::set<OsmRef> named{{OsmType::Way, 1}, {OsmType::Way, 2}, {OsmType::Way, 4}, {OsmType::Way, 5}};
+    ParseReport report;
+    infer_heights(v, {}, params, report, named);
+    for (int64_t id : {1, 2}) {
+        EXPECT_EQ(by_id(v, id).height_rule, HeightRule::TypeAndArea) << id;
+        expect_near_guess(by_id(v, id), tower_height(params));
+    }
+    for (int64_t id : {3, 4}) {
+        EXPECT_EQ(by_id(v, id).height_rule, HeightRule::Neighbours) << id;
+        expect_near_guess(by_id(v, id), 15);
+    }
+    EXPECT_LT(by_id(v, 5).height, 0.6 * tower_height(params));
+    EXPECT_EQ(report.note_count(kBuildingHeights, kLandmarkHome), 2);
+    EXPECT_FALSE(is_landmark_home("office", 5000, true));
+    EXPECT_TRUE(is_landmark_home("residential", 500, true));
+}
+
+TEST(InferHeights, ANameIsThreeCharactersOnABuilding) {
+    OsmData osm;
+    auto add = [&](int64_t id, const char* key, const char* name) {
+        OsmArea a;
+        a.ref = {OsmType::Way, id};
+        a.tags.entries = {{key, "yes"}};
+        if (name) a.tags.entries.push_back({"name", name});
+        osm.building_areas.push_back(a);
+    };
+    add(1, "building", "Le Millefiori");
+    add(2, "building", "B2");                  // a block's letter
+    add(3, "building", "\xc3\x96z");           // "Öz": two characters in three bytes
+    add(4, "building", "\xc3\x96l\xc3\xbc");   // "Ölü": three characters
+    add(5, "building:part", "Tower");          // a part is no building of its own
+    add(6, "building", nullptr);
+    EXPECT_EQ(named_buildings(osm), (std::set<OsmRef>{{OsmType::Way, 1}, {OsmType::Way, 4}}));
 }
 
 TEST(InferHeights, AHouseTypeOnABlocksFootprintIsABlock) {
