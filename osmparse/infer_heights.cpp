@@ -56,9 +56,13 @@ constexpr double kMaxRelativeArea = 10;
 constexpr double kGrainRadius = 400;       // metres: a town quarter
 constexpr double kAttachedGap = 0.5;       // metres
 
-// Residential towers, rule 1b. 15 storeys (kTowerLevels) is a common residential high-rise,
-// below Monaco's towers (tests/bench/height_bench.sh: 20 storeys would suit Monaco better, 15
-// suits Kaiserslautern's; we do not fit one city).
+// Residential towers, rule 1b. 15 storeys (kTowerLevels) is a common residential high-rise.
+// In a fabric denser than kPointBlockMinGrain a tower stands higher, as the rest of the town does
+// (levels_from_surroundings: storeys grow as grain^kGrainExponent): Monaco's tagged towers in
+// a grain of 335-380 m2 stand 78-111 m, those in 200-235 m2 27-36 m. Never lower than
+// kTowerLevels: Kaiserslautern's towers (43 and 53 m) stand in a grain of 120 m2
+// (tests/bench/height_bench.sh: a flat 20 storeys suits Monaco better, 15 Kaiserslautern; we
+// do not fit one city).
 constexpr double kTowerLevels = 15;
 // Point blocks: a home whose plan is deep in every direction is a residential tower. A flat is
 // daylit from one facade to about 12-13 m deep, so a slab of flats (Berlin's blocks, terraces)
@@ -403,7 +407,10 @@ bool is_point_block(const std::string& type, double area, double perimeter, doub
     return is_home(type) && perimeter > 0 && 2 * area / perimeter >= kPointBlockDepth && grain >= kPointBlockMinGrain;
 }
 
-double tower_height(const BuildingParams& params) { return kTowerLevels * params.level_height; }
+double tower_height(double grain, const BuildingParams& params) {
+    const double denser = std::max(std::min(grain, kMaxGrain) / kPointBlockMinGrain, 1.0);
+    return kTowerLevels * std::pow(denser, kGrainExponent) * params.level_height;
+}
 
 bool is_landmark_home(const std::string& type, double area, bool named) {
     return is_home(type) && named && area >= kLandmarkMinArea;
@@ -527,11 +534,11 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
             rule = HeightRule::TypeAndArea;
         } else if (is_home(b.type) && is_point_block(b.type, plan_area, plan_perimeter, surroundings.grain(at))) {
             // Before the neighbours: a tower says more about itself than the blocks around it.
-            height = tower_height(params);
+            height = tower_height(surroundings.grain(at), params);
             rule = HeightRule::TypeAndArea;
             note = kPointBlock;
         } else if (is_landmark_home(b.type, area, named.count(b.osm) > 0)) {
-            height = tower_height(params);
+            height = tower_height(surroundings.grain(at), params);
             rule = HeightRule::TypeAndArea;
             note = kLandmarkHome;
         } else if ((height = height_from_neighbours(grid, at, b.type, area, &disagreeing)) > 0) {

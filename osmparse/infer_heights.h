@@ -88,8 +88,9 @@ bool is_point_block(const std::string& type, double area, double perimeter, doub
 // Rule 1b alone: whether a building of `type` and `area` m2, `named` or not, is a landmark
 // home: a home with a name (named_buildings) and a footprint of at least 500 m2.
 bool is_landmark_home(const std::string& type, double area, bool named);
-// The height rule 1b gives a residential tower (15 storeys).
-double tower_height(const BuildingParams& params);
+// The height rule 1b gives a residential tower among buildings of median footprint `grain` m2:
+// 15 storeys, more in a fabric denser than 200 m2 (as levels_from_surroundings grows with it).
+double tower_height(double grain, const BuildingParams& params);
 // The buildings (not parts) whose name has at least 3 characters: a block's letter is no name.
 std::set<OsmRef> named_buildings(const OsmData& osm);
 

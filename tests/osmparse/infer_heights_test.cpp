@@ -260,8 +260,7 @@ TEST(InferHeights, PointBlockBeatsItsTaggedNeighbours) {
     ParseReport report;
     infer_heights(v, {}, params, report);
     EXPECT_EQ(by_id(v, 1).height_rule, HeightRule::TypeAndArea);
-    expect_near_guess(by_id(v, 1), tower_height(params));
-    EXPECT_GE(tower_height(params), 10 * params.level_height) << "a tower";
+    expect_near_guess(by_id(v, 1), tower_height(225, params));  // every footprint but 3 is 15 x 15 m
     EXPECT_EQ(by_id(v, 2).height_rule, HeightRule::Neighbours);
     expect_near_guess(by_id(v, 2), 15);
     EXPECT_EQ(by_id(v, 3).height_rule, HeightRule::Neighbours);
@@ -284,13 +283,13 @@ TEST(InferHeights, NamedHomesOfABlocksFootprintAreLandmarkTowers) {
     infer_heights(v, {}, params, report, named);
     for (int64_t id : {1, 2}) {
         EXPECT_EQ(by_id(v, id).height_rule, HeightRule::TypeAndArea) << id;
-        expect_near_guess(by_id(v, id), tower_height(params));
+        expect_near_guess(by_id(v, id), tower_height(625, params));  // the grain: 25 x 25 m
     }
     for (int64_t id : {3, 4}) {
         EXPECT_EQ(by_id(v, id).height_rule, HeightRule::Neighbours) << id;
         expect_near_guess(by_id(v, id), 15);
     }
-    EXPECT_LT(by_id(v, 5).height, 0.6 * tower_height(params));
+    EXPECT_LT(by_id(v, 5).height, 0.6 * tower_height(625, params));
     EXPECT_EQ(report.note_count(kBuildingHeights, kLandmarkHome), 2);
     EXPECT_FALSE(is_landmark_home("office", 5000, true));
     EXPECT_TRUE(is_landmark_home("residential", 500, true));
@@ -312,6 +311,19 @@ TEST(InferHeights, ANameIsThreeCharactersOnABuilding) {
     add(5, "building:part", "Tower");          // a part is no building of its own
     add(6, "building", nullptr);
     EXPECT_EQ(named_buildings(osm), (std::set<OsmRef>{{OsmType::Way, 1}, {OsmType::Way, 4}}));
+}
+
+TEST(InferHeights, TowersStandHigherInADenserFabric) {
+    BuildingParams params;
+    // 15 storeys at least, in a suburb too (Kaiserslautern's halls of residence).
+    EXPECT_DOUBLE_EQ(tower_height(120, params), 15 * params.level_height);
+    EXPECT_DOUBLE_EQ(tower_height(200, params), 15 * params.level_height);
+    // Higher in a city of blocks, as its other buildings are: the same growth as rule 5's.
+    EXPECT_NEAR(tower_height(350, params) / tower_height(200, params),
+                levels_from_surroundings(350, 350, false) / levels_from_surroundings(200, 200, false), 1e-9);
+    EXPECT_GT(tower_height(350, params), 20 * params.level_height);
+    // A coarser grain than 500 m2 is an estate of halls, no taller city.
+    EXPECT_DOUBLE_EQ(tower_height(5000, params), tower_height(500, params));
 }
 
 TEST(InferHeights, AHouseTypeOnABlocksFootprintIsABlock) {
