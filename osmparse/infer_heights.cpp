@@ -60,7 +60,8 @@ constexpr double kAttachedGap = 0.5;       // metres
 // In a fabric denser than kPointBlockMinGrain a tower stands higher, as the rest of the town does
 // (levels_from_surroundings: storeys grow as grain^kGrainExponent): Monaco's tagged towers in
 // a grain of 335-380 m2 stand 78-111 m, those in 200-235 m2 27-36 m. Never lower than
-// kTowerLevels: Kaiserslautern's towers (43 and 53 m) stand in a grain of 120 m2
+// kTowerLevels: Kaiserslautern's towers (43 and 53 m) stand in a grain of 120 m2; and no
+// higher in an estate of halls (a grain over kMaxGrain: a campus, not a denser city)
 // (tests/bench/height_bench.sh: a flat 20 storeys suits Monaco better, 15 Kaiserslautern; we
 // do not fit one city).
 constexpr double kTowerLevels = 15;
@@ -408,7 +409,8 @@ bool is_point_block(const std::string& type, double area, double perimeter, doub
 }
 
 double tower_height(double grain, const BuildingParams& params) {
-    const double denser = std::max(std::min(grain, kMaxGrain) / kPointBlockMinGrain, 1.0);
+    // A grain coarser than kMaxGrain is an estate of halls (a campus, industry), no denser city.
+    const double denser = grain > kMaxGrain ? 1.0 : std::max(grain / kPointBlockMinGrain, 1.0);
     return kTowerLevels * std::pow(denser, kGrainExponent) * params.level_height;
 }
 

@@ -89,7 +89,8 @@ bool is_point_block(const std::string& type, double area, double perimeter, doub
 // home: a home with a name (named_buildings) and a footprint of at least 500 m2.
 bool is_landmark_home(const std::string& type, double area, bool named);
 // The height rule 1b gives a residential tower among buildings of median footprint `grain` m2:
-// 15 storeys, more in a fabric denser than 200 m2 (as levels_from_surroundings grows with it).
+// 15 storeys, more in a fabric of 200-500 m2 (as levels_from_surroundings grows with it; a
+// coarser grain is an estate of halls).
 double tower_height(double grain, const BuildingParams& params);
 // The buildings (not parts) whose name has at least 3 characters: a block's letter is no name.
 std::set<OsmRef> named_buildings(const OsmData& osm);

@@ -322,8 +322,9 @@ TEST(InferHeights, TowersStandHigherInADenserFabric) {
     EXPECT_NEAR(tower_height(350, params) / tower_height(200, params),
                 levels_from_surroundings(350, 350, false) / levels_from_surroundings(200, 200, false), 1e-9);
     EXPECT_GT(tower_height(350, params), 20 * params.level_height);
-    // A coarser grain than 500 m2 is an estate of halls, no taller city.
-    EXPECT_DOUBLE_EQ(tower_height(5000, params), tower_height(500, params));
+    EXPECT_GT(tower_height(500, params), tower_height(350, params));
+    // A coarser grain than 500 m2 is an estate of halls (a campus), no denser city.
+    EXPECT_DOUBLE_EQ(tower_height(1200, params), 15 * params.level_height);
 }
 
 TEST(InferHeights, AHouseTypeOnABlocksFootprintIsABlock) {
