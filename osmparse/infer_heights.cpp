@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <unordered_map>
 
 #include "rng.h"
@@ -54,6 +55,40 @@ constexpr double kMaxGrain = 500;          // m2
 constexpr double kMaxRelativeArea = 10;
 constexpr double kGrainRadius = 400;       // metres: a town quarter
 constexpr double kAttachedGap = 0.5;       // metres
+
+// Residential towers, rule 1b. 15 storeys (kTowerLevels) is a common residential high-rise.
+// In a fabric denser than kPointBlockMinGrain a tower stands higher, as the rest of the town does
+// (levels_from_surroundings: storeys grow as grain^kGrainExponent): Monaco's tagged towers in
+// a grain of 335-380 m2 stand 78-111 m, those in 200-235 m2 27-36 m. Never lower than
+// kTowerLevels: Kaiserslautern's towers (43 and 53 m) stand in a grain of 120 m2; and no
+// higher in an estate of halls (a grain over kMaxGrain: a campus, not a denser city)
+// (tests/bench/height_bench.sh: a flat 20 storeys suits Monaco better, 15 Kaiserslautern; we
+// do not fit one city).
+constexpr double kTowerLevels = 15;
+// Point blocks: a home whose plan is deep in every direction is a residential tower. A flat is
+// daylit from one facade to about 12-13 m deep, so a slab of flats (Berlin's blocks, terraces)
+// is at most two such depths across: its plan depth 2 * area / perimeter (half the side of a
+// square, the width of a long strip) stays under 13 m. A plan at least 26 m across both ways
+// (kPointBlockDepth) puts flats around a central core of lifts and stairs, and a core only pays
+// for itself on a tall building. Of the homes tagged in Monaco, Kaiserslautern and the Berlin
+// example, the nine this deep (all in Monaco) stand 27-111 m (median 90); no home of the other
+// two is this deep.
+constexpr double kPointBlockDepth = 13;    // metres
+// In a village fabric (houses, grain under kPointBlockMinGrain) a deep home is a farmstead or a
+// care home, not a tower.
+constexpr double kPointBlockMinGrain = 200;  // m2
+// Landmark homes: mappers name the homes that are landmarks (towers, halls of residence, large
+// estates: Monaco's Millefiori and Annonciade, Kaiserslautern's Wohnheim towers); an ordinary
+// block of flats carries only an address (none of the Berlin example's blocks has a name). A
+// name of fewer than kMinNameLength characters is a block's letter ("A", "B2"), and a named home
+// under kLandmarkMinArea a villa. Homes named and that large in the three extracts: Monaco 36-111 m
+// (7), Kaiserslautern 43 and 53 m; the rule was chosen on Monaco and checked on Kaiserslautern.
+constexpr size_t kMinNameLength = 3;       // characters
+constexpr double kLandmarkMinArea = 500;   // m2
+// A house has a house-sized footprint: a "terrace" or "house" over kMaxHouseArea is a block
+// (Monaco's 44 m Les Eucalyptus, 2,965 m2, is tagged terrace) and gets the rules of a building
+// of flats instead of the two-storey house rule.
+constexpr double kMaxHouseArea = 1000;     // m2: ten row houses of 100 m2
 
 bool is_one_of(const std::string& value, std::initializer_list<const char*> list) {
     for (const char* s : list)
@@ -147,6 +182,14 @@ Vec2 centroid(const Ring& ring) {
 // hall or an office in a village has two storeys, in a city six.
 bool is_workplace(const std::string& type) {
     return is_one_of(type, {"office", "commercial", "civic", "public", "government"});
+}
+
+bool is_home(const std::string& type) { return is_one_of(type, {"apartments", "residential", "dormitory"}); }
+
+double perimeter(const Ring& ring) {
+    double sum = 0;
+    for (size_t k = 0; k < ring.size(); ++k) sum += length(ring[(k + 1) % ring.size()] - ring[k]);
+    return sum;
 }
 
 // Rule 5's inputs: the grain around a building and whether it shares a wall. Footprints only,
@@ -361,8 +404,36 @@ double levels_from_surroundings(double area, double grain, bool attached) {
     return std::max(levels, 1.0);
 }
 
+bool is_point_block(const std::string& type, double area, double perimeter, double grain) {
+    return is_home(type) && perimeter > 0 && 2 * area / perimeter >= kPointBlockDepth && grain >= kPointBlockMinGrain;
+}
+
+double tower_height(double grain, const BuildingParams& params) {
+    // A grain coarser than kMaxGrain is an estate of halls (a campus, industry), no denser city.
+    const double denser = grain > kMaxGrain ? 1.0 : std::max(grain / kPointBlockMinGrain, 1.0);
+    return kTowerLevels * std::pow(denser, kGrainExponent) * params.level_height;
+}
+
+bool is_landmark_home(const std::string& type, double area, bool named) {
+    return is_home(type) && named && area >= kLandmarkMinArea;
+}
+
+std::set<OsmRef> named_buildings(const OsmData& osm) {
+    std::set<OsmRef> out;
+    for (const OsmArea& area : osm.building_areas) {
+        const char* name = area.tags.get("name");
+        if (!name || !area.tags.get("building")) continue;
+        size_t characters = 0;  // UTF-8: count the bytes that start a character
+        for (const char* c = name; *c; ++c) characters += (static_cast<unsigned char>(*c) & 0xC0) != 0x80;
+        if (characters >= kMinNameLength) out.insert(area.ref);
+    }
+    return out;
+}
+
 double height_by_type_and_area(const std::string& type, double area, bool* sure, LandUse use) {
     *sure = true;
+    if (area > kMaxHouseArea && is_one_of(type, {"house", "detached", "semidetached_house", "terrace", "bungalow", "villa"}))
+        return height_by_type_and_area("residential", area, sure, use);
     if (area < 30 || is_one_of(type, {"garage", "garages", "carport", "shed", "kiosk", "hut", "toilets",
                                       "transformer_tower", "service", "greenhouse", "cabin"}))
         return 3;
@@ -395,7 +466,7 @@ double height_by_type_and_area(const std::string& type, double area, bool* sure,
 }
 
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report) {
+                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named) {
     // Only heights from a building's own tags (never a guess, never a raised part's).
     std::vector<Tagged> tagged;
     for (const Building& b : buildings)
@@ -434,7 +505,7 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         pieces[{b.osm, b.is_part}].push_back(i);
     }
     for (const auto& [ref, indices] : pieces) {
-        double area = 0;
+        double area = 0, plan_area = 0, plan_perimeter = 0;  // plan: courtyards left out
         Vec2 at{0, 0};
         bool attached = false;
         for (size_t i : indices) {
@@ -442,6 +513,12 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
             area += a;
             at = at + centroid(buildings[i].outer) * a;
             attached = attached || surroundings.attached(i);
+            plan_area += a;
+            plan_perimeter += perimeter(buildings[i].outer);
+            for (const Ring& hole : buildings[i].holes) {
+                plan_area -= std::fabs(signed_area(hole));
+                plan_perimeter += perimeter(hole);
+            }
         }
         at = area > 0 ? at * (1 / area) : centroid(buildings[indices[0]].outer);
         const Building& b = buildings[indices[0]];  // the pieces share their tags
@@ -457,6 +534,15 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         if (sure) {
             height = by_type;
             rule = HeightRule::TypeAndArea;
+        } else if (is_home(b.type) && is_point_block(b.type, plan_area, plan_perimeter, surroundings.grain(at))) {
+            // Before the neighbours: a tower says more about itself than the blocks around it.
+            height = tower_height(surroundings.grain(at), params);
+            rule = HeightRule::TypeAndArea;
+            note = kPointBlock;
+        } else if (is_landmark_home(b.type, area, named.count(b.osm) > 0)) {
+            height = tower_height(surroundings.grain(at), params);
+            rule = HeightRule::TypeAndArea;
+            note = kLandmarkHome;
         } else if ((height = height_from_neighbours(grid, at, b.type, area, &disagreeing)) > 0) {
             rule = HeightRule::Neighbours;
             note = "from tagged neighbours";

@@ -2,6 +2,7 @@
 // once, because the tagged heights of neighbours are one of the rules.
 #pragma once
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ struct LandUseArea {
 
 inline constexpr char kLandUseTooLarge[] = "land use area over 10 km across: not used";
 inline constexpr char kFromSurroundings[] = "from type, footprint area and surroundings";
+inline constexpr char kPointBlock[] = "point block: a home with a deep plan in a town of blocks";
+inline constexpr char kLandmarkHome[] = "landmark home: a named home of a block's footprint";
 
 // The landuse=residential|commercial|retail|industrial areas of the map, projected (the same
 // OSM areas build_land_cover paints as built-up ground). Areas over kMaxObjectExtent across
@@ -35,8 +38,13 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 // Replaces the random height of every ground-standing building with nothing tagged
 // (height_source Random, min_height 0) by the first rule that applies; height_rule records it:
 //  1. TypeAndArea for sure things: a footprint under 30 m2, or a garage/shed/carport/kiosk-like
-//     type, is a one-storey shed; a house-like type is a two-storey house (both rules first
+//     type, is a one-storey shed; a house-like type under 1,000 m2 is a two-storey house (a
+//     larger one is a block: the rules of `residential`) (both rules first
 //     because a neighbour's height says little about a garage beside a tower);
+//  1b. TypeAndArea for residential towers, of tower_height: a home (apartments, residential,
+//     dormitory) whose plan is deep in every direction in a town of blocks (is_point_block), or
+//     a named one of a block's footprint (is_landmark_home; `named`, from named_buildings);
+//     before the neighbours: a tower among blocks is not their height;
 //  2. Neighbours: the distance-weighted median height of the nearest (up to 8) tagged buildings
 //     (height or building:levels) within 150 m that are most like it: the same type and a
 //     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
@@ -64,13 +72,28 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 // are recomputed from the new height. Counts go to kBuildingHeights in the report. The result
 // does not depend on the order of `buildings` beyond ties in distance.
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report);
+                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named = {});
 
 // Rule 5 alone (exposed for tests): storeys of an untyped building or a workplace with a
 // footprint of `area` m2 among buildings whose median footprint within 400 m is `grain` m2;
 // `attached` when it shares a wall with another building. The constants and their reasons are
 // in infer_heights.cpp.
 double levels_from_surroundings(double area, double grain, bool attached);
+
+// Rule 1b alone (exposed for tests): whether a building of `type` whose plan (courtyards left
+// out) has `area` m2 and `perimeter` m (holes included) among buildings of median footprint
+// `grain` m2 is a point block: a home whose plan depth 2 * area / perimeter is at least 13 m
+// (26 m across both ways: flats around a core) where the grain is at least 200 m2.
+bool is_point_block(const std::string& type, double area, double perimeter, double grain);
+// Rule 1b alone: whether a building of `type` and `area` m2, `named` or not, is a landmark
+// home: a home with a name (named_buildings) and a footprint of at least 500 m2.
+bool is_landmark_home(const std::string& type, double area, bool named);
+// The height rule 1b gives a residential tower among buildings of median footprint `grain` m2:
+// 15 storeys, more in a fabric of 200-500 m2 (as levels_from_surroundings grows with it; a
+// coarser grain is an estate of halls).
+double tower_height(double grain, const BuildingParams& params);
+// The buildings (not parts) whose name has at least 3 characters: a block's letter is no name.
+std::set<OsmRef> named_buildings(const OsmData& osm);
 
 // Rule 1, 4 and 6 alone (exposed for tests): the height of a building of `type` with a footprint of
 // `area` m2 on land used as `use`, or 0 when the type says nothing; `sure` tells whether the rule

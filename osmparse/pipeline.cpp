@@ -166,7 +166,8 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
         return build_buildings(osm, projection, job.params.buildings, report);
     });
     timed(report, "building heights", [&] {
-        infer_heights(scene.buildings, land_use_areas(osm, projection, report), job.params.buildings, report);
+        infer_heights(scene.buildings, land_use_areas(osm, projection, report), job.params.buildings, report,
+                      named_buildings(osm));
         return 0;
     });
     // Roofs and colours change only the heights, roofs and colours of the buildings; the roads

@@ -221,6 +221,123 @@ TEST(InferHeights, SharedWallsAndWorkplaces) {
     EXPECT_EQ(height_by_type_and_area("supermarket", 1500, &sure), 3) << "one storey";
 }
 
+TEST(InferHeights, PointBlocksAreHomesWithADeepPlanInATownOfBlocks) {
+    // A 30 x 30 m block of flats (plan depth 2 * 900 / 120 = 15 m): flats around a core.
+    EXPECT_TRUE(is_point_block("apartments", 900, 120, 300));
+    EXPECT_TRUE(is_point_block("residential", 900, 120, 300));
+    EXPECT_TRUE(is_point_block("dormitory", 900, 120, 300));
+    // A 26 x 26 m plan is the least that counts (depth 13 m), 25 x 25 m is not.
+    EXPECT_TRUE(is_point_block("apartments", 676, 104, 300));
+    EXPECT_FALSE(is_point_block("apartments", 625, 100, 300));
+    // A slab of flats 14 m deep and 100 m long is long, not deep (depth 12.3 m).
+    EXPECT_FALSE(is_point_block("apartments", 1400, 228, 300));
+    // A 40 x 40 m closed block around a 24 x 24 m courtyard: its plan is a ring 8 m deep.
+    EXPECT_FALSE(is_point_block("apartments", 1600 - 576, 160 + 96, 300));
+    // Not a home: offices, halls and untyped buildings are deep without being towers.
+    EXPECT_FALSE(is_point_block("yes", 900, 120, 300));
+    EXPECT_FALSE(is_point_block("office", 900, 120, 300));
+    // In a village of houses (grain 120 m2) a deep home is a farmstead or a care home.
+    EXPECT_FALSE(is_point_block("apartments", 900, 120, 120));
+    EXPECT_FALSE(is_point_block("apartments", 900, 0, 300)) << "no perimeter, no plan";
+}
+
+TEST(InferHeights, PointBlockBeatsItsTaggedNeighbours) {
+    BuildingParams params;
+    std::vector<Building> v;
+    // A town of 15 x 15 m blocks of flats, all tagged 15 m (grain 225 m2) ...
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            v.push_back(building(100 + 4 * i + j, 25.0 * i, 25.0 * j, "apartments", 15, HeightSource::Tagged));
+    // ... with a 30 x 30 m one at its edge and a 60 x 12 m slab beside, nothing tagged.
+    v.push_back(building(1, 100, 0, "apartments", 10, HeightSource::Random, 30));
+    Building slab = building(2, 100, 40, "apartments", 10, HeightSource::Random);
+    slab.outer = {{100, 40}, {160, 40}, {160, 52}, {100, 52}};
+    v.push_back(slab);
+    // The same 30 x 30 m plan with a 20 x 20 m courtyard is a closed block, not a tower.
+    Building court = building(3, 0, 100, "apartments", 10, HeightSource::Random, 30);
+    court.holes = {{{5, 105}, {5, 125}, {25, 125}, {25, 105}}};
+    v.push_back(court);
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    EXPECT_EQ(by_id(v, 1).height_rule, HeightRule::TypeAndArea);
+    expect_near_guess(by_id(v, 1), tower_height(225, params));  // every footprint but 3 is 15 x 15 m
+    EXPECT_EQ(by_id(v, 2).height_rule, HeightRule::Neighbours);
+    expect_near_guess(by_id(v, 2), 15);
+    EXPECT_EQ(by_id(v, 3).height_rule, HeightRule::Neighbours);
+    expect_near_guess(by_id(v, 3), 15);
+    EXPECT_EQ(report.note_count(kBuildingHeights, kPointBlock), 1);
+}
+
+TEST(InferHeights, NamedHomesOfABlocksFootprintAreLandmarkTowers) {
+    BuildingParams params;
+    std::vector<Building> v;
+    // Homes of 25 x 25 m (plan depth 12.5 m: no point block) among tagged 15 m blocks of flats.
+    for (int i = 0; i < 4; ++i) v.push_back(building(100 + i, 30.0 * i, 0, "apartments", 15, HeightSource::Tagged, 25));
+    v.push_back(building(1, 0, 30, "apartments", 10, HeightSource::Random, 25));  // named
+    v.push_back(building(2, 30, 30, "dormitory", 10, HeightSource::Random, 25));  // named
+    v.push_back(building(3, 60, 30, "apartments", 10, HeightSource::Random, 25));  // no name
+    v.push_back(building(4, 90, 30, "apartments", 10, HeightSource::Random, 20));  // named, 400 m2: a villa
+    v.push_back(building(5, 0, 60, "yes", 10, HeightSource::Random, 25));          // named, not a home
+    const std::set<OsmRef> named{{OsmType::Way, 1}, {OsmType::Way, 2}, {OsmType::Way, 4}, {OsmType::Way, 5}};
+    ParseReport report;
+    infer_heights(v, {}, params, report, named);
+    for (int64_t id : {1, 2}) {
+        EXPECT_EQ(by_id(v, id).height_rule, HeightRule::TypeAndArea) << id;
+        expect_near_guess(by_id(v, id), tower_height(625, params));  // the grain: 25 x 25 m
+    }
+    for (int64_t id : {3, 4}) {
+        EXPECT_EQ(by_id(v, id).height_rule, HeightRule::Neighbours) << id;
+        expect_near_guess(by_id(v, id), 15);
+    }
+    EXPECT_LT(by_id(v, 5).height, 0.6 * tower_height(625, params));
+    EXPECT_EQ(report.note_count(kBuildingHeights, kLandmarkHome), 2);
+    EXPECT_FALSE(is_landmark_home("office", 5000, true));
+    EXPECT_TRUE(is_landmark_home("residential", 500, true));
+}
+
+TEST(InferHeights, ANameIsThreeCharactersOnABuilding) {
+    OsmData osm;
+    auto add = [&](int64_t id, const char* key, const char* name) {
+        OsmArea a;
+        a.ref = {OsmType::Way, id};
+        a.tags.entries = {{key, "yes"}};
+        if (name) a.tags.entries.push_back({"name", name});
+        osm.building_areas.push_back(a);
+    };
+    add(1, "building", "Le Millefiori");
+    add(2, "building", "B2");                  // a block's letter
+    add(3, "building", "\xc3\x96z");           // "Öz": two characters in three bytes
+    add(4, "building", "\xc3\x96l\xc3\xbc");   // "Ölü": three characters
+    add(5, "building:part", "Tower");          // a part is no building of its own
+    add(6, "building", nullptr);
+    EXPECT_EQ(named_buildings(osm), (std::set<OsmRef>{{OsmType::Way, 1}, {OsmType::Way, 4}}));
+}
+
+TEST(InferHeights, TowersStandHigherInADenserFabric) {
+    BuildingParams params;
+    // 15 storeys at least, in a suburb too (Kaiserslautern's halls of residence).
+    EXPECT_DOUBLE_EQ(tower_height(120, params), 15 * params.level_height);
+    EXPECT_DOUBLE_EQ(tower_height(200, params), 15 * params.level_height);
+    // Higher in a city of blocks, as its other buildings are: the same growth as rule 5's.
+    EXPECT_NEAR(tower_height(350, params) / tower_height(200, params),
+                levels_from_surroundings(350, 350, false) / levels_from_surroundings(200, 200, false), 1e-9);
+    EXPECT_GT(tower_height(350, params), 20 * params.level_height);
+    EXPECT_GT(tower_height(500, params), tower_height(350, params));
+    // A coarser grain than 500 m2 is an estate of halls (a campus), no denser city.
+    EXPECT_DOUBLE_EQ(tower_height(1200, params), 15 * params.level_height);
+}
+
+TEST(InferHeights, AHouseTypeOnABlocksFootprintIsABlock) {
+    bool sure = false;
+    EXPECT_DOUBLE_EQ(height_by_type_and_area("terrace", 600, &sure), 8);
+    EXPECT_TRUE(sure) << "a row of houses";
+    for (const char* type : {"terrace", "house", "detached"}) {
+        EXPECT_DOUBLE_EQ(height_by_type_and_area(type, 3000, &sure), height_by_type_and_area("residential", 3000, &sure));
+        EXPECT_FALSE(sure) << type << ": tagged neighbours may say more";
+        EXPECT_GT(height_by_type_and_area(type, 3000, &sure), 2 * 8);
+    }
+}
+
 TEST(InferHeights, SameResultWhateverTheOrder) {
     BuildingParams params;
     std::vector<Building> v;
