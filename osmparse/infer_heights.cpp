@@ -534,7 +534,7 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         if (sure) {
             height = by_type;
             rule = HeightRule::TypeAndArea;
-        } else if (is_home(b.type) && is_point_block(b.type, plan_area, plan_perimeter, surroundings.grain(at))) {
+        } else if (is_point_block(b.type, plan_area, plan_perimeter, surroundings.grain(at))) {
             // Before the neighbours: a tower says more about itself than the blocks around it.
             height = tower_height(surroundings.grain(at), params);
             rule = HeightRule::TypeAndArea;
