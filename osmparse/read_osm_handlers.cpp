@@ -14,6 +14,7 @@ bool is_building_tags(const osmium::TagList& tags) {
 
 OsmTags copy_tags(const osmium::TagList& tags) {
     OsmTags out;
+    out.entries.reserve(tags.size());  // exactly: a growing vector holds up to twice its tags
     for (const osmium::Tag& t : tags) out.entries.emplace_back(t.key(), t.value());
     return out;
 }

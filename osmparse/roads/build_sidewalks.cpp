@@ -349,6 +349,7 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
     SidewalkWork work{graph, surface, inner, std::move(walk), std::move(outer), surface.layout, std::move(out), {}};
     add_strips(work);
     add_corners(work);
+    work.out = {};  // the outline is cut into the pieces: free it before they are checked
     return check_pieces(std::move(work.pieces), building_index, *road_index, road_pieces, params, report);
 }
 
