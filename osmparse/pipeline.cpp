@@ -175,6 +175,8 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
         infer_heights(scene.buildings, land_use_areas(osm, projection, report), job.params.buildings, report);
         return 0;
     });
+    // The building areas' rings are in the footprints now; the roofs and colours read only their tags.
+    for (OsmArea& area : osm.building_areas) release(area.polygons);
     // Roofs and colours change only the heights, roofs and colours of the buildings; the roads
     // read only their footprints (outer and holes), and the paths only the OSM data. So these
     // three groups of stages run side by side: neither the scene nor the printed report depends
