@@ -194,6 +194,7 @@ std::vector<Sidewalk> check_pieces(std::vector<Piece> pieces, const BuildingInde
             checked[i] = check_piece(pieces[i], buildings, road_index);
     });
     std::vector<Sidewalk> result;
+    result.reserve(pieces.size());  // most are kept
     for (size_t i = 0; i < pieces.size(); ++i) {
         Piece& piece = pieces[i];
         const char* what = piece.kind == SidewalkKind::Strip ? kSidewalkStrips : kSidewalkCorners;
