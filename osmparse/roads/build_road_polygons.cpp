@@ -63,7 +63,7 @@ RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, Parse
         r.from_node = g.from_node;
         r.to_node = g.to_node;
         r.centreline = {g.from, g.to};
-        r.quad = out.layout.quads[e];
+        r.quad = std::move(out.layout.quads[e]);  // nothing reads the layout's quads after this
         r.width = g.width;
         r.road_class = g.road_class;
         r.lanes = g.lanes;

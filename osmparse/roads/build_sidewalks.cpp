@@ -331,6 +331,7 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
                 outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
             // The outline is shaped on the carriageway layout's nodes, joins and merged junctions.
             out = lay_out_outline(graph, surface.layout, outer, miter_limit);
+            out.quads = {};  // the strips are cut from the end cuts, the corners from the joints
         },
         [&] {
             // The surface's quads and joints, to keep sidewalks off.
