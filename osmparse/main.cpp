@@ -55,11 +55,6 @@ int main(int argc, char** argv) {
     // from ~85 MB to 110-123 MB (tests/bench/parse_bench.sh). One arena keeps it at ~85 MB, at
     // the same CPU time on 2 cores (the stages allocate little compared to what they compute).
     mallopt(M_ARENA_MAX, 1);
-    // Blocks of 128 KiB and more (the stages' large vectors and indexes) are mapped on their own
-    // and go back to the system when freed. By default glibc raises this threshold to the largest
-    // block freed so far, after which such blocks stay on the heap and leave gaps between the
-    // small blocks kept (Kaiserslautern PBF: ~2 MB more peak memory).
-    mallopt(M_MMAP_THRESHOLD, 128 * 1024);
 #endif
     CLI::App app{"osmparse: turn OpenStreetMap data into a citygen scene"};
     app.set_version_flag("--version", std::string("citygen osmparse ") + CITYGEN_VERSION);
