@@ -230,9 +230,6 @@ void build_roof(Building& b, const BuildingTagIndex& index, const BuildingParams
         notes.push_back(std::string(to_string(shape)) + " on a bent or holed footprint: built hipped");
     b.roof_shape = built;
     b.roof_height = height;
-    // Kept to the end of the parse (a third of the scene's memory): without their growth's slack.
-    for (RoofFace& face : faces) face.points.shrink_to_fit();
-    faces.shrink_to_fit();
     b.roof_faces = std::move(faces);
     notes.push_back(std::string(to_string(built)) + (b.roof_inferred ? " (default)" : " (tagged)"));
 }
