@@ -91,7 +91,7 @@ public:
     // Sum over nearby buildings of overlap_area; the largest single overlap in `max_one`.
     double overlap(const Ring& piece, double* max_one = nullptr) const;
     bool contains(Vec2 p) const;  // inside some building's footprint (not in a hole)
-    const PolygonRef& polygon(uint32_t i) const { return polygons_[i]; }
+    const PolygonRef& polygon(uint32_t i) const { return polygons_[i]; }  // the i-th indexed
     size_t cell_count() const { return cell_count_; }  // grid cells in use (for tests)
     // An object covering more cells than this is kept in one list that every query checks,
     // so no object's extent decides the index's memory or build time.
