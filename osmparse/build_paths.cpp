@@ -33,12 +33,12 @@ const ClassInfo kTable[] = {
 std::string graph_key(PathClass c) { return std::string("citygen-path-") + to_string(c); }
 
 // Lays out one network (paths, or rails) and appends its edges and joints to `out`.
-void lay_out(const std::vector<OsmWay>& ways, const Projection& projection, const RoadParams& roads,
+void lay_out(std::vector<OsmWay> ways, const Projection& projection, const RoadParams& roads,
              const std::unordered_map<int64_t, std::pair<PathClass, double>>& info,
              const std::unordered_map<int64_t, bool>& sidewalk, PathSurface& out, ParseReport& report) {
     if (ways.empty()) return;
     OsmData data;
-    data.highways = ways;
+    data.highways = std::move(ways);
     RoadParams params = roads;
     params.classes.clear();
     for (const ClassInfo& c : kTable) params.classes.push_back(graph_key(c.cls));
@@ -50,7 +50,12 @@ void lay_out(const std::vector<OsmWay>& ways, const Projection& projection, cons
         widths.push_back({0.5 * e.width, 0.5 * e.width});
     }
     const RoadLayout layout = layout_road_polygons(graph, widths, roads.miter_limit);
-    const size_t first_path = out.paths.size();
+    // Exactly (the paths are the scene's, kept to the end of the parse).
+    size_t paths = 0, joints = 0;
+    for (size_t e = 0; e < graph.edges.size(); ++e) paths += !layout.absorbed[e] && !layout.quads[e].empty();
+    for (const NodeLayout& node : layout.nodes) joints += node.kind == JoinKind::Joint && !node.joint.empty();
+    out.paths.reserve(out.paths.size() + paths);
+    out.joints.reserve(out.joints.size() + joints);
     std::vector<int> path_of_edge(graph.edges.size(), -1);
     for (size_t e = 0; e < graph.edges.size(); ++e) {
         report.read(kPathEdges);
@@ -72,7 +77,6 @@ void lay_out(const std::vector<OsmWay>& ways, const Projection& projection, cons
         path_of_edge[e] = static_cast<int>(out.paths.size());
         out.paths.push_back(std::move(p));
     }
-    (void)first_path;
     for (const NodeLayout& node : layout.nodes) {
         if (node.kind != JoinKind::Joint || node.joint.empty()) continue;
         Joint j;
@@ -136,8 +140,8 @@ PathSurface build_paths(const OsmData& osm, const Projection& projection, const 
     for (const OsmWay& way : osm.highways) take(way, paths);
     for (const OsmWay& way : osm.railways) take(way, rails);
     PathSurface out;
-    lay_out(paths, projection, roads, info, sidewalk, out, report);
-    lay_out(rails, projection, roads, info, sidewalk, out, report);
+    lay_out(std::move(paths), projection, roads, info, sidewalk, out, report);
+    lay_out(std::move(rails), projection, roads, info, sidewalk, out, report);
     report.kept(kPathEdges, static_cast<int64_t>(out.paths.size()));
     for (const PathEdge& p : out.paths) report.kept(std::string(kPathClassPrefix) + to_string(p.path_class));
     report.kept(kPathJoints, static_cast<int64_t>(out.joints.size()));

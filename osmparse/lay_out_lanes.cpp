@@ -124,12 +124,11 @@ void lay_out_lanes(std::vector<RoadEdge>& roads, const OsmData& osm, ParseReport
 
 std::vector<Crossing> place_crossings(const OsmData& osm, const Projection& projection, const Scene& scene,
                                       ParseReport& report) {
-    std::vector<Building> quads;
-    for (const RoadEdge& r : scene.roads) quads.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
-    const BuildingIndex index(quads, 50);
-    std::vector<Building> joints;
-    for (const Joint& j : scene.joints) joints.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
-    const BuildingIndex joint_index(joints, 50);
+    std::vector<PolygonRef> quads, joints;
+    for (const RoadEdge& r : scene.roads) quads.push_back({&r.quad});
+    for (const Joint& j : scene.joints) joints.push_back({&j.polygon});
+    const BuildingIndex index(std::move(quads), 50);
+    const BuildingIndex joint_index(std::move(joints), 50);
     std::vector<Crossing> out;
     for (const OsmNode& node : osm.road_marks) {
         const bool signal = node.tags.has("highway", "traffic_signals");

@@ -66,7 +66,7 @@ struct OsmArea {
 struct OsmData {
     std::vector<OsmNode> street_lamps;  // highway=street_lamp nodes
     std::vector<OsmWay> highways;       // every way with a highway=* tag
-    std::vector<OsmArea> building_areas;  // building=* and building:part=*
+    std::vector<OsmArea> building_areas;  // building=* and building:part=*, tags without addr:*
     LatLon min{90, 180}, max{-90, -180};  // bounds of every kept location
     // The map beyond roads and buildings (DESIGN 6b).
     std::vector<OsmArea> land_cover_areas;  // areas with a land cover class (build_land_cover.h)

@@ -39,6 +39,12 @@ namespace citygen {
 
 namespace {
 
+// Frees a vector whose last reader is done, so later stages can reuse its memory.
+template <typename T>
+void release(std::vector<T>& v) {
+    std::vector<T>().swap(v);
+}
+
 // Times one stage and records it in the report.
 template <typename F>
 auto timed(ParseReport& report, const char* stage, F&& f) {
@@ -170,6 +176,8 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
                       named_buildings(osm));
         return 0;
     });
+    // The building areas' rings are in the footprints now; the roofs and colours read only their tags.
+    for (OsmArea& area : osm.building_areas) release(area.polygons);
     // Roofs and colours change only the heights, roofs and colours of the buildings; the roads
     // read only their footprints (outer and holes), and the paths only the OSM data. So these
     // three groups of stages run side by side: neither the scene nor the printed report depends
@@ -184,25 +192,27 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
             choose_colours_and_materials(scene.buildings, building_tags, job.params.buildings, report);
             return 0;
         });
+        // The building areas' last readers are done (the other groups read other parts of `osm`).
+        release(osm.building_areas);
     };
     auto lay_out_roads = [&](ParseReport& report) {  // the road section
-        const RoadGraph road_graph = timed(report, "road graph", [&] {
+        RoadGraph road_graph = timed(report, "road graph", [&] {
             return build_road_graph(osm, projection, job.params.roads, report);
         });
         NarrowedRoads narrowed = timed(report, "roads vs buildings", [&] {
-            return narrow_roads(road_graph, scene.buildings, job.params.roads, report);
+            return narrow_roads(std::move(road_graph), scene.buildings, job.params.roads, report);
         });
         const RoadGraph& narrowed_graph = narrowed.graph;
         RoadSurface surface = timed(report, "road polygons", [&] {
             return build_road_polygons(narrowed_graph, std::move(narrowed.layout), report);
         });
-        scene.roads = surface.roads;
-        scene.joints = surface.joints;
-        lay_out_lanes(scene.roads, osm, report);
+        lay_out_lanes(surface.roads, osm, report);  // the sidewalks read no lane
         scene.sidewalks = timed(report, "sidewalks", [&] {
             return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
                                    job.params.roads.miter_limit, report);
         });
+        scene.roads = std::move(surface.roads);
+        scene.joints = std::move(surface.joints);
     };  // end of the road section
     PathSurface paths;
     auto lay_out_paths = [&](ParseReport& report) {
@@ -212,6 +222,8 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
     scene.sidewalks = drop_doubled_sidewalks(std::move(scene.sidewalks), paths.paths, report);
     scene.paths = std::move(paths.paths);
     scene.path_joints = std::move(paths.joints);
+    release(osm.highways);  // read by the road graph, the lanes and the paths, all done
+    release(osm.railways);
     if (job.params.blocks.enabled) {
         std::vector<Building> generated = timed(report, "empty blocks", [&] {
             return fill_empty_blocks(scene, job.params.buildings, job.params.blocks, job.params.sidewalks.width, report);

@@ -29,21 +29,14 @@ constexpr double kMinTaggedHeight = 2, kMaxTaggedHeight = 30;
 
 std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, const Scene& scene,
                               const LampParams& params, uint64_t seed, ParseReport& report) {
-    std::vector<Building> surface_pieces;  // road quads and joints, indexed like footprints
-    std::vector<Building> walk_pieces;
-    std::optional<BuildingIndex> buildings, surface, sidewalks;
+    std::optional<BuildingIndex> buildings, surface, sidewalks;  // road quads and joints, sidewalks
     tbb::parallel_invoke([&] { buildings.emplace(scene.buildings); },
+                         [&] { surface.emplace(surface_polygons(scene.roads, scene.joints)); },
                          [&] {
-                             for (const RoadEdge& r : scene.roads)
-                                 surface_pieces.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
-                             for (const Joint& j : scene.joints)
-                                 surface_pieces.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
-                             surface.emplace(surface_pieces);
-                         },
-                         [&] {
-                             for (const Sidewalk& s : scene.sidewalks)
-                                 walk_pieces.push_back({{}, s.polygon, {}, 0, 0, 0, {}, {}, false});
-                             sidewalks.emplace(walk_pieces);
+                             std::vector<PolygonRef> walk_pieces;
+                             walk_pieces.reserve(scene.sidewalks.size());
+                             for (const Sidewalk& s : scene.sidewalks) walk_pieces.push_back({&s.polygon});
+                             sidewalks.emplace(std::move(walk_pieces));
                          });
 
     // The first surface piece (in index order) containing p.
@@ -52,9 +45,9 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
         box.extend(p);
         uint32_t first = UINT32_MAX;
         surface->for_each_near(box, [&](uint32_t i) {
-            if (i < first && point_in_ring(p, surface_pieces[i].outer)) first = i;
+            if (i < first && point_in_ring(p, *surface->polygon(i).outer)) first = i;
         });
-        return first == UINT32_MAX ? nullptr : &surface_pieces[first].outer;
+        return first == UINT32_MAX ? nullptr : surface->polygon(first).outer;
     };
     auto blocked = [&](Vec2 p) { return surface_containing(p) || buildings->contains(p); };
     auto ground_z = [&](Vec2 p) { return sidewalks->contains(p) ? scene.sidewalks.front().curb_height : 0.0; };

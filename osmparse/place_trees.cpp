@@ -19,13 +19,6 @@ namespace {
 constexpr double kMinHeight = 1, kMaxHeight = 80, kMinCrown = 0.5, kMaxCrown = 40;
 constexpr double kTrunkClearance = 0.75;  // metres a trunk keeps from roads and buildings
 
-Building as_polygon(const Ring& outer, const std::vector<Ring>& holes = {}) {
-    Building b;
-    b.outer = outer;
-    b.holes = holes;
-    return b;
-}
-
 }  // namespace
 
 Tree tree_from_tags(const OsmTags& tags, ParseReport& report, const char* kind) {
@@ -61,25 +54,19 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
     if (params.mode == TreeMode::None) return trees;
 
     const BuildingIndex buildings(scene.buildings);
-    std::vector<Building> surface_pieces;  // road quads and joints
-    for (const RoadEdge& r : scene.roads) surface_pieces.push_back(as_polygon(r.quad));
-    for (const Joint& j : scene.joints) surface_pieces.push_back(as_polygon(j.polygon));
-    const BuildingIndex surface(surface_pieces);
-    std::vector<Building> path_pieces;  // paths, rails and their joints
-    for (const PathEdge& p : scene.paths) path_pieces.push_back(as_polygon(p.quad));
-    for (const Joint& j : scene.path_joints) path_pieces.push_back(as_polygon(j.polygon));
-    const BuildingIndex paths(path_pieces);
-    std::vector<Building> water_pieces;
+    const BuildingIndex surface(surface_polygons(scene.roads, scene.joints));
+    const BuildingIndex paths(surface_polygons(scene.paths, scene.path_joints));  // paths, rails, joints
+    std::vector<PolygonRef> water_pieces;
     for (const LandCover& c : scene.land_cover)
         if (c.cover == LandCoverClass::Water || c.cover == LandCoverClass::Sea)
-            water_pieces.push_back(as_polygon(c.outer, c.holes));
-    const BuildingIndex water(water_pieces, 200);
+            water_pieces.push_back({&c.outer, &c.holes});
+    const BuildingIndex water(std::move(water_pieces), 200);
 
     auto surface_containing = [&](Vec2 p) -> const Ring* {
         Box2 box;
         box.extend(p);
         for (uint32_t i : surface.near(box))
-            if (point_in_ring(p, surface_pieces[i].outer)) return &surface_pieces[i].outer;
+            if (point_in_ring(p, *surface.polygon(i).outer)) return surface.polygon(i).outer;
         return nullptr;
     };
     // Free ground for a trunk: off roads and buildings by kTrunkClearance, off paths, out of water.

@@ -97,10 +97,11 @@ std::vector<Ring> triangulate(const Ring& polygon) {
     return out;
 }
 
-double overlap_area(const Ring& piece, const Building& b) {
+double overlap_area(const Ring& piece, const PolygonRef& b) {
     auto inside_footprint = [&](const Ring& convex) {
-        double a = clipped_area(b.outer, convex);
-        for (const Ring& hole : b.holes) a -= clipped_area(hole, convex);
+        double a = clipped_area(*b.outer, convex);
+        if (b.holes)
+            for (const Ring& hole : *b.holes) a -= clipped_area(hole, convex);
         return std::max(0.0, a);
     };
     if (ring_is_convex(piece)) return inside_footprint(piece);
@@ -109,13 +110,28 @@ double overlap_area(const Ring& piece, const Building& b) {
     return total;
 }
 
+namespace {
+
+std::vector<PolygonRef> footprints_of(const std::vector<Building>& buildings) {
+    std::vector<PolygonRef> out;
+    out.reserve(buildings.size());
+    for (const Building& b : buildings) out.push_back({&b.outer, &b.holes});
+    return out;
+}
+
+}  // namespace
+
 BuildingIndex::BuildingIndex(const std::vector<Building>& buildings, double cell)
-    : buildings_(buildings), cell_(cell) {
+    : BuildingIndex(footprints_of(buildings), cell) {}
+
+BuildingIndex::BuildingIndex(std::vector<PolygonRef> polygons, double cell)
+    : polygons_(std::move(polygons)), cell_(cell) {
+    const std::vector<PolygonRef>& buildings = polygons_;
     boxes_.reserve(buildings.size());
     first_cell_.reserve(buildings.size());
     std::vector<std::pair<int64_t, uint32_t>> entries;  // (cell, building)
     for (uint32_t i = 0; i < buildings.size(); ++i) {
-        const Box2 box = bounds_of(buildings[i].outer);
+        const Box2 box = bounds_of(*buildings[i].outer);
         boxes_.push_back(box);
         first_cell_.push_back(box.empty() ? Cell{} : Cell{cell_of(box.min.x), cell_of(box.min.y)});
         if (box.empty()) continue;
@@ -155,7 +171,7 @@ std::vector<uint32_t> BuildingIndex::near(const Box2& box) const {
 double BuildingIndex::overlap(const Ring& piece, double* max_one) const {
     double total = 0, largest = 0;
     for_each_near(bounds_of(piece), [&](uint32_t i) {
-        const double a = overlap_area(piece, buildings_[i]);
+        const double a = overlap_area(piece, polygons_[i]);
         total += a;
         largest = std::max(largest, a);
     });
@@ -168,10 +184,11 @@ bool BuildingIndex::contains(Vec2 p) const {
     box.extend(p);
     bool inside = false;
     for_each_near(box, [&](uint32_t i) {
-        const Building& b = buildings_[i];
-        if (inside || !point_in_ring(p, b.outer)) return;
+        const PolygonRef& b = polygons_[i];
+        if (inside || !point_in_ring(p, *b.outer)) return;
         bool in_hole = false;
-        for (const Ring& h : b.holes) in_hole = in_hole || point_in_ring(p, h);
+        if (b.holes)
+            for (const Ring& h : *b.holes) in_hole = in_hole || point_in_ring(p, h);
         inside = !in_hole;
     });
     return inside;

@@ -31,14 +31,34 @@ Ring clip_to_half_planes(const Ring& subject, const std::vector<std::pair<Vec2, 
 // Triangles (CCW) covering a simple polygon.
 std::vector<Ring> triangulate(const Ring& polygon);
 
+// A polygon kept elsewhere (a road quad, a joint, a sidewalk, a footprint), borrowed by an
+// index: indexing road pieces this way copies none of their rings.
+struct PolygonRef {
+    const Ring* outer = nullptr;
+    const std::vector<Ring>* holes = nullptr;  // null: none
+};
+
+// The quads of `edges` (roads or paths), then the polygons of their `joints`.
+template <typename Edge>
+std::vector<PolygonRef> surface_polygons(const std::vector<Edge>& edges, const std::vector<Joint>& joints) {
+    std::vector<PolygonRef> out;
+    out.reserve(edges.size() + joints.size());
+    for (const Edge& e : edges) out.push_back({&e.quad});
+    for (const Joint& j : joints) out.push_back({&j.polygon});
+    return out;
+}
+
 // Area of a simple polygon `piece` that lies inside building `b` (outer minus holes).
-double overlap_area(const Ring& piece, const Building& b);
+double overlap_area(const Ring& piece, const PolygonRef& b);
+inline double overlap_area(const Ring& piece, const Building& b) { return overlap_area(piece, {&b.outer, &b.holes}); }
 
 // Buildings bucketed on a uniform grid by bounding box. Queries keep no state: several
 // threads may query one index at once.
 class BuildingIndex {
 public:
     explicit BuildingIndex(const std::vector<Building>& buildings, double cell = 50);
+    // Indexes borrowed polygons, which must outlive the index (their indices are the queries').
+    explicit BuildingIndex(std::vector<PolygonRef> polygons, double cell = 50);
     // Indices of buildings whose bounding box overlaps `box`, ascending, no repeats.
     std::vector<uint32_t> near(const Box2& box) const;
     // Calls f(index) once for each of them, in grid order (no sorting, no allocation).
@@ -71,7 +91,7 @@ public:
     // Sum over nearby buildings of overlap_area; the largest single overlap in `max_one`.
     double overlap(const Ring& piece, double* max_one = nullptr) const;
     bool contains(Vec2 p) const;  // inside some building's footprint (not in a hole)
-    const std::vector<Building>& buildings() const { return buildings_; }
+    const PolygonRef& polygon(uint32_t i) const { return polygons_[i]; }  // the i-th indexed
     size_t cell_count() const { return cell_count_; }  // grid cells in use (for tests)
     // An object covering more cells than this is kept in one list that every query checks,
     // so no object's extent decides the index's memory or build time.
@@ -104,7 +124,7 @@ private:
             if (slot.range.begin == slot.range.end || slot.key == key) return slot.key == key ? slot.range : CellRange{};
         }
     }
-    const std::vector<Building>& buildings_;
+    std::vector<PolygonRef> polygons_;
     std::vector<Box2> boxes_;
     std::vector<Cell> first_cell_;  // the lowest cell of each box, on both axes
     double cell_;

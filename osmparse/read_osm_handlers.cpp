@@ -14,6 +14,7 @@ bool is_building_tags(const osmium::TagList& tags) {
 
 OsmTags copy_tags(const osmium::TagList& tags) {
     OsmTags out;
+    out.entries.reserve(tags.size());  // exactly: a growing vector holds up to twice its tags
     for (const osmium::Tag& t : tags) out.entries.emplace_back(t.key(), t.value());
     return out;
 }
@@ -21,6 +22,18 @@ OsmTags copy_tags(const osmium::TagList& tags) {
 namespace {
 
 LatLon to_latlon(osmium::Location l) { return {l.lat(), l.lon()}; }
+
+// A building's tags but its address (addr:*), which no stage reads: in a city extract the
+// address is most of what the buildings are tagged with (Kaiserslautern: 56,000 of 72,000
+// tags), and the building areas are held until the roofs and colours are done.
+OsmTags copy_building_tags(const osmium::TagList& tags) {
+    OsmTags out;
+    out.entries.reserve(static_cast<size_t>(std::count_if(
+        tags.begin(), tags.end(), [](const osmium::Tag& t) { return std::strncmp(t.key(), "addr:", 5) != 0; })));
+    for (const osmium::Tag& t : tags)
+        if (std::strncmp(t.key(), "addr:", 5) != 0) out.entries.emplace_back(t.key(), t.value());
+    return out;
+}
 
 // data.min and data.max cover every location of street lamps, highways, tree rows and building
 // areas. Coastlines reach far beyond a clipped extract: they do not extend the data's bounds
@@ -176,7 +189,7 @@ void BuildingAreaHandler::area(const osmium::Area& area) {
     if (!is_building_tags(area.tags())) return;
     OsmArea out;
     out.ref = area_ref(area);
-    out.tags = copy_tags(area.tags());
+    out.tags = copy_building_tags(area.tags());
     out.polygons = area_polygons(area);
     if (area.from_way()) {
         auto outline = way_outlines_.find(area.orig_id());

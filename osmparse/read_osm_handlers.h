@@ -77,7 +77,8 @@ public:
 // relation() count what the file holds; area() keeps what libosmium assembled. libosmium
 // refuses a self-intersecting ring (it yields an empty area): then the closed way's own
 // outline, kept by way() until its area arrives, goes on to the footprint clean-up, which can
-// repair it. Ways must reach way() before their areas reach area().
+// repair it. Ways must reach way() before their areas reach area(). The areas keep every tag but
+// the address (addr:*), which no stage reads.
 class BuildingAreaHandler : public ReadHandler {
 public:
     using ReadHandler::ReadHandler;

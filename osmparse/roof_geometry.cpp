@@ -107,6 +107,7 @@ Ring without_repeats(const Ring& ring) {
 
 RoofFace lift(const Ring& ring, const Plane& plane, double eaves_z) {
     RoofFace face;
+    face.points.reserve(ring.size());  // exactly: faces are kept to the end of the parse
     for (Vec2 p : ring) face.points.push_back({p.x, p.y, eaves_z + plane.at(p)});
     return face;
 }
@@ -325,6 +326,7 @@ bool hipped(const Ring& outer, const std::vector<Ring>& holes, double eaves_z, d
     for (const SkeletonFace& f : skeleton) {
         if (f.points.size() < 3) continue;
         RoofFace face;
+        face.points.reserve(f.points.size());  // exactly: faces are kept to the end of the parse
         for (size_t i = 0; i < f.points.size(); ++i)
             face.points.push_back({f.points[i].x, f.points[i].y, eaves_z + slope * f.times[i]});
         Ring flat;

@@ -42,6 +42,12 @@ RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, Parse
     RoadSurface out;
     out.layout = std::move(layout);
     out.road_of_edge.assign(graph.edges.size(), -1);
+    // Exactly (the roads and joints are the scene's, kept to the end of the parse).
+    size_t roads = 0, joints = 0;
+    for (size_t e = 0; e < graph.edges.size(); ++e) roads += !out.layout.absorbed[e] && !out.layout.quads[e].empty();
+    for (const NodeLayout& node : out.layout.nodes) joints += node.kind == JoinKind::Joint && !node.joint.empty();
+    out.roads.reserve(roads);
+    out.joints.reserve(joints);
     for (size_t e = 0; e < graph.edges.size(); ++e) {
         const RoadGraphEdge& g = graph.edges[e];
         if (out.layout.absorbed[e]) {
@@ -57,7 +63,7 @@ RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, Parse
         r.from_node = g.from_node;
         r.to_node = g.to_node;
         r.centreline = {g.from, g.to};
-        r.quad = out.layout.quads[e];
+        r.quad = std::move(out.layout.quads[e]);  // nothing reads the layout's quads after this
         r.width = g.width;
         r.road_class = g.road_class;
         r.lanes = g.lanes;

@@ -29,7 +29,8 @@ inline constexpr char kQuadOverlapsJoint[] = "a quad overlaps its joint by over 
 struct RoadSurface {
     std::vector<RoadEdge> roads;
     std::vector<Joint> joints;
-    RoadLayout layout;              // per graph edge and node; sidewalks follow its joins
+    RoadLayout layout;              // per graph edge and node; sidewalks follow its joins (its
+                                    // quads are moved into `roads`)
     std::vector<int> road_of_edge;  // index into `roads` per graph edge, -1 when dropped
 };
 

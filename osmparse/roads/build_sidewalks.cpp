@@ -47,16 +47,16 @@ Ring clean_piece(const Ring& ring) { return clean_ring(ring, RingCleaning::Spike
 // most, the piece is cut along whichever edge of that road piece (or of its convex hull,
 // for a joint) keeps the most of it, and so on while it overlaps any by more than the
 // tolerance. Cutting on one line keeps the piece in one piece.
-Ring trim_off_roads(Ring piece, const BuildingIndex& roads, const std::vector<Building>& road_pieces) {
+Ring trim_off_roads(Ring piece, const BuildingIndex& roads) {
     for (int round = 0; round < kMaxTrims && piece.size() >= 3; ++round) {
         double most = kRoadBuildingOverlapTolerance;
         int worst = -1;
         roads.for_each_near(bounds_of(piece), [&](uint32_t i) {
-            const double a = overlap_area(piece, road_pieces[i]);
+            const double a = overlap_area(piece, roads.polygon(i));
             if (a > most) most = a, worst = static_cast<int>(i);
         });
         if (worst < 0) break;
-        const Ring& outer = road_pieces[worst].outer;
+        const Ring& outer = *roads.polygon(worst).outer;
         const Ring road = ring_is_convex(outer) ? outer : convex_hull(outer);
         Ring best;
         double best_area = 0;
@@ -121,15 +121,6 @@ std::vector<SideWidths> sidewalk_widths(const RoadGraph& graph, const BuildingIn
     return walk;
 }
 
-// The surface's quads and joints as polygons to keep sidewalks off (a polygon index
-// reuses the footprint grid).
-std::vector<Building> road_pieces_of(const RoadSurface& surface) {
-    std::vector<Building> pieces;
-    for (const RoadEdge& r : surface.roads) pieces.push_back({r.osm, r.quad, {}, 0, 0, 0, {}, {}, false});
-    for (const Joint& j : surface.joints) pieces.push_back({j.osm, j.polygon, {}, 0, 0, 0, {}, {}, false});
-    return pieces;
-}
-
 // A sidewalk piece as steps 2 and 3 cut it, before its checks. `in_cleared_band`: a strip
 // within the side's band, already cleared of buildings.
 struct Piece {
@@ -162,8 +153,7 @@ struct Checked {
 };
 
 // Step 4, for one piece: the checks, which read only the indexes (pieces are checked in parallel).
-Checked check_piece(Piece& piece, const BuildingIndex& buildings, const BuildingIndex& road_index,
-                    const std::vector<Building>& road_pieces) {
+Checked check_piece(Piece& piece, const BuildingIndex& buildings, const BuildingIndex& road_index) {
     Checked out;
     Ring& polygon = piece.polygon;
     // Nothing between carriageway and outline (e.g. where a road without sidewalks
@@ -183,7 +173,7 @@ Checked check_piece(Piece& piece, const BuildingIndex& buildings, const Building
     // Where roads lie closer than their sidewalks are wide (close or overlapping
     // roads, the inside of a hairpin), the piece keeps only its part off them.
     if (largest > kRoadBuildingOverlapTolerance) {
-        Ring trimmed = trim_off_roads(polygon, road_index, road_pieces);
+        Ring trimmed = trim_off_roads(polygon, road_index);
         if (trimmed.size() >= 3 && signed_area(trimmed) >= kMinTrimmedArea && ring_is_simple(trimmed)) {
             out.trimmed = true;
             polygon = std::move(trimmed);
@@ -196,14 +186,15 @@ Checked check_piece(Piece& piece, const BuildingIndex& buildings, const Building
 
 // Step 4: every piece checked (in parallel), then counted and kept in the order cut.
 std::vector<Sidewalk> check_pieces(std::vector<Piece> pieces, const BuildingIndex& buildings,
-                                   const BuildingIndex& road_index, const std::vector<Building>& road_pieces,
+                                   const BuildingIndex& road_index,
                                    const SidewalkParams& params, ParseReport& report) {
     std::vector<Checked> checked(pieces.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, pieces.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i)
-            checked[i] = check_piece(pieces[i], buildings, road_index, road_pieces);
+            checked[i] = check_piece(pieces[i], buildings, road_index);
     });
     std::vector<Sidewalk> result;
+    result.reserve(pieces.size());  // most are kept
     for (size_t i = 0; i < pieces.size(); ++i) {
         Piece& piece = pieces[i];
         const char* what = piece.kind == SidewalkKind::Strip ? kSidewalkStrips : kSidewalkCorners;
@@ -332,7 +323,6 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
     const std::vector<SideWidths> inner = carriageway_widths(graph);
     std::vector<SideWidths> walk, outer(graph.edges.size());
     RoadLayout out;
-    std::vector<Building> road_pieces;
     std::optional<BuildingIndex> road_index;
     tbb::parallel_invoke(  // the outline beside the index of the road pieces
         [&] {
@@ -341,15 +331,17 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
                 outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
             // The outline is shaped on the carriageway layout's nodes, joins and merged junctions.
             out = lay_out_outline(graph, surface.layout, outer, miter_limit);
+            out.quads = {};  // the strips are cut from the end cuts, the corners from the joints
         },
         [&] {
-            road_pieces = road_pieces_of(surface);
-            road_index.emplace(road_pieces);
+            // The surface's quads and joints, to keep sidewalks off.
+            road_index.emplace(surface_polygons(surface.roads, surface.joints));
         });
     SidewalkWork work{graph, surface, inner, std::move(walk), std::move(outer), surface.layout, std::move(out), {}};
     add_strips(work);
     add_corners(work);
-    return check_pieces(std::move(work.pieces), building_index, *road_index, road_pieces, params, report);
+    work.out = {};  // the outline is cut into the pieces: free it before they are checked
+    return check_pieces(std::move(work.pieces), building_index, *road_index, params, report);
 }
 
 }  // namespace citygen

@@ -107,6 +107,7 @@ NarrowedRoads narrow_roads(RoadGraph graph, const std::vector<Building>& buildin
     {
         RoadGraph kept;
         std::vector<char> kept_narrowed;
+        kept.edges.reserve(static_cast<size_t>(std::count(keep.begin(), keep.end(), true)));
         for (size_t e = 0; e < graph.edges.size(); ++e) {
             if (!keep[e]) continue;
             kept.edges.push_back(graph.edges[e]);

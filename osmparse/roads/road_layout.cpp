@@ -188,6 +188,9 @@ RoadLayout assemble_layout(LayoutState& state) {
 RoadLayout take_layout(LayoutState&& state) {
     RoadLayout out = std::move(state.out);
     out.nodes.clear();
+    size_t count = 0;
+    state.for_each_junction([&](NodeLayout&) { ++count; });
+    out.nodes.reserve(count);  // exactly: the layouts are kept while the later road stages run
     state.for_each_junction([&](NodeLayout& node) { out.nodes.push_back(std::move(node)); });
     return out;
 }

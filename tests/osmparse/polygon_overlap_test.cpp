@@ -86,3 +86,33 @@ TEST(BuildingIndex, ThreadsSharingAnIndexGetTheAnswersOfOne) {
     other.join();
     EXPECT_EQ(shared, alone);  // same buildings in the same order
 }
+
+TEST(BuildingIndex, BorrowedPolygonsAnswerLikeTheBuildingsTheyPointTo) {
+    Layout layout = random_layout();
+    // A courtyard in one building, so holes count too.
+    layout.buildings[7].holes.push_back(Ring{{layout.buildings[7].outer[0] + Vec2(0.2, 0.2)},
+                                             {layout.buildings[7].outer[0] + Vec2(0.2, 0.6)},
+                                             {layout.buildings[7].outer[0] + Vec2(0.6, 0.6)},
+                                             {layout.buildings[7].outer[0] + Vec2(0.6, 0.2)}});
+    std::vector<PolygonRef> borrowed;
+    for (const Building& b : layout.buildings) borrowed.push_back({&b.outer, &b.holes});
+    const BuildingIndex of_buildings(layout.buildings), of_refs(borrowed);
+    EXPECT_EQ(visits(of_refs, layout.queries, 0, 1), visits(of_buildings, layout.queries, 0, 1));
+    size_t overlapping = 0;
+    for (const Box2& q : layout.queries) {
+        const Ring piece{q.min, {q.max.x, q.min.y}, q.max + Vec2(1, 1), {q.min.x, q.max.y}};
+        double largest_b = 0, largest_r = 0;
+        const double total = of_buildings.overlap(piece, &largest_b);
+        EXPECT_EQ(of_refs.overlap(piece, &largest_r), total);
+        EXPECT_EQ(largest_r, largest_b);
+        EXPECT_EQ(of_refs.contains(q.min), of_buildings.contains(q.min));
+        overlapping += total > 0;
+    }
+    EXPECT_GT(overlapping, 50u);
+    for (uint32_t i = 0; i < layout.buildings.size(); ++i) EXPECT_EQ(of_refs.polygon(i).outer, &layout.buildings[i].outer);
+    // A polygon without holes (a road quad) may leave them null.
+    const Ring quad{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+    const BuildingIndex of_quad(std::vector<PolygonRef>{{&quad}});
+    EXPECT_DOUBLE_EQ(of_quad.overlap(Ring{{5, 5}, {15, 5}, {15, 15}, {5, 15}}), 25.0);
+    EXPECT_TRUE(of_quad.contains({1, 1}));
+}

@@ -175,6 +175,25 @@ TEST(BuildingAreaHandler, CountsBuildingWaysAndKeepsTheAssembledArea) {
     EXPECT_EQ(report.note_count(kBuildingAreas, kOutlinePassedForRepair), 0);
 }
 
+TEST(BuildingAreaHandler, KeepsEveryTagButTheAddress) {
+    OsmData data;
+    ParseReport report;
+    BuildingAreaHandler buildings{data, report};
+    Objects objects;
+    osmium::builder::add_way(objects.buffer(), _id(3), _tag("building", "house"), _tag("addr:street", "Marktstraße"),
+                             _tag("addr:housenumber", "12"), _tag("roof:shape", "gabled"),
+                             _nodes({at(1, 7.0, 49.0), at(2, 7.001, 49.0), at(3, 7.001, 49.001), at(4, 7.0, 49.001),
+                                     at(1, 7.0, 49.0)}));
+    objects.apply(buildings);
+    objects.apply_area_of_last_way(buildings);
+    ASSERT_EQ(data.building_areas.size(), 1u);
+    const OsmTags& tags = data.building_areas[0].tags;
+    EXPECT_EQ(tags.entries.size(), 2u);
+    EXPECT_TRUE(tags.has("building", "house"));
+    EXPECT_TRUE(tags.has("roof:shape", "gabled"));
+    EXPECT_EQ(tags.get("addr:street"), nullptr);
+}
+
 TEST(BuildingAreaHandler, PassesARefusedSelfIntersectingOutlineOnForRepair) {
     OsmData data;
     ParseReport report;
