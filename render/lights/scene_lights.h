@@ -80,7 +80,7 @@ private:
         uint32_t wall;
     };
     bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;  // cached per thread
-    bool derive_wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;
+    bool derive_wall_geometry(const BuildingWalls& walls, uint32_t building, uint32_t wall, WallGeometry* out) const;
     double window_weight(const WallGeometry& g, int floor, int slot) const;
     // Light index of the strip holding a pane hit; -1 if none.
     int64_t strip_light(const Hit& hit) const;
@@ -95,10 +95,6 @@ private:
     Color lamp_radiance_{0, 0, 0};
     std::vector<Lamp> lamps_;             // light i < lamps_.size(): lamp i of the scene
     std::vector<Strip> strips_;           // light lamps_.size() + j: strip j, by (building, wall, floor, slot)
-    std::vector<uint32_t> building_strips_;  // strips of building b: [building_strips_[b], building_strips_[b + 1])
-    // Walls of every building, ring orientations found once (with lit windows only): a wall's
-    // geometry is derived again whenever the per-thread cache misses.
-    std::vector<BuildingWalls> walls_;
     uint64_t lit_windows_ = 0, windows_ = 0;
     LightSampler sampler_;
 };
