@@ -24,6 +24,17 @@ struct LightBounds {
 
 };
 
+// A shading point as importance() reads it: position and normal in float, converted once per
+// descent rather than at every node.
+struct LightQuery {
+    float p[3], n[3];
+    bool has_normal;  // false: a point in a medium, light from all directions counts
+    LightQuery(Vec3 point, Vec3 normal)
+        : p{float(point.x), float(point.y), float(point.z)},
+          n{float(normal.x), float(normal.y), float(normal.z)},
+          has_normal(normal.x != 0 || normal.y != 0 || normal.z != 0) {}
+};
+
 // What the light BVH keeps per node (52 bytes, floats: the descent evaluates two per level),
 // with what importance() needs of the box and the cone worked out once.
 // Our emitters are one-sided panes lighting the hemisphere around their normal or spheres
@@ -43,7 +54,7 @@ struct CompactLightBounds {
     // surface-cosine bound / distance^2 (Conty & Kulla 2018; pbrt-v4's LightBounds::Importance
     // uses the centre's distance instead). Zero only where no light of the cluster can arrive
     // (behind every emitter, or below the surface's horizon): sampling stays unbiased.
-    void importance(Vec3 p, Vec3 n, double* most, double* least) const;
+    void importance(const LightQuery& q, double* most, double* least) const;
     static constexpr float kNearest = 0.1f;  // metres: closer than any shading point to a light's centre
 };
 

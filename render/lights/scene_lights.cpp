@@ -153,15 +153,18 @@ double SceneLights::window_weight(const WallGeometry& g, int floor, int slot) co
     return window_base_luminance(key, shop) * kWindowPatternMean * (r.u1 - r.u0) * (r.v1 - r.v0);
 }
 
-Color SceneLights::window_radiance(const WallGeometry& g, int floor, int slot, Vec3 position) const {
-    const bool shop = cell_kind(g.layout, floor, slot) == CellKind::Shop;
-    const uint64_t key = window_key(facades_.seed, g.building_key, g.wall, floor, slot);
+WindowPoint SceneLights::window_point(const WallGeometry& g, int floor, int slot, Vec3 position) const {
+    WindowPoint w;
+    w.shop = cell_kind(g.layout, floor, slot) == CellKind::Shop;
+    w.key = window_key(facades_.seed, g.building_key, g.wall, floor, slot);
     const Pane pane = window_pane(g.layout, floor, slot);
     const Vec3 local = g.frame.point_to_local(position);
-    const double s = std::clamp((local.x - pane.u0) / (pane.u1 - pane.u0), 0.0, 1.0);
-    const double t = std::clamp((local.y - pane.v0) / (pane.v1 - pane.v0), 0.0, 1.0);
-    return window_base_radiance(key, shop) * window_pattern(key, s, t);
+    w.s = std::clamp((local.x - pane.u0) / (pane.u1 - pane.u0), 0.0, 1.0);
+    w.t = std::clamp((local.y - pane.v0) / (pane.v1 - pane.v0), 0.0, 1.0);
+    return w;
 }
+
+Color WindowPoint::radiance() const { return window_base_radiance(key, shop) * window_pattern(key, s, t); }
 
 bool SceneLights::lit_window_at(const Hit& hit) const {
     if (hit.kind != ObjectKind::Building || hit.cell == 0 || !is_pane_material(hit.material)) return false;
@@ -189,7 +192,7 @@ Color SceneLights::emitted(const Hit& hit) const {
     WallGeometry g;
     wall_geometry(hit.object, hit.wall, &g);
     const int floor = static_cast<int>((hit.cell - 1) >> 16), slot = static_cast<int>((hit.cell - 1) & 0xffff);
-    return window_radiance(g, floor, slot, hit.position);
+    return window_point(g, floor, slot, hit.position).radiance();
 }
 
 bool SceneLights::sample_lamp(const Lamp& lamp, Vec3 p, double u1, double u2, LightSample* out) const {
@@ -210,7 +213,8 @@ bool SceneLights::sample_lamp(const Lamp& lamp, Vec3 p, double u1, double u2, Li
     out->direction = dir;
     out->distance = t;
     out->position = p + dir * t;
-    out->radiance = lamp_radiance_;
+    out->window = false;
+    out->lamp_radiance = lamp_radiance_;
     out->pdf = 1 / (2 * kPi * one_minus_cos);
     return true;
 }
@@ -263,7 +267,8 @@ bool SceneLights::sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) co
     out->position = position;
     out->direction = dir;
     out->distance = distance;
-    out->radiance = window_radiance(g, floor, slot, position);
+    out->window = true;
+    out->window_point = window_point(g, floor, slot, position);
     out->pdf = pmf * (weight / strip.weight) / pane.area() * distance * distance / cos_light;
     return true;
 }

@@ -28,12 +28,25 @@ struct LightOptions {
     LightSamplerKind sampler = LightSamplerKind::Tree;
 };
 
+// A point on a lit window's pane: its radiance is the window's colour times its noise pattern.
+struct WindowPoint {
+    uint64_t key = 0;  // window_key
+    bool shop = false;
+    double s = 0, t = 0;  // across the pane, in [0, 1]
+    Color radiance() const;
+};
+
 struct LightSample {
     Vec3 position;     // on the emitter
     Vec3 direction;    // unit, from the shading point towards position
     double distance = 0;
-    Color radiance;    // leaving the emitter towards the shading point
     double pdf = 0;    // solid angle at the shading point, times the probability of the light
+    // Radiance leaving the emitter towards the shading point. A window's is worked out only when
+    // asked: most shadow rays are blocked, and the noise pattern is the dearest part of a sample.
+    Color radiance() const { return window ? window_point.radiance() : lamp_radiance; }
+    bool window = false;
+    Color lamp_radiance{0, 0, 0};
+    WindowPoint window_point;
 };
 
 class SceneLights {
@@ -84,7 +97,7 @@ private:
     double window_weight(const WallGeometry& g, int floor, int slot) const;
     // Light index of the strip holding a pane hit; -1 if none.
     int64_t strip_light(const Hit& hit) const;
-    Color window_radiance(const WallGeometry& g, int floor, int slot, Vec3 position) const;
+    WindowPoint window_point(const WallGeometry& g, int floor, int slot, Vec3 position) const;
     bool sample_lamp(const Lamp& lamp, Vec3 p, double u1, double u2, LightSample* out) const;
     double lamp_pdf(const Lamp& lamp, Vec3 p) const;
 
