@@ -38,13 +38,10 @@ CompactLightBounds::CompactLightBounds(const LightBounds& b) {
         half[i] = 0.5f * (b.hi[i] - b.lo[i]);
         w[i] = b.w[i];
     }
-    // Rounded outwards a little: the sphere must hold the box.
-    radius = std::sqrt((half[0] * half[0] + half[1] * half[1] + half[2] * half[2]) * (1 + 1e-5f));
     phi = b.phi;
     // Two-sided or wider than a hemisphere: any direction (conservative). Narrower: the
     // hemisphere (conservative too).
     cos_theta_o = b.two_sided || b.cos_theta_e < 0 ? -1 : b.cos_theta_o;
-    sin_theta_o = std::sqrt(std::max(0.f, 1 - cos_theta_o * cos_theta_o));
 }
 
 void CompactLightBounds::importance(const LightQuery& q, double* most, double* least) const {
@@ -58,6 +55,7 @@ void CompactLightBounds::importance(const LightQuery& q, double* most, double* l
     const float inv_dist = dist > 0 ? 1 / dist : 0;
     const float wx = dist > 0 ? tx * inv_dist : 0, wy = dist > 0 ? ty * inv_dist : 0, wz = dist > 0 ? tz * inv_dist : 1;
     // The cone of directions from p that the bounds' sphere subtends (all of them from inside).
+    const float radius = this->radius();
     const bool inside = dist2 <= radius * radius;
     const float sin_b = inside ? 0 : radius * inv_dist;
     const float cos_b = inside ? -1 : std::sqrt(std::max(0.f, 1 - sin_b * sin_b));
@@ -75,6 +73,7 @@ void CompactLightBounds::importance(const LightQuery& q, double* most, double* l
         const float sin_w = std::sqrt(std::max(0.f, 1 - cos_w * cos_w));
         // theta_x = max(0, theta_w - theta_o), then cos(max(0, theta_x - theta_b)).
         const bool within_o = cos_w > cos_theta_o;
+        const float sin_theta_o = std::sqrt(std::max(0.f, 1 - cos_theta_o * cos_theta_o));
         const float cos_x = within_o ? 1 : cos_w * cos_theta_o + sin_w * sin_theta_o;
         const float sin_x = within_o ? 0 : sin_w * cos_theta_o - cos_w * sin_theta_o;
         cos_p = cos_x > cos_b ? 1 : cos_x * cos_b + sin_x * sin_b;
