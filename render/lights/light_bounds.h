@@ -39,8 +39,8 @@ struct LightQuery {
 
 // What the light BVH keeps per node (44 bytes, floats: the descent evaluates two per level).
 // The sphere around the box and the cone's sine are worked out again at each evaluation (two
-// square roots) rather than stored: on Monaco 8 bytes a node are 250 KB, a fifth of the margin
-// that keeps night memory within 1.2x of day.
+// square roots, no measurable cost) rather than stored: 8 bytes a node are 250 KB on Monaco,
+// room under the target of night memory within 1.2x of day.
 // Our emitters are one-sided panes lighting the hemisphere around their normal or spheres
 // (globes), so theta_e is 90 degrees: bounds that emit wider (two-sided, theta_e > 90) are kept
 // as emitting in every direction (conservative).
