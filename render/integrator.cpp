@@ -66,7 +66,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
                 if (shadow.tmax > 0 && !context.scene.occluded(shadow)) {
                     const double phase = hg_phase(fog.g, in, ls.direction);
                     const double w = power_heuristic(ls.pdf, phase);
-                    sum = sum + ls.radiance * (phase * fog.transmittance(x, ls.direction, ls.distance) * w / ls.pdf);
+                    sum = sum + ls.radiance() * (phase * fog.transmittance(x, ls.direction, ls.distance) * w / ls.pdf);
                 }
             }
         }
@@ -162,7 +162,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
                     if (shadow.tmax > 0 && !context.scene.occluded(shadow)) {
                         const double w = power_heuristic(ls.pdf, bsdf_pdf(material, ns, wo, ls.direction)) *
                                          fog.transmittance(origin, shadow.direction, distance);
-                        radiance = radiance + throughput * f * ls.radiance * (cos_i * w / ls.pdf);
+                        radiance = radiance + throughput * f * ls.radiance() * (cos_i * w / ls.pdf);
                     }
                 }
             }

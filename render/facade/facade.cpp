@@ -281,9 +281,13 @@ size_t building_wall_count(const Building& building) {
 
 BuildingWalls::BuildingWalls(const Building& building)
     : building_(building), count_(building_wall_count(building)) {
-    counter_clockwise_.reserve(1 + building.holes.size());
-    counter_clockwise_.push_back(signed_area(building.outer) > 0);
-    for (const Ring& hole : building.holes) counter_clockwise_.push_back(signed_area(hole) > 0);
+    for (size_t r = 0; r <= building.holes.size() && r < 64; ++r)
+        if (signed_area(r == 0 ? building.outer : building.holes[r - 1]) > 0) counter_clockwise_ |= uint64_t{1} << r;
+}
+
+bool BuildingWalls::counter_clockwise(size_t ring) const {
+    if (ring < 64) return (counter_clockwise_ >> ring) & 1;
+    return signed_area(building_.holes[ring - 1]) > 0;
 }
 
 void BuildingWalls::wall(size_t index, Vec2* a, Vec2* b) const {
@@ -296,8 +300,7 @@ void BuildingWalls::wall(size_t index, Vec2* a, Vec2* b) const {
     // Walk outer rings counter-clockwise and holes clockwise whatever the file says, so that the
     // building is always on the left (+w) of a wall.
     const size_t n = ring->size();
-    const bool counter_clockwise = counter_clockwise_[ring == &building_.outer ? 0 : hole];
-    if (counter_clockwise == (ring == &building_.outer)) {
+    if (counter_clockwise(ring == &building_.outer ? 0 : hole) == (ring == &building_.outer)) {
         *a = (*ring)[index];
         *b = (*ring)[(index + 1) % n];
     } else {

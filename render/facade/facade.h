@@ -176,7 +176,10 @@ public:
 private:
     const Building& building_;
     size_t count_;
-    std::vector<bool> counter_clockwise_;  // outer ring, then each hole
+    // Orientation of ring r (0: the outer ring, h + 1: hole h), bit r for the first 64 rings,
+    // found again on each call beyond: no heap, as the night lights build one per wall they look up.
+    uint64_t counter_clockwise_ = 0;
+    bool counter_clockwise(size_t ring) const;
 };
 
 // One wall without a BuildingWalls (each call finds the rings' orientation again).

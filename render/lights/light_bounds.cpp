@@ -38,25 +38,24 @@ CompactLightBounds::CompactLightBounds(const LightBounds& b) {
         half[i] = 0.5f * (b.hi[i] - b.lo[i]);
         w[i] = b.w[i];
     }
-    // Rounded outwards a little: the sphere must hold the box.
-    radius = std::sqrt((half[0] * half[0] + half[1] * half[1] + half[2] * half[2]) * (1 + 1e-5f));
     phi = b.phi;
     // Two-sided or wider than a hemisphere: any direction (conservative). Narrower: the
     // hemisphere (conservative too).
     cos_theta_o = b.two_sided || b.cos_theta_e < 0 ? -1 : b.cos_theta_o;
-    sin_theta_o = std::sqrt(std::max(0.f, 1 - cos_theta_o * cos_theta_o));
 }
 
-void CompactLightBounds::importance(Vec3 p, Vec3 n, double* most, double* least) const {
+void CompactLightBounds::importance(const LightQuery& q, double* most, double* least) const {
     *most = *least = 0;
     // Float throughout: two of these per level of every descent.
-    const float tx = float(p.x) - center[0], ty = float(p.y) - center[1], tz = float(p.z) - center[2];  // towards p
+    const float tx = q.p[0] - center[0], ty = q.p[1] - center[1], tz = q.p[2] - center[2];  // towards p
+    const float nx = q.n[0], ny = q.n[1], nz = q.n[2];
     const float hx = half[0], hy = half[1], hz = half[2];
     const float dist2 = tx * tx + ty * ty + tz * tz;
     const float dist = std::sqrt(dist2);
     const float inv_dist = dist > 0 ? 1 / dist : 0;
     const float wx = dist > 0 ? tx * inv_dist : 0, wy = dist > 0 ? ty * inv_dist : 0, wz = dist > 0 ? tz * inv_dist : 1;
     // The cone of directions from p that the bounds' sphere subtends (all of them from inside).
+    const float radius = this->radius();
     const bool inside = dist2 <= radius * radius;
     const float sin_b = inside ? 0 : radius * inv_dist;
     const float cos_b = inside ? -1 : std::sqrt(std::max(0.f, 1 - sin_b * sin_b));
@@ -66,9 +65,7 @@ void CompactLightBounds::importance(Vec3 p, Vec3 n, double* most, double* least)
     if (cos_theta_o >= 1 &&
         w[0] * tx + w[1] * ty + w[2] * tz + hx * std::fabs(w[0]) + hy * std::fabs(w[1]) + hz * std::fabs(w[2]) <= 0)
         return;
-    if ((n.x != 0 || n.y != 0 || n.z != 0) &&
-        -(tx * float(n.x) + ty * float(n.y) + tz * float(n.z)) + hx * std::fabs(float(n.x)) +
-                hy * std::fabs(float(n.y)) + hz * std::fabs(float(n.z)) <= 0)
+    if (q.has_normal && -(tx * nx + ty * ny + tz * nz) + hx * std::fabs(nx) + hy * std::fabs(ny) + hz * std::fabs(nz) <= 0)
         return;
     float cos_p = 1;  // normals pointing everywhere (any cluster holding a lamp's globe): no bound
     if (cos_theta_o > -1) {
@@ -76,16 +73,17 @@ void CompactLightBounds::importance(Vec3 p, Vec3 n, double* most, double* least)
         const float sin_w = std::sqrt(std::max(0.f, 1 - cos_w * cos_w));
         // theta_x = max(0, theta_w - theta_o), then cos(max(0, theta_x - theta_b)).
         const bool within_o = cos_w > cos_theta_o;
+        const float sin_theta_o = std::sqrt(std::max(0.f, 1 - cos_theta_o * cos_theta_o));
         const float cos_x = within_o ? 1 : cos_w * cos_theta_o + sin_w * sin_theta_o;
         const float sin_x = within_o ? 0 : sin_w * cos_theta_o - cos_w * sin_theta_o;
         cos_p = cos_x > cos_b ? 1 : cos_x * cos_b + sin_x * sin_b;
         if (cos_p <= 0) return;  // theta_e = 90 degrees
     }
     float factor = phi * cos_p;
-    if (n.x != 0 || n.y != 0 || n.z != 0) {
+    if (q.has_normal) {
         // Our surfaces only reflect (glass is never sampled): a cluster wholly below the
         // horizon of n cannot light p.
-        const float cos_i = -(wx * float(n.x) + wy * float(n.y) + wz * float(n.z));
+        const float cos_i = -(wx * nx + wy * ny + wz * nz);
         const float sin_i = std::sqrt(std::max(0.f, 1 - cos_i * cos_i));
         const float bound = cos_i > cos_b ? 1 : cos_i * cos_b + sin_i * sin_b;
         if (!(bound > 0)) return;

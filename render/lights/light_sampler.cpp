@@ -165,11 +165,12 @@ bool LightSampler::sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf
         }
         case LightSamplerKind::Tree: break;
     }
+    const LightQuery q(p, n);
     uint32_t node = 0;
     double probability = 1;
     while (!nodes_[node].leaf()) {
         const uint32_t first = nodes_[node].index, second = first + 1;
-        const double p0 = first_child_probability(p, n, node);
+        const double p0 = first_child_probability(q, node);
         if (u < p0) {
             node = first;
             u = std::min(u / p0, 0x1.fffffffffffffp-1);
@@ -196,10 +197,11 @@ double LightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
         case LightSamplerKind::Tree: break;
     }
     uint64_t trail = trails_[light];
+    const LightQuery q(p, n);
     uint32_t node = 0;
     double probability = 1;
     while (!nodes_[node].leaf()) {
-        const double p0 = first_child_probability(p, n, node);
+        const double p0 = first_child_probability(q, node);
         probability *= (trail & 1) ? 1 - p0 : p0;
         node = nodes_[node].index + (trail & 1);
         trail >>= 1;
@@ -216,12 +218,12 @@ double LightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
 // Where neither child can light p (the bounds are loose enough that a cluster may pass the test
 // its children all fail), in proportion to power. So every descent ends at a light and the
 // probabilities of all lights sum to one; a light that cannot reach p then contributes nothing.
-double LightSampler::first_child_probability(Vec3 p, Vec3 n, uint32_t node) const {
+double LightSampler::first_child_probability(const LightQuery& q, uint32_t node) const {
     const CompactLightBounds& a = nodes_[nodes_[node].index].bounds;
     const CompactLightBounds& b = nodes_[nodes_[node].index + 1].bounds;
     double most_a, least_a, most_b, least_b;
-    a.importance(p, n, &most_a, &least_a);
-    b.importance(p, n, &most_b, &least_b);
+    a.importance(q, &most_a, &least_a);
+    b.importance(q, &most_b, &least_b);
     if (!(most_a + most_b > 0)) return double(a.phi) / (double(a.phi) + double(b.phi));
     const double by_most = most_a / (most_a + most_b);
     const double by_least = least_a + least_b > 0 ? least_a / (least_a + least_b) : by_most;

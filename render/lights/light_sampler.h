@@ -45,7 +45,7 @@ private:
         LightBounds bounds;
         uint32_t light;
     };
-    double first_child_probability(Vec3 p, Vec3 n, uint32_t node) const;
+    double first_child_probability(const LightQuery& q, uint32_t node) const;
     // Builds the subtree of items [begin, end) in node `self`; its bounds go to `bounds`.
     // Siblings are stored side by side, so each step down reads one place in memory.
     void build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth, uint32_t self,

@@ -50,19 +50,14 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
         lamp_radiance_ = blackbody_color(options.lamp_kelvin) * (nits / kNitsPerRadianceUnit);
     }
 
-    building_strips_.assign(scene.buildings.size() + 1, 0);
-    if (options.lit_windows > 0) {
-        walls_.reserve(scene.buildings.size());
-        for (const Building& building : scene.buildings) walls_.emplace_back(building);
-    }
     for (uint32_t b = 0; b < scene.buildings.size(); ++b) {
-        building_strips_[b] = static_cast<uint32_t>(strips_.size());
         const Building& building = scene.buildings[b];
         if (!has_volume(building)) continue;
         if (!(options.lit_windows > 0)) continue;
-        for (uint32_t w = 0, n = static_cast<uint32_t>(building_wall_count(building)); w < n; ++w) {
+        const BuildingWalls walls(building);
+        for (uint32_t w = 0, n = static_cast<uint32_t>(walls.count()); w < n; ++w) {
             WallGeometry g;
-            if (!derive_wall_geometry(b, w, &g) || g.layout.plain()) continue;
+            if (!derive_wall_geometry(walls, b, w, &g) || g.layout.plain()) continue;
             const WallLayout& L = g.layout;
             for (int first = 0; first < L.floors; first += kFloorsPerStrip) {
                 const int count = std::min(kFloorsPerStrip, L.floors - first);
@@ -94,13 +89,13 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
             }
         }
     }
-    building_strips_[scene.buildings.size()] = static_cast<uint32_t>(strips_.size());
+    lamps_.shrink_to_fit();
+    strips_.shrink_to_fit();
     sampler_ = LightSampler(bounds, options.sampler);
 }
 
 size_t SceneLights::bytes() const {
-    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) +
-           building_strips_.capacity() * sizeof(uint32_t) + sampler_.bytes();
+    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) + sampler_.bytes();
 }
 
 bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {
@@ -122,15 +117,17 @@ bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* 
     slot.owner = id_;
     slot.building = building;
     slot.wall = wall;
-    slot.ok = derive_wall_geometry(building, wall, &slot.geometry);
+    // The rings' orientation is found again on each miss (a few dozen flops beside the layout's
+    // microsecond) rather than kept per building (that cost about 1 MB on Monaco).
+    slot.ok = options_.lit_windows > 0 && building < scene_->buildings.size() &&
+              derive_wall_geometry(BuildingWalls(scene_->buildings[building]), building, wall, &slot.geometry);
     *out = slot.geometry;
     return slot.ok;
 }
 
-bool SceneLights::derive_wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {
-    if (building >= walls_.size()) return false;  // no lit windows
+bool SceneLights::derive_wall_geometry(const BuildingWalls& walls, uint32_t building, uint32_t wall,
+                                       WallGeometry* out) const {
     const Building& b = scene_->buildings[building];
-    const BuildingWalls& walls = walls_[building];
     if (wall >= walls.count()) return false;
     Vec2 p, q;
     walls.wall(wall, &p, &q);
@@ -156,15 +153,18 @@ double SceneLights::window_weight(const WallGeometry& g, int floor, int slot) co
     return window_base_luminance(key, shop) * kWindowPatternMean * (r.u1 - r.u0) * (r.v1 - r.v0);
 }
 
-Color SceneLights::window_radiance(const WallGeometry& g, int floor, int slot, Vec3 position) const {
-    const bool shop = cell_kind(g.layout, floor, slot) == CellKind::Shop;
-    const uint64_t key = window_key(facades_.seed, g.building_key, g.wall, floor, slot);
+WindowPoint SceneLights::window_point(const WallGeometry& g, int floor, int slot, Vec3 position) const {
+    WindowPoint w;
+    w.shop = cell_kind(g.layout, floor, slot) == CellKind::Shop;
+    w.key = window_key(facades_.seed, g.building_key, g.wall, floor, slot);
     const Pane pane = window_pane(g.layout, floor, slot);
     const Vec3 local = g.frame.point_to_local(position);
-    const double s = std::clamp((local.x - pane.u0) / (pane.u1 - pane.u0), 0.0, 1.0);
-    const double t = std::clamp((local.y - pane.v0) / (pane.v1 - pane.v0), 0.0, 1.0);
-    return window_base_radiance(key, shop) * window_pattern(key, s, t);
+    w.s = std::clamp((local.x - pane.u0) / (pane.u1 - pane.u0), 0.0, 1.0);
+    w.t = std::clamp((local.y - pane.v0) / (pane.v1 - pane.v0), 0.0, 1.0);
+    return w;
 }
+
+Color WindowPoint::radiance() const { return window_base_radiance(key, shop) * window_pattern(key, s, t); }
 
 bool SceneLights::lit_window_at(const Hit& hit) const {
     if (hit.kind != ObjectKind::Building || hit.cell == 0 || !is_pane_material(hit.material)) return false;
@@ -177,12 +177,12 @@ bool SceneLights::lit_window_at(const Hit& hit) const {
 
 int64_t SceneLights::strip_light(const Hit& hit) const {
     const int floor = static_cast<int>((hit.cell - 1) >> 16), slot = static_cast<int>((hit.cell - 1) & 0xffff);
-    // A building's strips are ordered by (wall, first floor, first slot) on a regular grid.
-    const auto key = std::make_tuple(hit.wall, floor / kFloorsPerStrip * kFloorsPerStrip, slot / kSlotsPerStrip * kSlotsPerStrip);
-    auto order = [](const Strip& s) { return std::make_tuple(s.wall, int(s.first_floor), int(s.first_slot)); };
-    const auto begin = strips_.begin() + building_strips_[hit.object], end = strips_.begin() + building_strips_[hit.object + 1];
-    const auto at = std::lower_bound(begin, end, key, [&](const Strip& s, const auto& k) { return order(s) < k; });
-    if (at == end || order(*at) != key) return -1;
+    // Strips are ordered by (building, wall, first floor, first slot), each wall's on a regular grid.
+    const auto key = std::make_tuple(hit.object, hit.wall, floor / kFloorsPerStrip * kFloorsPerStrip,
+                                     slot / kSlotsPerStrip * kSlotsPerStrip);
+    auto order = [](const Strip& s) { return std::make_tuple(s.building, s.wall, int(s.first_floor), int(s.first_slot)); };
+    const auto at = std::lower_bound(strips_.begin(), strips_.end(), key, [&](const Strip& s, const auto& k) { return order(s) < k; });
+    if (at == strips_.end() || order(*at) != key) return -1;
     return static_cast<int64_t>(lamps_.size() + (at - strips_.begin()));
 }
 
@@ -192,7 +192,7 @@ Color SceneLights::emitted(const Hit& hit) const {
     WallGeometry g;
     wall_geometry(hit.object, hit.wall, &g);
     const int floor = static_cast<int>((hit.cell - 1) >> 16), slot = static_cast<int>((hit.cell - 1) & 0xffff);
-    return window_radiance(g, floor, slot, hit.position);
+    return window_point(g, floor, slot, hit.position).radiance();
 }
 
 bool SceneLights::sample_lamp(const Lamp& lamp, Vec3 p, double u1, double u2, LightSample* out) const {
@@ -213,7 +213,8 @@ bool SceneLights::sample_lamp(const Lamp& lamp, Vec3 p, double u1, double u2, Li
     out->direction = dir;
     out->distance = t;
     out->position = p + dir * t;
-    out->radiance = lamp_radiance_;
+    out->window = false;
+    out->lamp_radiance = lamp_radiance_;
     out->pdf = 1 / (2 * kPi * one_minus_cos);
     return true;
 }
@@ -266,7 +267,8 @@ bool SceneLights::sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) co
     out->position = position;
     out->direction = dir;
     out->distance = distance;
-    out->radiance = window_radiance(g, floor, slot, position);
+    out->window = true;
+    out->window_point = window_point(g, floor, slot, position);
     out->pdf = pmf * (weight / strip.weight) / pane.area() * distance * distance / cos_light;
     return true;
 }

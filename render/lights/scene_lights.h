@@ -28,12 +28,25 @@ struct LightOptions {
     LightSamplerKind sampler = LightSamplerKind::Tree;
 };
 
+// A point on a lit window's pane: its radiance is the window's colour times its noise pattern.
+struct WindowPoint {
+    uint64_t key = 0;  // window_key
+    bool shop = false;
+    double s = 0, t = 0;  // across the pane, in [0, 1]
+    Color radiance() const;
+};
+
 struct LightSample {
     Vec3 position;     // on the emitter
     Vec3 direction;    // unit, from the shading point towards position
     double distance = 0;
-    Color radiance;    // leaving the emitter towards the shading point
     double pdf = 0;    // solid angle at the shading point, times the probability of the light
+    // Radiance leaving the emitter towards the shading point. A window's is worked out only when
+    // asked: most shadow rays are blocked, and the noise pattern is the dearest part of a sample.
+    Color radiance() const { return window ? window_point.radiance() : lamp_radiance; }
+    bool window = false;
+    Color lamp_radiance{0, 0, 0};
+    WindowPoint window_point;
 };
 
 class SceneLights {
@@ -80,11 +93,11 @@ private:
         uint32_t wall;
     };
     bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;  // cached per thread
-    bool derive_wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;
+    bool derive_wall_geometry(const BuildingWalls& walls, uint32_t building, uint32_t wall, WallGeometry* out) const;
     double window_weight(const WallGeometry& g, int floor, int slot) const;
     // Light index of the strip holding a pane hit; -1 if none.
     int64_t strip_light(const Hit& hit) const;
-    Color window_radiance(const WallGeometry& g, int floor, int slot, Vec3 position) const;
+    WindowPoint window_point(const WallGeometry& g, int floor, int slot, Vec3 position) const;
     bool sample_lamp(const Lamp& lamp, Vec3 p, double u1, double u2, LightSample* out) const;
     double lamp_pdf(const Lamp& lamp, Vec3 p) const;
 
@@ -95,10 +108,6 @@ private:
     Color lamp_radiance_{0, 0, 0};
     std::vector<Lamp> lamps_;             // light i < lamps_.size(): lamp i of the scene
     std::vector<Strip> strips_;           // light lamps_.size() + j: strip j, by (building, wall, floor, slot)
-    std::vector<uint32_t> building_strips_;  // strips of building b: [building_strips_[b], building_strips_[b + 1])
-    // Walls of every building, ring orientations found once (with lit windows only): a wall's
-    // geometry is derived again whenever the per-thread cache misses.
-    std::vector<BuildingWalls> walls_;
     uint64_t lit_windows_ = 0, windows_ = 0;
     LightSampler sampler_;
 };

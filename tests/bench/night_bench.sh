@@ -147,5 +147,5 @@ for city in monaco kaiserslautern; do
     done
     d=$(value "$out/${city}_mem_day.log" geometry_bytes)
     n=$(( $(value "$out/${city}_mem_night.log" geometry_bytes) + $(value "$out/${city}_mem_night.log" light_bytes) ))
-    awk -v c="$city" -v d="$d" -v n="$n" 'BEGIN { printf "| %s | %.1f | %.1f | %.2fx |\n", c, d / 1e6, n / 1e6, n / d }'
+    awk -v c="$city" -v d="$d" -v n="$n" 'BEGIN { printf "| %s | %.2f | %.2f | %.3fx |\n", c, d / 1e6, n / 1e6, n / d }'
 done

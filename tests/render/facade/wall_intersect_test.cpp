@@ -388,6 +388,35 @@ TEST(FacadeRules, WallsHaveTheBuildingOnTheirLeftWhateverTheRingOrientation) {
     }
 }
 
+TEST(FacadeRules, WallsOfBuildingsWithManyCourtyardsHaveTheBuildingOnTheirLeft) {
+    // BuildingWalls keeps the orientation of the first 64 rings and finds the others again.
+    Building b;
+    b.outer = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+    b.height = 12;
+    for (int h = 0; h < 70; ++h) {
+        const double x = 5 + 10 * (h % 9), y = 5 + 10 * (h / 9);
+        Ring hole{{x, y}, {x, y + 2}, {x + 2, y + 2}, {x + 2, y}};  // clockwise
+        if (h % 3 == 0) std::reverse(hole.begin(), hole.end());
+        b.holes.push_back(hole);
+    }
+    auto in_building = [&](Vec3 x) {
+        const Vec2 xy{x.x, x.y};
+        if (!point_in_ring(xy, b.outer)) return false;
+        for (const Ring& hole : b.holes)
+            if (point_in_ring(xy, hole)) return false;
+        return true;
+    };
+    const BuildingWalls walls(b);
+    ASSERT_EQ(walls.count(), 4u + 70 * 4);
+    for (size_t i = 0; i < walls.count(); ++i) {
+        Vec2 p, q;
+        walls.wall(i, &p, &q);
+        const WallFrame frame = wall_frame(p, q, 0);
+        EXPECT_TRUE(in_building(frame.to_world(0.5 * length(q - p), 1, 0.05))) << "wall " << i;
+        EXPECT_FALSE(in_building(frame.to_world(0.5 * length(q - p), 1, -0.05))) << "wall " << i;
+    }
+}
+
 TEST(FacadeRules, RoomBoxesStayInsideFootprintsWithAcuteCorners) {
     // An equilateral triangle (60 degree corners) and a parallelogram (50 degree corners): the
     // neighbouring wall runs in behind the end cells, so the rooms there must be shallower.
