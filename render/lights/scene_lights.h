@@ -95,6 +95,11 @@ private:
     bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;  // cached per thread
     bool derive_wall_geometry(const BuildingWalls& walls, uint32_t building, uint32_t wall, WallGeometry* out) const;
     double window_weight(const WallGeometry& g, int floor, int slot) const;
+    // The lit windows of a strip as point p sees them: each one's power reaching p's side
+    // through its opening (its weight times the share of its pane p can see, visible_pane) and
+    // that visible part; returns their sum. Sampling and pdf both choose by it.
+    struct SeenWindow;
+    double seen_windows(const Strip& strip, const WallGeometry& g, Vec3 p, SeenWindow* out, int* count) const;
     // Light index of the strip holding a pane hit; -1 if none.
     int64_t strip_light(const Hit& hit) const;
     WindowPoint window_point(const WallGeometry& g, int floor, int slot, Vec3 position) const;
