@@ -91,11 +91,40 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
     }
     lamps_.shrink_to_fit();
     strips_.shrink_to_fit();
+    split_ = options.sampler == LightSamplerKind::Tree && !lamps_.empty() && !strips_.empty();
+    if (split_) {
+        double lamp_power = 0, strip_power = 0;
+        for (size_t i = 0; i < bounds.size(); ++i) (i < lamps_.size() ? lamp_power : strip_power) += bounds[i].phi;
+        lamp_share_ = lamp_power / (lamp_power + strip_power);
+        strip_sampler_ = LightSampler(std::vector<LightBounds>(bounds.begin() + lamps_.size(), bounds.end()), options.sampler);
+        bounds.resize(lamps_.size());
+    }
     sampler_ = LightSampler(bounds, options.sampler);
 }
 
+bool SceneLights::choose_light(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {
+    if (!split_) return sampler_.sample(p, n, u, light, pmf);
+    // One uniform number for both steps, rescaled after the first (as the tree's descent does).
+    if (u < lamp_share_) {
+        if (!sampler_.sample(p, n, std::min(u / lamp_share_, 0x1.fffffffffffffp-1), light, pmf)) return false;
+        *pmf *= lamp_share_;
+        return true;
+    }
+    if (!strip_sampler_.sample(p, n, std::min((u - lamp_share_) / (1 - lamp_share_), 0x1.fffffffffffffp-1), light, pmf))
+        return false;
+    *pmf *= 1 - lamp_share_;
+    *light += static_cast<uint32_t>(lamps_.size());
+    return true;
+}
+
+double SceneLights::light_pmf(Vec3 p, Vec3 n, uint32_t light) const {
+    if (!split_) return sampler_.pmf(p, n, light);
+    if (light < lamps_.size()) return lamp_share_ * sampler_.pmf(p, n, light);
+    return (1 - lamp_share_) * strip_sampler_.pmf(p, n, light - static_cast<uint32_t>(lamps_.size()));
+}
+
 size_t SceneLights::bytes() const {
-    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) + sampler_.bytes();
+    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) + sampler_.bytes() + strip_sampler_.bytes();
 }
 
 bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {
@@ -254,7 +283,7 @@ double SceneLights::lamp_pdf(const Lamp& lamp, Vec3 p) const {
 bool SceneLights::sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) const {
     uint32_t light;
     double pmf;
-    if (!sampler_.sample(p, n, u[0], &light, &pmf)) return false;
+    if (!choose_light(p, n, u[0], &light, &pmf)) return false;
     if (light < lamps_.size()) {
         if (!sample_lamp(lamps_[light], p, u[1], u[2], out)) return false;
         out->pdf *= pmf;
@@ -302,7 +331,7 @@ bool SceneLights::sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) co
 double SceneLights::pdf(Vec3 p, Vec3 n, const Hit& hit) const {
     if (hit.kind == ObjectKind::Lamp) {
         if (hit.material != kLampGlobe || hit.object >= lamps_.size()) return 0;
-        return sampler_.pmf(p, n, hit.object) * lamp_pdf(lamps_[hit.object], p);
+        return light_pmf(p, n, hit.object) * lamp_pdf(lamps_[hit.object], p);
     }
     if (!lit_window_at(hit)) return 0;
     const int64_t light = strip_light(hit);
@@ -320,7 +349,7 @@ double SceneLights::pdf(Vec3 p, Vec3 n, const Hit& hit) const {
     const double total = seen_windows(strip, g, p, windows, &count);
     for (int i = 0; i < count; ++i) {
         if (windows[i].floor != floor || windows[i].slot != slot) continue;
-        const double pmf = sampler_.pmf(p, n, static_cast<uint32_t>(light));
+        const double pmf = light_pmf(p, n, static_cast<uint32_t>(light));
         return pmf * (windows[i].power / total) / windows[i].visible.area() * distance2 / cos_light;
     }
     return 0;  // a window p cannot see (rounding at the edge of its opening): sampling never picks it

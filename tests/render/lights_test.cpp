@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "build_render_scene.h"
+#include "lamp_shape.h"
 #include "light_sampler.h"
 #include "render_image.h"
 #include "rng.h"
@@ -84,13 +85,12 @@ Difference difference(const Film& film, const Film& reference) {
 
 }  // namespace
 
-TEST(LightSampler, ProbabilitiesSumToOneAndMatchWhatSamplingReports) {
+TEST(SceneLights, LightProbabilitiesSumToOneAndMatchWhatSamplingReports) {
     const Scene scene = lamp_street();
     for (LightSamplerKind kind : {LightSamplerKind::Tree, LightSamplerKind::Power, LightSamplerKind::Uniform}) {
         const SceneLights lights(scene, FacadeOptions{scene.header.seed}, night_lights(kind));
         ASSERT_EQ(lights.lamp_count(), scene.lamps.size());
         ASSERT_GT(lights.strip_count(), 0u) << "lit windows should be lights";
-        const LightSampler& sampler = lights.sampler();
         Rng rng(11);
         for (int trial = 0; trial < 200; ++trial) {
             // Points on the road, on facades and in the air; normals up, sideways or none.
@@ -98,17 +98,60 @@ TEST(LightSampler, ProbabilitiesSumToOneAndMatchWhatSamplingReports) {
             const Vec3 normals[3] = {{0, 0, 1}, {0, trial % 2 ? 1.0 : -1.0, 0}, {0, 0, 0}};
             const Vec3 n = normals[trial % 3];
             double total = 0;
-            for (uint32_t i = 0; i < sampler.size(); ++i) total += sampler.pmf(p, n, i);
+            for (uint32_t i = 0; i < lights.light_count(); ++i) total += lights.light_pmf(p, n, i);
             EXPECT_NEAR(total, 1.0, 1e-9) << to_string(kind) << " at trial " << trial;
             for (int k = 0; k < 5; ++k) {
                 uint32_t light;
                 double pmf;
-                if (!sampler.sample(p, n, rng.next_double(), &light, &pmf)) continue;
-                EXPECT_NEAR(pmf, sampler.pmf(p, n, light), 1e-12 * std::max(1.0, pmf)) << to_string(kind);
+                if (!lights.choose_light(p, n, rng.next_double(), &light, &pmf)) continue;
+                EXPECT_NEAR(pmf, lights.light_pmf(p, n, light), 1e-12 * std::max(1.0, pmf)) << to_string(kind);
                 EXPECT_GT(pmf, 0);
             }
         }
     }
+}
+
+// How far the choice of lamp at (p, n) is from proportional to the lamps' unshadowed light:
+// sum c_i^2 / p_i over (sum c_i)^2, c_i = cosine x solid angle of lamp i, p_i its probability
+// among the lamps. 1 for a choice in proportion to c.
+double lamp_choice_spread(const SceneLights& lights, const Scene& scene, Vec3 p, Vec3 n) {
+    double lamp_total = 0;
+    for (uint32_t i = 0; i < lights.lamp_count(); ++i) lamp_total += lights.light_pmf(p, n, i);
+    double sum = 0, second = 0;
+    for (uint32_t i = 0; i < lights.lamp_count(); ++i) {
+        const LampShape s = lamp_shape(scene.lamps[i], scene.ground.z);
+        const Vec3 to = s.globe_center - p;
+        const double d = length(to), cosine = dot(n, to) / d;
+        if (!(cosine > 0)) continue;
+        const double c = cosine * s.globe_radius * s.globe_radius / (d * d);
+        sum += c;
+        second += c * c / (lights.light_pmf(p, n, i) / lamp_total);
+    }
+    return second / (sum * sum);
+}
+
+TEST(SceneLights, LitWindowsDoNotBlurTheTreesChoiceOfLamp) {
+    // The lamps have a tree of their own: with windows lit, a point on the road or a facade
+    // chooses among the lamps exactly as it does with every window dark.
+    const Scene scene = lamp_street();
+    const SceneLights with(scene, FacadeOptions{scene.header.seed}, night_lights(LightSamplerKind::Tree));
+    LightOptions dark = night_lights(LightSamplerKind::Tree);
+    dark.lit_windows = 0;
+    const SceneLights without(scene, FacadeOptions{scene.header.seed}, dark);
+    ASSERT_GT(with.strip_count(), 20u);
+    ASSERT_EQ(without.strip_count(), 0u);
+    Rng rng(4);
+    double spread_with = 0, spread_without = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        const bool facade = trial % 2;
+        const Vec3 p = facade ? Vec3{-38 + 76 * rng.next_double(), 7.99, 0.5 + 12 * rng.next_double()}
+                              : Vec3{-55 + 110 * rng.next_double(), -3.5 + 7 * rng.next_double(), 0.03};
+        const Vec3 n = facade ? Vec3{0, -1, 0} : Vec3{0, 0, 1};
+        spread_with += lamp_choice_spread(with, scene, p, n);
+        spread_without += lamp_choice_spread(without, scene, p, n);
+    }
+    EXPECT_NEAR(spread_with, spread_without, 1e-6 * spread_without);
+    EXPECT_LT(spread_without / 300, 3) << "the tree's lamp choice should be near proportional to their light";
 }
 
 TEST(SceneLights, PdfAndRadianceOfAnEmitterHitEqualWhatItWasSampledWith) {
