@@ -263,7 +263,7 @@ int run(const Options& o) {
         std::printf("sun_direction: %.5f,%.5f,%.5f\nsun_irradiance: %.4f\n", sun.x, sun.y, sun.z,
                     sky.has_sun() ? luminance(sky.sun_radiance()) * sky.sun_solid_angle() : 0.0);
         std::printf("sun_elevation: %.3f\nexposure_ev: %.3f\nlights: %zu\n", sky.sun_elevation(),
-                    ev_from_exposure(exposure), lights.sampler().size());
+                    ev_from_exposure(exposure), lights.light_count());
     }
     return 0;
 }

@@ -91,11 +91,40 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
     }
     lamps_.shrink_to_fit();
     strips_.shrink_to_fit();
+    split_ = options.sampler == LightSamplerKind::Tree && !lamps_.empty() && !strips_.empty();
+    if (split_) {
+        double lamp_power = 0, strip_power = 0;
+        for (size_t i = 0; i < bounds.size(); ++i) (i < lamps_.size() ? lamp_power : strip_power) += bounds[i].phi;
+        lamp_share_ = lamp_power / (lamp_power + strip_power);
+        strip_sampler_ = LightSampler(std::vector<LightBounds>(bounds.begin() + lamps_.size(), bounds.end()), options.sampler);
+        bounds.resize(lamps_.size());
+    }
     sampler_ = LightSampler(bounds, options.sampler);
 }
 
+bool SceneLights::choose_light(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {
+    if (!split_) return sampler_.sample(p, n, u, light, pmf);
+    // One uniform number for both steps, rescaled after the first (as the tree's descent does).
+    if (u < lamp_share_) {
+        if (!sampler_.sample(p, n, std::min(u / lamp_share_, 0x1.fffffffffffffp-1), light, pmf)) return false;
+        *pmf *= lamp_share_;
+        return true;
+    }
+    if (!strip_sampler_.sample(p, n, std::min((u - lamp_share_) / (1 - lamp_share_), 0x1.fffffffffffffp-1), light, pmf))
+        return false;
+    *pmf *= 1 - lamp_share_;
+    *light += static_cast<uint32_t>(lamps_.size());
+    return true;
+}
+
+double SceneLights::light_pmf(Vec3 p, Vec3 n, uint32_t light) const {
+    if (!split_) return sampler_.pmf(p, n, light);
+    if (light < lamps_.size()) return lamp_share_ * sampler_.pmf(p, n, light);
+    return (1 - lamp_share_) * strip_sampler_.pmf(p, n, light - static_cast<uint32_t>(lamps_.size()));
+}
+
 size_t SceneLights::bytes() const {
-    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) + sampler_.bytes();
+    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) + sampler_.bytes() + strip_sampler_.bytes();
 }
 
 bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {
@@ -151,6 +180,31 @@ double SceneLights::window_weight(const WallGeometry& g, int floor, int slot) co
                         : kind == CellKind::Balcony ? g.layout.door
                                                     : g.layout.window;
     return window_base_luminance(key, shop) * kWindowPatternMean * (r.u1 - r.u0) * (r.v1 - r.v0);
+}
+
+struct SceneLights::SeenWindow {
+    int floor, slot;
+    double power;  // window_weight x visible area / pane area
+    Pane visible;
+};
+
+double SceneLights::seen_windows(const Strip& strip, const WallGeometry& g, Vec3 p, SeenWindow* out, int* count) const {
+    const Vec3 local = g.frame.point_to_local(p);
+    double total = 0;
+    *count = 0;
+    for (int f = strip.first_floor; f < strip.first_floor + strip.floor_count; ++f) {
+        for (int s = strip.first_slot; s < strip.first_slot + strip.slot_count; ++s) {
+            const double w = window_weight(g, f, s);
+            if (!(w > 0)) continue;
+            const Pane pane = window_pane(g.layout, f, s);
+            const Pane visible = visible_pane(pane, local);
+            const double power = w * (visible.area() / pane.area());
+            if (!(power > 0)) continue;
+            out[(*count)++] = {f, s, power, visible};
+            total += power;
+        }
+    }
+    return total;
 }
 
 WindowPoint SceneLights::window_point(const WallGeometry& g, int floor, int slot, Vec3 position) const {
@@ -229,33 +283,34 @@ double SceneLights::lamp_pdf(const Lamp& lamp, Vec3 p) const {
 bool SceneLights::sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) const {
     uint32_t light;
     double pmf;
-    if (!sampler_.sample(p, n, u[0], &light, &pmf)) return false;
+    if (!choose_light(p, n, u[0], &light, &pmf)) return false;
     if (light < lamps_.size()) {
         if (!sample_lamp(lamps_[light], p, u[1], u[2], out)) return false;
         out->pdf *= pmf;
         return true;
     }
-    // A strip of windows: one lit window in proportion to its weight, then a point on its pane.
+    // A strip of windows: one lit window in proportion to the power it sends through its opening
+    // towards p, then a point on the part of its pane p can see (the rest is behind the reveals:
+    // its samples would all be blocked).
     const Strip& strip = strips_[light - lamps_.size()];
     WallGeometry g;
     if (!wall_geometry(strip.building, strip.wall, &g)) return false;
-    const double target = u[3] * strip.weight;
-    int floor = -1, slot = -1;
-    double weight = 0;
-    [&] {
-        double sum = 0;
-        for (int f = strip.first_floor; f < strip.first_floor + strip.floor_count; ++f) {
-            for (int s = strip.first_slot; s < strip.first_slot + strip.slot_count; ++s) {
-                const double w = window_weight(g, f, s);
-                if (!(w > 0)) continue;
-                floor = f, slot = s, weight = w;  // the last lit one if rounding leaves target above the sum
-                sum += w;
-                if (target < sum) return;
-            }
+    SeenWindow windows[kFloorsPerStrip * kSlotsPerStrip];
+    int count = 0;
+    const double total = seen_windows(strip, g, p, windows, &count);
+    if (!(total > 0)) return false;
+    const double target = u[3] * total;
+    int chosen = count - 1;  // the last if rounding leaves target above the sum
+    double sum = 0;
+    for (int i = 0; i < count; ++i) {
+        sum += windows[i].power;
+        if (target < sum) {
+            chosen = i;
+            break;
         }
-    }();
-    if (floor < 0 || !(weight > 0)) return false;
-    const Pane pane = window_pane(g.layout, floor, slot);
+    }
+    const SeenWindow& window = windows[chosen];
+    const Pane& pane = window.visible;
     const Vec3 position = g.frame.to_world(pane.u0 + u[1] * (pane.u1 - pane.u0), pane.v0 + u[2] * (pane.v1 - pane.v0),
                                            pane.at);
     const Vec3 to = position - p;
@@ -268,30 +323,36 @@ bool SceneLights::sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) co
     out->direction = dir;
     out->distance = distance;
     out->window = true;
-    out->window_point = window_point(g, floor, slot, position);
-    out->pdf = pmf * (weight / strip.weight) / pane.area() * distance * distance / cos_light;
+    out->window_point = window_point(g, window.floor, window.slot, position);
+    out->pdf = pmf * (window.power / total) / pane.area() * distance * distance / cos_light;
     return true;
 }
 
 double SceneLights::pdf(Vec3 p, Vec3 n, const Hit& hit) const {
     if (hit.kind == ObjectKind::Lamp) {
         if (hit.material != kLampGlobe || hit.object >= lamps_.size()) return 0;
-        return sampler_.pmf(p, n, hit.object) * lamp_pdf(lamps_[hit.object], p);
+        return light_pmf(p, n, hit.object) * lamp_pdf(lamps_[hit.object], p);
     }
     if (!lit_window_at(hit)) return 0;
     const int64_t light = strip_light(hit);
     if (light < 0) return 0;
     const Strip& strip = strips_[light - lamps_.size()];
     WallGeometry g;
-    wall_geometry(strip.building, strip.wall, &g);
+    if (!wall_geometry(strip.building, strip.wall, &g)) return 0;
     const int floor = static_cast<int>((hit.cell - 1) >> 16), slot = static_cast<int>((hit.cell - 1) & 0xffff);
-    const double weight = window_weight(g, floor, slot);
     const Vec3 to = hit.position - p;
     const double distance2 = dot(to, to);
     const double cos_light = dot(to * (1 / std::sqrt(distance2)), g.frame.w_axis);
-    if (!(cos_light > 0) || !(weight > 0)) return 0;
-    const double pmf = sampler_.pmf(p, n, static_cast<uint32_t>(light));
-    return pmf * (weight / strip.weight) / window_pane(g.layout, floor, slot).area() * distance2 / cos_light;
+    if (!(cos_light > 0)) return 0;
+    SeenWindow windows[kFloorsPerStrip * kSlotsPerStrip];
+    int count = 0;
+    const double total = seen_windows(strip, g, p, windows, &count);
+    for (int i = 0; i < count; ++i) {
+        if (windows[i].floor != floor || windows[i].slot != slot) continue;
+        const double pmf = light_pmf(p, n, static_cast<uint32_t>(light));
+        return pmf * (windows[i].power / total) / windows[i].visible.area() * distance2 / cos_light;
+    }
+    return 0;  // a window p cannot see (rounding at the edge of its opening): sampling never picks it
 }
 
 }  // namespace citygen

@@ -55,12 +55,15 @@ public:
     // `scene` must outlive this object (windows are re-derived from it when sampled).
     SceneLights(const Scene& scene, const FacadeOptions& facades, const LightOptions& options);
 
-    bool empty() const { return sampler_.size() == 0; }
+    bool empty() const { return light_count() == 0; }
+    size_t light_count() const { return lamps_.size() + strips_.size(); }
     size_t lamp_count() const { return lamps_.size(); }
     size_t strip_count() const { return strips_.size(); }
     uint64_t lit_window_count() const { return lit_windows_; }
     uint64_t window_count() const { return windows_; }
-    const LightSampler& sampler() const { return sampler_; }
+    // The light choice: light i < lamp_count() is lamp i, the rest window strips in order.
+    bool choose_light(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const;
+    double light_pmf(Vec3 p, Vec3 n, uint32_t light) const;
     size_t bytes() const;
 
     // Next-event estimation from point p with normal n (oriented to the side light may come from;
@@ -95,6 +98,11 @@ private:
     bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;  // cached per thread
     bool derive_wall_geometry(const BuildingWalls& walls, uint32_t building, uint32_t wall, WallGeometry* out) const;
     double window_weight(const WallGeometry& g, int floor, int slot) const;
+    // The lit windows of a strip as point p sees them: each one's power reaching p's side
+    // through its opening (its weight times the share of its pane p can see, visible_pane) and
+    // that visible part; returns their sum. Sampling and pdf both choose by it.
+    struct SeenWindow;
+    double seen_windows(const Strip& strip, const WallGeometry& g, Vec3 p, SeenWindow* out, int* count) const;
     // Light index of the strip holding a pane hit; -1 if none.
     int64_t strip_light(const Hit& hit) const;
     WindowPoint window_point(const WallGeometry& g, int floor, int slot, Vec3 position) const;
@@ -109,7 +117,15 @@ private:
     std::vector<Lamp> lamps_;             // light i < lamps_.size(): lamp i of the scene
     std::vector<Strip> strips_;           // light lamps_.size() + j: strip j, by (building, wall, floor, slot)
     uint64_t lit_windows_ = 0, windows_ = 0;
-    LightSampler sampler_;
+    // With the tree, lamps and window strips have a light BVH each, picked in proportion to
+    // their total power: in one tree over both, the thousands of dim strips widened the clusters
+    // holding the lamps, and the lamp choice at the street's first hits was 5x further from
+    // proportional to the lamps' unshadowed light (tests/bench/night_bench.sh street view; see
+    // README). Uniform and power choose among all lights at once, as their names say.
+    LightSampler sampler_;        // all lights; with the tree, the lamps
+    LightSampler strip_sampler_;  // with the tree, the window strips
+    double lamp_share_ = 1;       // with the tree, the probability of choosing among the lamps
+    bool split_ = false;
 };
 
 }  // namespace citygen

@@ -20,11 +20,29 @@ uint64_t window_key(uint64_t seed, uint64_t building_key, uint32_t wall_index, i
 }
 
 Pane window_pane(const WallLayout& layout, int floor, int slot) {
-    FacadeRect rects[kMaxCellRects];
-    int layer_end[kCellLayers];
-    cell_rects(layout, floor, slot, rects, layer_end);
-    const FacadeRect& pane = rects[layer_end[2]];  // layer 3 starts with the pane
-    return {pane.a0, pane.a1, pane.b0, pane.b1, pane.at};
+    // The cell's opening (cell_rects' layer 3: the pane fills it at the bottom of the recess),
+    // read from the layout without building the cell's other rectangles: light sampling asks
+    // for every window of a strip.
+    const CellKind kind = cell_kind(layout, floor, slot);
+    const CellRect& r = kind == CellKind::Shop      ? layout.shop_window
+                        : kind == CellKind::Balcony ? layout.door
+                                                    : layout.window;
+    const double cu = layout.grid_u0 + slot * layout.slot_width, cv = layout.grid_v0 + floor * layout.floor_height;
+    return {cu + r.u0, cu + r.u1, cv + r.v0, cv + r.v1, layout.recess};
+}
+
+Pane visible_pane(const Pane& pane, Vec3 local) {
+    if (!(local.z < 0)) return pane;  // not in front of the facade plane: no claim
+    // A point of the pane is seen only through the opening, the pane's own rectangle at w = 0:
+    // project the opening's edges from `local` onto the pane's plane (scale s > 1 about local).
+    const double s = (pane.at - local.z) / -local.z;
+    Pane v = pane;
+    v.u0 = std::max(pane.u0, local.x + (pane.u0 - local.x) * s);
+    v.u1 = std::min(pane.u1, local.x + (pane.u1 - local.x) * s);
+    v.v0 = std::max(pane.v0, local.y + (pane.v0 - local.y) * s);
+    v.v1 = std::min(pane.v1, local.y + (pane.v1 - local.y) * s);
+    if (!(v.u1 > v.u0 && v.v1 > v.v0)) v.u1 = v.u0, v.v1 = v.v0;
+    return v;
 }
 
 double window_base_luminance(uint64_t key, bool shop) {

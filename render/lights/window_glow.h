@@ -21,6 +21,13 @@ struct Pane {
 };
 Pane window_pane(const WallLayout& layout, int floor, int slot);
 
+// The part of `pane` a point sees through the window's opening, for a point at wall-local
+// `local` (u, v, w; w < 0 in front of the facade). The pane sits `at` deep in its recess, so the
+// reveals hide a band of it from an oblique point: a segment to the hidden part crosses the
+// facade plane outside the opening and must enter the recess through a reveal. Empty (zero
+// area) when nothing shows; the whole pane for a point not in front of the facade plane.
+Pane visible_pane(const Pane& pane, Vec3 local);
+
 // Mean radiance of a lit window (before its noise pattern), in render units, and its luminance.
 Color window_base_radiance(uint64_t key, bool shop);
 double window_base_luminance(uint64_t key, bool shop);

@@ -7,12 +7,14 @@
 #include <gtest/gtest.h>
 
 #include "build_render_scene.h"
+#include "lamp_shape.h"
 #include "light_sampler.h"
 #include "render_image.h"
 #include "rng.h"
 #include "scene_io.h"
 #include "scene_lights.h"
 #include "test_support.h"
+#include "window_glow.h"
 
 using namespace citygen;
 
@@ -83,13 +85,12 @@ Difference difference(const Film& film, const Film& reference) {
 
 }  // namespace
 
-TEST(LightSampler, ProbabilitiesSumToOneAndMatchWhatSamplingReports) {
+TEST(SceneLights, LightProbabilitiesSumToOneAndMatchWhatSamplingReports) {
     const Scene scene = lamp_street();
     for (LightSamplerKind kind : {LightSamplerKind::Tree, LightSamplerKind::Power, LightSamplerKind::Uniform}) {
         const SceneLights lights(scene, FacadeOptions{scene.header.seed}, night_lights(kind));
         ASSERT_EQ(lights.lamp_count(), scene.lamps.size());
         ASSERT_GT(lights.strip_count(), 0u) << "lit windows should be lights";
-        const LightSampler& sampler = lights.sampler();
         Rng rng(11);
         for (int trial = 0; trial < 200; ++trial) {
             // Points on the road, on facades and in the air; normals up, sideways or none.
@@ -97,17 +98,60 @@ TEST(LightSampler, ProbabilitiesSumToOneAndMatchWhatSamplingReports) {
             const Vec3 normals[3] = {{0, 0, 1}, {0, trial % 2 ? 1.0 : -1.0, 0}, {0, 0, 0}};
             const Vec3 n = normals[trial % 3];
             double total = 0;
-            for (uint32_t i = 0; i < sampler.size(); ++i) total += sampler.pmf(p, n, i);
+            for (uint32_t i = 0; i < lights.light_count(); ++i) total += lights.light_pmf(p, n, i);
             EXPECT_NEAR(total, 1.0, 1e-9) << to_string(kind) << " at trial " << trial;
             for (int k = 0; k < 5; ++k) {
                 uint32_t light;
                 double pmf;
-                if (!sampler.sample(p, n, rng.next_double(), &light, &pmf)) continue;
-                EXPECT_NEAR(pmf, sampler.pmf(p, n, light), 1e-12 * std::max(1.0, pmf)) << to_string(kind);
+                if (!lights.choose_light(p, n, rng.next_double(), &light, &pmf)) continue;
+                EXPECT_NEAR(pmf, lights.light_pmf(p, n, light), 1e-12 * std::max(1.0, pmf)) << to_string(kind);
                 EXPECT_GT(pmf, 0);
             }
         }
     }
+}
+
+// How far the choice of lamp at (p, n) is from proportional to the lamps' unshadowed light:
+// sum c_i^2 / p_i over (sum c_i)^2, c_i = cosine x solid angle of lamp i, p_i its probability
+// among the lamps. 1 for a choice in proportion to c.
+double lamp_choice_spread(const SceneLights& lights, const Scene& scene, Vec3 p, Vec3 n) {
+    double lamp_total = 0;
+    for (uint32_t i = 0; i < lights.lamp_count(); ++i) lamp_total += lights.light_pmf(p, n, i);
+    double sum = 0, second = 0;
+    for (uint32_t i = 0; i < lights.lamp_count(); ++i) {
+        const LampShape s = lamp_shape(scene.lamps[i], scene.ground.z);
+        const Vec3 to = s.globe_center - p;
+        const double d = length(to), cosine = dot(n, to) / d;
+        if (!(cosine > 0)) continue;
+        const double c = cosine * s.globe_radius * s.globe_radius / (d * d);
+        sum += c;
+        second += c * c / (lights.light_pmf(p, n, i) / lamp_total);
+    }
+    return second / (sum * sum);
+}
+
+TEST(SceneLights, LitWindowsDoNotBlurTheTreesChoiceOfLamp) {
+    // The lamps have a tree of their own: with windows lit, a point on the road or a facade
+    // chooses among the lamps exactly as it does with every window dark.
+    const Scene scene = lamp_street();
+    const SceneLights with(scene, FacadeOptions{scene.header.seed}, night_lights(LightSamplerKind::Tree));
+    LightOptions dark = night_lights(LightSamplerKind::Tree);
+    dark.lit_windows = 0;
+    const SceneLights without(scene, FacadeOptions{scene.header.seed}, dark);
+    ASSERT_GT(with.strip_count(), 20u);
+    ASSERT_EQ(without.strip_count(), 0u);
+    Rng rng(4);
+    double spread_with = 0, spread_without = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        const bool facade = trial % 2;
+        const Vec3 p = facade ? Vec3{-38 + 76 * rng.next_double(), 7.99, 0.5 + 12 * rng.next_double()}
+                              : Vec3{-55 + 110 * rng.next_double(), -3.5 + 7 * rng.next_double(), 0.03};
+        const Vec3 n = facade ? Vec3{0, -1, 0} : Vec3{0, 0, 1};
+        spread_with += lamp_choice_spread(with, scene, p, n);
+        spread_without += lamp_choice_spread(without, scene, p, n);
+    }
+    EXPECT_NEAR(spread_with, spread_without, 1e-6 * spread_without);
+    EXPECT_LT(spread_without / 300, 3) << "the tree's lamp choice should be near proportional to their light";
 }
 
 TEST(SceneLights, PdfAndRadianceOfAnEmitterHitEqualWhatItWasSampledWith) {
@@ -145,6 +189,94 @@ TEST(SceneLights, PdfAndRadianceOfAnEmitterHitEqualWhatItWasSampledWith) {
     EXPECT_GT(lamps, 100);
     EXPECT_GT(windows, 20);
     EXPECT_LT(grazed, (lamps + windows) / 100 + 1) << "sampled points should emit";
+}
+
+TEST(WindowGlow, PaneIsTheFacadeRulesPaneForEveryCell) {
+    // window_pane reads the opening from the layout; the rules' own rectangles must agree.
+    const Scene scene = lamp_street();
+    for (uint64_t seed : {1u, 2u, 3u, 4u, 5u, 6u}) {
+        const FacadeOptions facades{seed, 1.0};  // always shops on the ground floor
+        for (const Building& b : scene.buildings) {
+            for (size_t w = 0; w < building_wall_count(b); ++w) {
+                const WallLayout layout = make_wall_layout(facades, building_wall_input(b, w));
+                for (int floor = 0; floor < layout.floors; ++floor) {
+                    for (int slot = 0; slot < layout.slots; ++slot) {
+                        FacadeRect rects[kMaxCellRects];
+                        int layer_end[kCellLayers];
+                        cell_rects(layout, floor, slot, rects, layer_end);
+                        const FacadeRect& r = rects[layer_end[2]];
+                        const Pane pane = window_pane(layout, floor, slot);
+                        EXPECT_EQ(r.axis, 2);
+                        EXPECT_DOUBLE_EQ(pane.u0, r.a0);
+                        EXPECT_DOUBLE_EQ(pane.u1, r.a1);
+                        EXPECT_DOUBLE_EQ(pane.v0, r.b0);
+                        EXPECT_DOUBLE_EQ(pane.v1, r.b1);
+                        EXPECT_DOUBLE_EQ(pane.at, r.at);
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(WindowGlow, VisiblePaneIsWhereTheSegmentPassesThroughTheOpening) {
+    // Brute force: a pane point is visible from a point in front of the facade exactly when the
+    // segment between them crosses the facade plane (w = 0) inside the opening.
+    const Pane pane{2.0, 3.2, 4.0, 5.5, 0.2};
+    Rng rng(9);
+    int inside = 0, outside = 0, empty = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        const Vec3 p{-20 + 45 * rng.next_double(), -10 + 30 * rng.next_double(), -0.01 - 15 * rng.next_double() * rng.next_double()};
+        const Pane v = visible_pane(pane, p);
+        EXPECT_GE(v.area(), 0);
+        EXPECT_LE(v.area(), pane.area());
+        empty += v.area() == 0;
+        for (int k = 0; k < 20; ++k) {
+            const double u = pane.u0 + (pane.u1 - pane.u0) * rng.next_double();
+            const double t = pane.v0 + (pane.v1 - pane.v0) * rng.next_double();
+            const double s = -p.z / (pane.at - p.z);  // where the segment meets w = 0
+            const double cu = p.x + (u - p.x) * s, cv = p.y + (t - p.y) * s;
+            const bool through = cu > pane.u0 && cu < pane.u1 && cv > pane.v0 && cv < pane.v1;
+            const bool in = u > v.u0 && u < v.u1 && t > v.v0 && t < v.v1;
+            if (std::fabs(cu - pane.u0) < 1e-9 || std::fabs(cu - pane.u1) < 1e-9) continue;
+            EXPECT_EQ(in, through) << "point " << p.x << "," << p.y << "," << p.z << " pane point " << u << "," << t;
+            (in ? inside : outside)++;
+        }
+    }
+    EXPECT_GT(inside, 1000);
+    EXPECT_GT(outside, 1000);
+    EXPECT_GT(empty, 10) << "grazing points see nothing of the pane";
+    // Straight in front, the whole pane shows; a point on the facade plane or behind it gets
+    // the whole pane (no claim).
+    EXPECT_DOUBLE_EQ(visible_pane(pane, {2.6, 4.75, -5}).area(), pane.area());
+    EXPECT_DOUBLE_EQ(visible_pane(pane, {50, 4.75, 0.1}).area(), pane.area());
+}
+
+TEST(SceneLights, WindowSamplesAreNotHiddenByTheirOwnReveals) {
+    // From the road, oblique to most facades: a window sample lies on the part of its pane seen
+    // through the opening, so its ray never ends on the wall or reveal around that pane (it may
+    // meet balconies, lamps or other walls on the way). Uniform light choice, so far and
+    // grazing strips are picked too.
+    const Scene scene = lamp_street();
+    const auto render_scene = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural), FacadeOptions{scene.header.seed});
+    const SceneLights lights(scene, FacadeOptions{scene.header.seed}, night_lights(LightSamplerKind::Uniform));
+    Rng rng(21);
+    int windows = 0, reached = 0, own_wall = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const Vec3 p{-50 + 100 * rng.next_double(), -3.5 + 7 * rng.next_double(), 0.03 + 3 * rng.next_double()};
+        const double u[4] = {rng.next_double(), rng.next_double(), rng.next_double(), rng.next_double()};
+        LightSample ls;
+        if (!lights.sample(p, {0, 0, 0}, u, &ls) || !ls.window) continue;
+        ++windows;
+        Hit hit;
+        if (!render_scene->intersect(Ray{p, ls.direction, 1e-4, 1e30}, hit)) continue;
+        if (std::fabs(hit.t - ls.distance) < 1e-3 * ls.distance + 1e-4) ++reached;
+        // Wall material within half a metre of the pane: its facade plane or reveals.
+        else if (hit.material == kFacade && hit.t > ls.distance - 0.5) ++own_wall;
+    }
+    EXPECT_GT(windows, 1000);
+    EXPECT_GT(reached, windows / 2);
+    EXPECT_LE(own_wall, windows / 500) << own_wall << " of " << windows << " window samples end on the wall around their pane";
 }
 
 TEST(SceneLights, EverySamplerAndBsdfSamplingAloneConvergeToTheSameMean) {
