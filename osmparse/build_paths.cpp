@@ -51,11 +51,8 @@ void lay_out(std::vector<OsmWay> ways, const Projection& projection, const RoadP
     }
     const RoadLayout layout = layout_road_polygons(graph, widths, roads.miter_limit);
     // Exactly (the paths are the scene's, kept to the end of the parse).
-    size_t paths = 0, joints = 0;
-    for (size_t e = 0; e < graph.edges.size(); ++e) paths += !layout.absorbed[e] && !layout.quads[e].empty();
-    for (const NodeLayout& node : layout.nodes) joints += node.kind == JoinKind::Joint && !node.joint.empty();
-    out.paths.reserve(out.paths.size() + paths);
-    out.joints.reserve(out.joints.size() + joints);
+    out.paths.reserve(out.paths.size() + quad_count(layout));
+    out.joints.reserve(out.joints.size() + joint_count(layout));
     std::vector<int> path_of_edge(graph.edges.size(), -1);
     for (size_t e = 0; e < graph.edges.size(); ++e) {
         report.read(kPathEdges);

@@ -27,11 +27,11 @@ LatLon to_latlon(osmium::Location l) { return {l.lat(), l.lon()}; }
 // address is most of what the buildings are tagged with (Kaiserslautern: 56,000 of 72,000
 // tags), and the building areas are held until the roofs and colours are done.
 OsmTags copy_building_tags(const osmium::TagList& tags) {
+    auto kept = [](const osmium::Tag& t) { return std::strncmp(t.key(), "addr:", 5) != 0; };
     OsmTags out;
-    out.entries.reserve(static_cast<size_t>(std::count_if(
-        tags.begin(), tags.end(), [](const osmium::Tag& t) { return std::strncmp(t.key(), "addr:", 5) != 0; })));
+    out.entries.reserve(static_cast<size_t>(std::count_if(tags.begin(), tags.end(), kept)));
     for (const osmium::Tag& t : tags)
-        if (std::strncmp(t.key(), "addr:", 5) != 0) out.entries.emplace_back(t.key(), t.value());
+        if (kept(t)) out.entries.emplace_back(t.key(), t.value());
     return out;
 }
 

@@ -43,11 +43,8 @@ RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, Parse
     out.layout = std::move(layout);
     out.road_of_edge.assign(graph.edges.size(), -1);
     // Exactly (the roads and joints are the scene's, kept to the end of the parse).
-    size_t roads = 0, joints = 0;
-    for (size_t e = 0; e < graph.edges.size(); ++e) roads += !out.layout.absorbed[e] && !out.layout.quads[e].empty();
-    for (const NodeLayout& node : out.layout.nodes) joints += node.kind == JoinKind::Joint && !node.joint.empty();
-    out.roads.reserve(roads);
-    out.joints.reserve(joints);
+    out.roads.reserve(quad_count(out.layout));
+    out.joints.reserve(joint_count(out.layout));
     for (size_t e = 0; e < graph.edges.size(); ++e) {
         const RoadGraphEdge& g = graph.edges[e];
         if (out.layout.absorbed[e]) {

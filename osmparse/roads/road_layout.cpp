@@ -185,6 +185,18 @@ RoadLayout assemble_layout(LayoutState& state) {
     return out;
 }
 
+size_t quad_count(const RoadLayout& layout) {
+    size_t count = 0;
+    for (size_t e = 0; e < layout.quads.size(); ++e) count += !layout.absorbed[e] && !layout.quads[e].empty();
+    return count;
+}
+
+size_t joint_count(const RoadLayout& layout) {
+    size_t count = 0;
+    for (const NodeLayout& node : layout.nodes) count += node.kind == JoinKind::Joint && !node.joint.empty();
+    return count;
+}
+
 RoadLayout take_layout(LayoutState&& state) {
     RoadLayout out = std::move(state.out);
     out.nodes.clear();

@@ -56,6 +56,11 @@ struct RoadLayout {
     std::vector<NodeLayout> nodes;              // sorted by node id
 };
 
+// The edges that keep a quad (neither absorbed nor folded) and the nodes that have a joint:
+// what the road and path surfaces are built from.
+size_t quad_count(const RoadLayout& layout);
+size_t joint_count(const RoadLayout& layout);
+
 // Lays out every edge of `graph` with the given half widths (osmparse/roads/ has one file
 // per case: dead_end.cpp, miter.cpp, junction.cpp, merged_junction.cpp, finish_joint.cpp).
 // A degree-2 node gets a miter when both offset-line intersections lie within

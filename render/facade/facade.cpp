@@ -187,15 +187,20 @@ CellRect offset(CellRect r, double du, double dv) { return {r.u0 + du, r.u1 + du
 
 }  // namespace
 
+CellRect cell_opening(const WallLayout& layout, int floor, int slot) {
+    const CellKind kind = cell_kind(layout, floor, slot);
+    return offset(kind == CellKind::Shop      ? layout.shop_window
+                  : kind == CellKind::Balcony ? layout.door
+                                              : layout.window,
+                  layout.grid_u0 + slot * layout.slot_width, layout.grid_v0 + floor * layout.floor_height);
+}
+
 int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out, int* layer_end) {
     const double cu = layout.grid_u0 + slot * layout.slot_width;
     const double cv = layout.grid_v0 + floor * layout.floor_height;
     const CellRect cell{cu, cu + layout.slot_width, cv, cv + layout.floor_height};
     const CellKind kind = cell_kind(layout, floor, slot);
-    const CellRect opening = offset(kind == CellKind::Shop      ? layout.shop_window
-                                    : kind == CellKind::Balcony ? layout.door
-                                                                : layout.window,
-                                    cu, cv);
+    const CellRect opening = cell_opening(layout, floor, slot);
     const FacadeSurface pane = kind == CellKind::Shop      ? FacadeSurface::ShopWindow
                                : kind == CellKind::Balcony ? FacadeSurface::BalconyDoor
                                                            : FacadeSurface::Glass;

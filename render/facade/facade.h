@@ -131,6 +131,10 @@ constexpr int kMaxMarginRects = 4;
 // can stop after the first layer it hits.
 constexpr int kCellLayers = 5;
 
+// The opening of one cell in wall coordinates (window, balcony door or shop window by the
+// cell's kind): where the reveals start and the pane sits at the bottom of the recess.
+CellRect cell_opening(const WallLayout& layout, int floor, int slot);
+
 // The rectangles of one cell (all inside the cell's u, v rectangle), layer after layer.
 // Returns the count; layer_end (optional, kCellLayers entries) receives where each layer ends.
 int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out, int* layer_end = nullptr);

@@ -20,15 +20,10 @@ uint64_t window_key(uint64_t seed, uint64_t building_key, uint32_t wall_index, i
 }
 
 Pane window_pane(const WallLayout& layout, int floor, int slot) {
-    // The cell's opening (cell_rects' layer 3: the pane fills it at the bottom of the recess),
-    // read from the layout without building the cell's other rectangles: light sampling asks
-    // for every window of a strip.
-    const CellKind kind = cell_kind(layout, floor, slot);
-    const CellRect& r = kind == CellKind::Shop      ? layout.shop_window
-                        : kind == CellKind::Balcony ? layout.door
-                                                    : layout.window;
-    const double cu = layout.grid_u0 + slot * layout.slot_width, cv = layout.grid_v0 + floor * layout.floor_height;
-    return {cu + r.u0, cu + r.u1, cv + r.v0, cv + r.v1, layout.recess};
+    // The pane fills the cell's opening at the bottom of the recess (cell_rects' layer 3), read
+    // without building the cell's other rectangles: light sampling asks for every window of a strip.
+    const CellRect r = cell_opening(layout, floor, slot);
+    return {r.u0, r.u1, r.v0, r.v1, layout.recess};
 }
 
 Pane visible_pane(const Pane& pane, Vec3 local) {
