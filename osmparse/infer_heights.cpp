@@ -408,10 +408,14 @@ bool is_point_block(const std::string& type, double area, double perimeter, doub
     return is_home(type) && perimeter > 0 && 2 * area / perimeter >= kPointBlockDepth && grain >= kPointBlockMinGrain;
 }
 
-double tower_height(double grain, const BuildingParams& params) {
+double fabric_factor(double grain) {
     // A grain coarser than kMaxGrain is an estate of halls (a campus, industry), no denser city.
     const double denser = grain > kMaxGrain ? 1.0 : std::max(grain / kPointBlockMinGrain, 1.0);
-    return kTowerLevels * std::pow(denser, kGrainExponent) * params.level_height;
+    return std::pow(denser, kGrainExponent);
+}
+
+double tower_height(double grain, const BuildingParams& params) {
+    return kTowerLevels * fabric_factor(grain) * params.level_height;
 }
 
 bool is_landmark_home(const std::string& type, double area, bool named) {
@@ -558,7 +562,9 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
             rule = HeightRule::TypeAndArea;
             note = kFromSurroundings;
         } else if (by_type > 0) {
-            height = by_type;
+            // Flats: the table's storeys are a town of blocks; a denser fabric builds them
+            // higher, as it does its towers (fabric_factor).
+            height = is_home(b.type) ? by_type * fabric_factor(surroundings.grain(at)) : by_type;
             rule = HeightRule::TypeAndArea;
         } else if ((height = disagreeing) > 0) {
             rule = HeightRule::Neighbours;

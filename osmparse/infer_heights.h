@@ -60,7 +60,8 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //  5. TypeAndArea from the surroundings, for untyped buildings and workplaces (`office`,
 //     `commercial`, `civic`, `public`, `government`): levels_from_surroundings of its footprint,
 //     the grain of the town around it and whether it shares a wall;
-//  6. TypeAndArea: a height by building type (height_by_type_and_area);
+//  6. TypeAndArea: a height by building type (height_by_type_and_area); for homes (apartments,
+//     residential, dormitory) times fabric_factor of the grain around it;
 //  7. Neighbours that disagree (rule 2's group): their weighted median;
 //  8. Random: the seeded random height in [random_min_height, random_max_height] stays (only
 //     reached for types the table does not know, with nothing tagged like it).
@@ -88,6 +89,11 @@ bool is_point_block(const std::string& type, double area, double perimeter, doub
 // Rule 1b alone: whether a building of `type` and `area` m2, `named` or not, is a landmark
 // home: a home with a name (named_buildings) and a footprint of at least 500 m2.
 bool is_landmark_home(const std::string& type, double area, bool named);
+// How much higher than in a town of blocks (a grain of 200 m2 or finer: 1) homes stand among
+// buildings of median footprint `grain` m2: (grain / 200)^0.65, as levels_from_surroundings grows
+// with the grain; 1 again over 500 m2 (an estate of halls, no denser city). Towers (tower_height)
+// and flats of the type table (rule 6) share it.
+double fabric_factor(double grain);
 // The height rule 1b gives a residential tower among buildings of median footprint `grain` m2:
 // 15 storeys, more in a fabric of 200-500 m2 (as levels_from_surroundings grows with it; a
 // coarser grain is an estate of halls).

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -325,6 +326,26 @@ TEST(InferHeights, TowersStandHigherInADenserFabric) {
     EXPECT_GT(tower_height(500, params), tower_height(350, params));
     // A coarser grain than 500 m2 is an estate of halls (a campus), no denser city.
     EXPECT_DOUBLE_EQ(tower_height(1200, params), 15 * params.level_height);
+}
+
+TEST(InferHeights, FlatsStandHigherInADenserFabric) {
+    BuildingParams params;
+    std::vector<Building> v;
+    add_field(v, 1000, 0, 6, 10, 25);     // a suburb of 100 m2 houses
+    add_field(v, 2000, 5000, 6, 20, 40);  // a town of 400 m2 blocks
+    // The same 20 x 20 m block of flats (plan depth 10 m: no tower) beside each.
+    v.push_back(building(1, 150, 50, "apartments", 10, HeightSource::Random, 20));
+    v.push_back(building(2, 5240, 50, "apartments", 10, HeightSource::Random, 20));
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    bool sure = false;
+    const double table = height_by_type_and_area("apartments", 400, &sure);
+    expect_near_guess(by_id(v, 1), table);  // a town of blocks or finer: the table's storeys
+    expect_near_guess(by_id(v, 2), table * fabric_factor(400));
+    EXPECT_NEAR(fabric_factor(400), std::pow(2.0, 0.65), 1e-9);
+    EXPECT_DOUBLE_EQ(fabric_factor(1200), 1) << "an estate of halls";
+    // Towers grow with the fabric alike.
+    EXPECT_NEAR(tower_height(400, params) / tower_height(200, params), fabric_factor(400), 1e-9);
 }
 
 TEST(InferHeights, AHouseTypeOnABlocksFootprintIsABlock) {
