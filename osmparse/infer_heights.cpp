@@ -85,6 +85,13 @@ constexpr double kPointBlockMinGrain = 200;  // m2
 // (7), Kaiserslautern 43 and 53 m; the rule was chosen on Monaco and checked on Kaiserslautern.
 constexpr size_t kMinNameLength = 3;       // characters
 constexpr double kLandmarkMinArea = 500;   // m2
+// Twins: an estate is built in series from one design (rows of identical slabs, pairs of towers,
+// a terrace of one builder's houses): a building of the same type and footprint, within
+// kTwinArea, standing within kTwinDistance has the same storeys. The nearest such tagged one
+// says more about it than any rule of type, footprint or fabric (12 half-hidden splits:
+// Monaco's pairs of towers and its row of 42 m blocks of flats).
+constexpr double kTwinDistance = 60;       // metres between centroids: the next building or the one after
+constexpr double kTwinArea = 1.1;
 // A house has a house-sized footprint: a "terrace" or "house" over kMaxHouseArea is a block
 // (Monaco's 44 m Les Eucalyptus, 2,965 m2, is tagged terrace) and gets the rules of a building
 // of flats instead of the two-storey house rule.
@@ -281,6 +288,19 @@ private:
     std::unordered_map<int64_t, double> grain_of_square_;
     std::vector<double> scratch_;
 };
+
+// Rule 1c: a tagged twin, or 0: the nearest tagged building within kTwinDistance of the same
+// type whose footprint is within kTwinArea of its own. (`yes` is no type: two untyped buildings
+// of one size are no estate.)
+double twin_height(const TaggedGrid& grid, Vec2 at, const std::string& type, double area) {
+    for (const auto& [d, i] : grid.nearest(at)) {
+        if (d > kTwinDistance) break;
+        const Tagged& t = grid[i];
+        if (!is_untyped(type) && type_key(*t.type) == type_key(type) && t.area <= kTwinArea * area && area <= kTwinArea * t.area)
+            return t.height;
+    }
+    return 0;
+}
 
 // Rule 2: the like tagged buildings nearby, or 0 when there are too few or they disagree (then
 // `disagreeing` gets their weighted median: still better than a random height).
@@ -538,6 +558,9 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         if (sure) {
             height = by_type;
             rule = HeightRule::TypeAndArea;
+        } else if ((height = twin_height(grid, at, b.type, area)) > 0) {
+            rule = HeightRule::Neighbours;
+            note = kTwin;
         } else if (is_point_block(b.type, plan_area, plan_perimeter, surroundings.grain(at))) {
             // Before the neighbours: a tower says more about itself than the blocks around it.
             height = tower_height(surroundings.grain(at), params);

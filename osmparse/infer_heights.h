@@ -28,6 +28,7 @@ struct LandUseArea {
 inline constexpr char kLandUseTooLarge[] = "land use area over 10 km across: not used";
 inline constexpr char kFromSurroundings[] = "from type, footprint area and surroundings";
 inline constexpr char kPointBlock[] = "point block: a home with a deep plan in a town of blocks";
+inline constexpr char kTwin[] = "twin: a tagged building of the same type and footprint next door";
 inline constexpr char kLandmarkHome[] = "landmark home: a named home of a block's footprint";
 
 // The landuse=residential|commercial|retail|industrial areas of the map, projected (the same
@@ -45,6 +46,9 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //     dormitory) whose plan is deep in every direction in a town of blocks (is_point_block), or
 //     a named one of a block's footprint (is_landmark_home; `named`, from named_buildings);
 //     before the neighbours: a tower among blocks is not their height;
+//  1c. Neighbours, a twin (kTwin): the nearest tagged building within 60 m of the same type
+//     (not `yes`) and a footprint within 10% of its own: an estate built in series from one
+//     design; before the towers, whose rule only guesses what a twin knows;
 //  2. Neighbours: the distance-weighted median height of the nearest (up to 8) tagged buildings
 //     (height or building:levels) within 150 m that are most like it: the same type and a
 //     footprint within 3x of its own (at least 2), else the same type when it is not `yes`

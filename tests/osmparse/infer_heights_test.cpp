@@ -272,8 +272,9 @@ TEST(InferHeights, PointBlockBeatsItsTaggedNeighbours) {
 TEST(InferHeights, NamedHomesOfABlocksFootprintAreLandmarkTowers) {
     BuildingParams params;
     std::vector<Building> v;
-    // Homes of 25 x 25 m (plan depth 12.5 m: no point block) among tagged 15 m blocks of flats.
-    for (int i = 0; i < 4; ++i) v.push_back(building(100 + i, 30.0 * i, 0, "apartments", 15, HeightSource::Tagged, 25));
+    // Homes of 25 x 25 m (plan depth 12.5 m: no point block) among tagged 15 m blocks of flats
+    // (70 m away: no twins).
+    for (int i = 0; i < 4; ++i) v.push_back(building(100 + i, 30.0 * i, -40, "apartments", 15, HeightSource::Tagged, 25));
     v.push_back(building(1, 0, 30, "apartments", 10, HeightSource::Random, 25));  // named
     v.push_back(building(2, 30, 30, "dormitory", 10, HeightSource::Random, 25));  // named
     v.push_back(building(3, 60, 30, "apartments", 10, HeightSource::Random, 25));  // no name
@@ -346,6 +347,30 @@ TEST(InferHeights, FlatsStandHigherInADenserFabric) {
     EXPECT_DOUBLE_EQ(fabric_factor(1200), 1) << "an estate of halls";
     // Towers grow with the fabric alike.
     EXPECT_NEAR(tower_height(400, params) / tower_height(200, params), fabric_factor(400), 1e-9);
+}
+
+TEST(InferHeights, ATaggedTwinNextDoorDecides) {
+    BuildingParams params;
+    // A row of 17 x 17 m blocks of flats 28 m apart; only the first is tagged (42 m).
+    std::vector<Building> v{building(1, 0, 0, "apartments", 42, HeightSource::Levels, 17),
+                            building(2, 28, 0, "apartments", 10, HeightSource::Random, 17),
+                            // 10% larger still is the same design; 30% larger is not.
+                            building(3, 0, 28, "apartments", 10, HeightSource::Random, 17.8),
+                            building(4, 28, 28, "apartments", 10, HeightSource::Random, 19.5),
+                            // Too far (80 m), another type, no type.
+                            building(5, 80, 0, "apartments", 10, HeightSource::Random, 17),
+                            building(6, 0, -28, "office", 10, HeightSource::Random, 17),
+                            building(7, 28, -28, "yes", 10, HeightSource::Random, 17)};
+    v.push_back(building(8, 28, -56, "yes", 42, HeightSource::Tagged, 17));
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    for (int64_t id : {2, 3}) {
+        EXPECT_EQ(by_id(v, id).height_rule, HeightRule::Neighbours) << id;
+        expect_near_guess(by_id(v, id), 42);
+    }
+    for (int64_t id : {4, 5, 6}) EXPECT_LT(by_id(v, id).height, 0.6 * 42) << id;
+    EXPECT_LT(by_id(v, 7).height, 0.6 * 42) << "two untyped buildings of one size are no estate";
+    EXPECT_EQ(report.note_count(kBuildingHeights, kTwin), 2);
 }
 
 TEST(InferHeights, AHouseTypeOnABlocksFootprintIsABlock) {
