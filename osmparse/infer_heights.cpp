@@ -193,6 +193,10 @@ bool is_workplace(const std::string& type) {
 
 bool is_home(const std::string& type) { return is_one_of(type, {"apartments", "residential", "dormitory"}); }
 
+bool is_house(const std::string& type) {
+    return is_one_of(type, {"house", "detached", "semidetached_house", "terrace", "bungalow", "villa"});
+}
+
 double perimeter(const Ring& ring) {
     double sum = 0;
     for (size_t k = 0; k < ring.size(); ++k) sum += length(ring[(k + 1) % ring.size()] - ring[k]);
@@ -454,15 +458,29 @@ std::set<OsmRef> named_buildings(const OsmData& osm) {
     return out;
 }
 
+std::set<OsmRef> homes_by_use(const OsmData& osm) {
+    std::set<OsmRef> out;
+    for (const OsmArea& area : osm.building_areas) {
+        const char* building = area.tags.get("building");
+        if (!building) continue;
+        const std::string form = building;
+        if (!is_untyped(form) && !is_workplace(form) && form != "retail") continue;
+        const char* use = area.tags.get("building:use");
+        const char* tourism = area.tags.get("tourism");
+        if ((use && is_one_of(use, {"residential", "apartments"})) || (tourism && is_one_of(tourism, {"apartment", "apartments"})))
+            out.insert(area.ref);
+    }
+    return out;
+}
+
 double height_by_type_and_area(const std::string& type, double area, bool* sure, LandUse use) {
     *sure = true;
-    if (area > kMaxHouseArea && is_one_of(type, {"house", "detached", "semidetached_house", "terrace", "bungalow", "villa"}))
+    if (area > kMaxHouseArea && is_house(type))
         return height_by_type_and_area("residential", area, sure, use);
     if (area < 30 || is_one_of(type, {"garage", "garages", "carport", "shed", "kiosk", "hut", "toilets",
                                       "transformer_tower", "service", "greenhouse", "cabin"}))
         return 3;
-    if (is_one_of(type, {"house", "detached", "semidetached_house", "terrace", "bungalow", "villa"}))
-        return type == "bungalow" ? 5 : 8;
+    if (is_house(type)) return type == "bungalow" ? 5 : 8;
     if (is_one_of(type, {"farm_auxiliary", "barn", "stable", "cowshed", "farm"})) return 7;
     *sure = false;
     // An untyped building on industrial or retail land is most likely a hall (a house-sized one
@@ -490,12 +508,20 @@ double height_by_type_and_area(const std::string& type, double area, bool* sure,
 }
 
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named) {
+                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named,
+                   const std::set<OsmRef>& homes) {
+    // The type every rule reads: a home by its use tags holds flats whatever its form; a house
+    // type on a block's footprint (over kMaxHouseArea) is a block of flats.
+    static const std::string apartments = "apartments", residential = "residential";
+    auto type_of = [&](const Building& b, double area) -> const std::string& {
+        if (homes.count(b.osm)) return apartments;
+        return area > kMaxHouseArea && is_house(b.type) ? residential : b.type;
+    };
     // Only heights from a building's own tags (never a guess, never a raised part's).
     std::vector<Tagged> tagged;
     for (const Building& b : buildings)
         if (b.height_source != HeightSource::Random && b.min_height == 0 && !b.is_part)
-            tagged.push_back({centroid(b.outer), b.height, std::fabs(signed_area(b.outer)), &b.type});
+            tagged.push_back({centroid(b.outer), b.height, std::fabs(signed_area(b.outer)), &type_of(b, std::fabs(signed_area(b.outer)))});
     // Rule 3's medians by (type, footprint class), over the whole extract.
     // Key (type, class) for the type and footprint class, (type, -1) for the type alone.
     std::map<std::pair<std::string, int>, std::vector<double>> by_kind;
@@ -546,48 +572,49 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         }
         at = area > 0 ? at * (1 / area) : centroid(buildings[indices[0]].outer);
         const Building& b = buildings[indices[0]];  // the pieces share their tags
+        const std::string& type = type_of(b, area);
         HeightRule rule = HeightRule::Random;
         bool sure = false;
         // Only untyped halls ask the land use (the lookup is most of this stage's time).
-        const LandUse use = is_untyped(b.type) && area >= kHallArea ? uses.at(at) : LandUse::None;
-        const double by_type = height_by_type_and_area(b.type, area, &sure, use);
+        const LandUse use = is_untyped(type) && area >= kHallArea ? uses.at(at) : LandUse::None;
+        const double by_type = height_by_type_and_area(type, area, &sure, use);
         bool ignored = false;
-        const bool hall_by_land_use = by_type > 0 && by_type != height_by_type_and_area(b.type, area, &ignored);
+        const bool hall_by_land_use = by_type > 0 && by_type != height_by_type_and_area(type, area, &ignored);
         double height = 0, disagreeing = 0;
         const char* note = "from type and footprint area";
         if (sure) {
             height = by_type;
             rule = HeightRule::TypeAndArea;
-        } else if ((height = twin_height(grid, at, b.type, area)) > 0) {
+        } else if ((height = twin_height(grid, at, type, area)) > 0) {
             rule = HeightRule::Neighbours;
             note = kTwin;
-        } else if (is_point_block(b.type, plan_area, plan_perimeter, surroundings.grain(at))) {
+        } else if (is_point_block(type, plan_area, plan_perimeter, surroundings.grain(at))) {
             // Before the neighbours: a tower says more about itself than the blocks around it.
             height = tower_height(surroundings.grain(at), params);
             rule = HeightRule::TypeAndArea;
             note = kPointBlock;
-        } else if (is_landmark_home(b.type, area, named.count(b.osm) > 0)) {
+        } else if (is_landmark_home(type, area, named.count(b.osm) > 0)) {
             height = tower_height(surroundings.grain(at), params);
             rule = HeightRule::TypeAndArea;
             note = kLandmarkHome;
-        } else if ((height = height_from_neighbours(grid, at, b.type, area, &disagreeing)) > 0) {
+        } else if ((height = height_from_neighbours(grid, at, type, area, &disagreeing)) > 0) {
             rule = HeightRule::Neighbours;
             note = "from tagged neighbours";
-        } else if ((height = extract_median(b.type, area)) > 0) {
+        } else if ((height = extract_median(type, area)) > 0) {
             rule = HeightRule::Neighbours;
             note = "from tagged buildings of its type and size in the extract";
         } else if (hall_by_land_use) {
             height = by_type;
             rule = HeightRule::TypeAndArea;
             note = "from type, footprint area and land use";
-        } else if (is_untyped(b.type) || is_workplace(b.type)) {
+        } else if (is_untyped(type) || is_workplace(type)) {
             height = params.level_height * levels_from_surroundings(area, surroundings.grain(at), attached);
             rule = HeightRule::TypeAndArea;
             note = kFromSurroundings;
         } else if (by_type > 0) {
             // Flats: the table's storeys are a town of blocks; a denser fabric builds them
             // higher, as it does its towers (fabric_factor).
-            height = is_home(b.type) ? by_type * fabric_factor(surroundings.grain(at)) : by_type;
+            height = is_home(type) ? by_type * fabric_factor(surroundings.grain(at)) : by_type;
             rule = HeightRule::TypeAndArea;
         } else if ((height = disagreeing) > 0) {
             rule = HeightRule::Neighbours;

@@ -37,7 +37,9 @@ inline constexpr char kLandmarkHome[] = "landmark home: a named home of a block'
 std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection, ParseReport& report);
 
 // Replaces the random height of every ground-standing building with nothing tagged
-// (height_source Random, min_height 0) by the first rule that applies; height_rule records it:
+// (height_source Random, min_height 0) by the first rule that applies; height_rule records it.
+// Every rule reads one type: `building`'s, but `apartments` for the buildings in `homes`
+// (homes_by_use) and `residential` for a house type over 1,000 m2 (a block, not a house):
 //  1. TypeAndArea for sure things: a footprint under 30 m2, or a garage/shed/carport/kiosk-like
 //     type, is a one-storey shed; a house-like type under 1,000 m2 is a two-storey house (a
 //     larger one is a block: the rules of `residential`) (both rules first
@@ -77,7 +79,8 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 // are recomputed from the new height. Counts go to kBuildingHeights in the report. The result
 // does not depend on the order of `buildings` beyond ties in distance.
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named = {});
+                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named = {},
+                   const std::set<OsmRef>& homes = {});
 
 // Rule 5 alone (exposed for tests): storeys of an untyped building or a workplace with a
 // footprint of `area` m2 among buildings whose median footprint within 400 m is `grain` m2;
@@ -104,6 +107,11 @@ double fabric_factor(double grain);
 double tower_height(double grain, const BuildingParams& params);
 // The buildings (not parts) whose name has at least 3 characters: a block's letter is no name.
 std::set<OsmRef> named_buildings(const OsmData& osm);
+// The buildings (not parts) whose use tags say they hold flats while their form
+// (building=yes, commercial, office, retail, civic, public, government) says nothing of homes:
+// building:use=residential|apartments, tourism=apartment (holiday flats). OSM's building=* is the
+// form, these keys the use; infer_heights reads them as `apartments` (`homes`).
+std::set<OsmRef> homes_by_use(const OsmData& osm);
 
 // Rule 1, 4 and 6 alone (exposed for tests): the height of a building of `type` with a footprint of
 // `area` m2 on land used as `use`, or 0 when the type says nothing; `sure` tells whether the rule

@@ -173,7 +173,7 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
     });
     timed(report, "building heights", [&] {
         infer_heights(scene.buildings, land_use_areas(osm, projection, report), job.params.buildings, report,
-                      named_buildings(osm));
+                      named_buildings(osm), homes_by_use(osm));
         return 0;
     });
     // The building areas' rings are in the footprints now; the roofs and colours read only their tags.

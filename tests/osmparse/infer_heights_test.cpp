@@ -373,6 +373,57 @@ TEST(InferHeights, ATaggedTwinNextDoorDecides) {
     EXPECT_EQ(report.note_count(kBuildingHeights, kTwin), 2);
 }
 
+TEST(InferHeights, UseTagsMakeAHome) {
+    OsmData osm;
+    auto add = [&](int64_t id, const char* form, const char* key, const char* value) {
+        OsmArea a;
+        a.ref = {OsmType::Way, id};
+        a.tags.entries = {{"building", form}};
+        if (key) a.tags.entries.push_back({key, value});
+        osm.building_areas.push_back(a);
+    };
+    add(1, "commercial", "tourism", "apartment");       // holiday flats in a "commercial" tower
+    add(2, "yes", "building:use", "residential");
+    add(3, "retail", "building:use", "apartments");
+    add(4, "commercial", nullptr, nullptr);
+    add(5, "house", "building:use", "residential");     // a house is a home already
+    add(6, "yes", "tourism", "hotel");
+    add(7, "office", "building:use", "office");
+    EXPECT_EQ(homes_by_use(osm), (std::set<OsmRef>{{OsmType::Way, 1}, {OsmType::Way, 2}, {OsmType::Way, 3}}));
+
+    // In a town of blocks (grain 225 m2) a 30 x 30 m "commercial" building holding flats is a
+    // point block; without its use tags it is a workplace of the fabric's height.
+    BuildingParams params;
+    std::vector<Building> v;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) v.push_back(building(100 + 4 * i + j, 25.0 * i, 25.0 * j, "yes", 10, HeightSource::Random));
+    v.push_back(building(1, 100, 0, "commercial", 10, HeightSource::Random, 30));
+    std::vector<Building> untagged_use = v;
+    ParseReport report;
+    infer_heights(v, {}, params, report, {}, {{OsmType::Way, 1}});
+    expect_near_guess(by_id(v, 1), tower_height(225, params));
+    EXPECT_EQ(report.note_count(kBuildingHeights, kPointBlock), 1);
+    infer_heights(untagged_use, {}, params, report);
+    EXPECT_LT(by_id(untagged_use, 1).height, 0.6 * tower_height(225, params));
+}
+
+TEST(InferHeights, AHouseTypeOnABlocksFootprintIsABlockInEveryRule) {
+    BuildingParams params;
+    std::vector<Building> v;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) v.push_back(building(100 + 4 * i + j, 25.0 * i, 25.0 * j, "yes", 10, HeightSource::Random));
+    // A "terrace" of 40 x 40 m (plan depth 20 m) in a town of 15 x 15 m blocks: a point block.
+    v.push_back(building(1, 150, 0, "terrace", 10, HeightSource::Random, 40));
+    // A row of ten 100 m2 houses (1,000 m2) is still houses.
+    Building row = building(2, 0, 150, "terrace", 10, HeightSource::Random);
+    row.outer = {{0, 150}, {100, 150}, {100, 160}, {0, 160}};
+    v.push_back(row);
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    expect_near_guess(by_id(v, 1), tower_height(225, params));
+    expect_near_guess(by_id(v, 2), 8);
+}
+
 TEST(InferHeights, AHouseTypeOnABlocksFootprintIsABlock) {
     bool sure = false;
     EXPECT_DOUBLE_EQ(height_by_type_and_area("terrace", 600, &sure), 8);
