@@ -181,6 +181,13 @@ void add_field(std::vector<Building>& v, int64_t first, double x0, int n, double
             v.push_back(building(first + i * n + j, x0 + pitch * i, pitch * j, "yes", 10, HeightSource::Random, side));
 }
 
+TEST(InferHeights, AnUntypedHouseInAVillageStandsTwoStoreys) {
+    // A detached 120 m2 building among houses of 120 m2: two storeys and a roof, 6 m or more.
+    BuildingParams params;
+    EXPECT_GE(params.level_height * levels_from_surroundings(120, 120, false), 6.0);
+    EXPECT_LT(params.level_height * levels_from_surroundings(120, 120, false), 7.5);
+}
+
 TEST(InferHeights, UntypedBuildingsTakeTheirTownsFabric) {
     BuildingParams params;
     std::vector<Building> v;
