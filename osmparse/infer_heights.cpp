@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <unordered_map>
 
@@ -301,13 +302,14 @@ private:
 };
 
 // Rule 1c: a tagged twin, or 0: the nearest tagged building within kTwinDistance of the same
-// type whose footprint is within kTwinArea of its own. (`yes` is no type: two untyped buildings
-// of one size are no estate.)
-double twin_height(const TaggedGrid& grid, Vec2 at, const std::string& type, double area) {
-    for (const auto& [d, i] : grid.nearest(at)) {
+// type whose footprint is within kTwinArea of its own; `near` is grid.nearest of its centroid.
+// Asked for typed buildings only (`yes` is no type: two untyped buildings of one size are no estate).
+double twin_height(const TaggedGrid& grid, const std::vector<std::pair<double, size_t>>& near, const std::string& type,
+                   double area) {
+    for (const auto& [d, i] : near) {
         if (d > kTwinDistance) break;
         const Tagged& t = grid[i];
-        if (!is_untyped(type) && type_key(*t.type) == type_key(type) && t.area <= kTwinArea * area && area <= kTwinArea * t.area)
+        if (type_key(*t.type) == type_key(type) && t.area <= kTwinArea * area && area <= kTwinArea * t.area)
             return t.height;
     }
     return 0;
@@ -315,14 +317,14 @@ double twin_height(const TaggedGrid& grid, Vec2 at, const std::string& type, dou
 
 // Rule 2: the like tagged buildings nearby, or 0 when there are too few or they disagree (then
 // `disagreeing` gets their weighted median: still better than a random height).
-double height_from_neighbours(const TaggedGrid& grid, Vec2 at, const std::string& type, double area,
-                              double* disagreeing) {
+double height_from_neighbours(const TaggedGrid& grid, const std::vector<std::pair<double, size_t>>& near,
+                              const std::string& type, double area, double* disagreeing) {
     // (height, weight) of the nearest up to kMaxNeighbours in each group, from most to least alike.
     std::vector<std::pair<double, double>> same_both, same_type, same_size, any;
     auto add = [](std::vector<std::pair<double, double>>& group, double height, double weight) {
         if (group.size() < kMaxNeighbours) group.push_back({height, weight});
     };
-    for (const auto& [d, i] : grid.nearest(at)) {
+    for (const auto& [d, i] : near) {
         const double w = 1 / (d + 20), h = grid[i].height;
         const bool type_alike = type_key(*grid[i].type) == type_key(type);
         const bool size_alike = similar_area(grid[i].area, area);
@@ -588,11 +590,18 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         bool ignored = false;
         const bool hall_by_land_use = by_type > 0 && by_type != height_by_type_and_area(type, area, &ignored);
         double height = 0, disagreeing = 0;
+        // The tagged buildings within the neighbour radius, nearest first: asked once, by the
+        // first rule that needs them.
+        std::optional<std::vector<std::pair<double, size_t>>> near;
+        auto nearby = [&]() -> const std::vector<std::pair<double, size_t>>& {
+            if (!near) near = grid.nearest(at);
+            return *near;
+        };
         const char* note = "from type and footprint area";
         if (sure) {
             height = by_type;
             rule = HeightRule::TypeAndArea;
-        } else if ((height = twin_height(grid, at, type, area)) > 0) {
+        } else if (!is_untyped(type) && (height = twin_height(grid, nearby(), type, area)) > 0) {
             rule = HeightRule::Neighbours;
             note = kTwin;
         } else if (is_point_block(type, plan_area, plan_perimeter, surroundings.grain(at))) {
@@ -604,7 +613,7 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
             height = tower_height(surroundings.grain(at), params);
             rule = HeightRule::TypeAndArea;
             note = kLandmarkHome;
-        } else if ((height = height_from_neighbours(grid, at, type, area, &disagreeing)) > 0) {
+        } else if ((height = height_from_neighbours(grid, nearby(), type, area, &disagreeing)) > 0) {
             rule = HeightRule::Neighbours;
             note = "from tagged neighbours";
         } else if ((height = extract_median(type, area)) > 0) {
