@@ -188,14 +188,20 @@ TEST(InferHeights, AnUntypedHouseInAVillageStandsTwoStoreys) {
     EXPECT_LT(params.level_height * levels_from_surroundings(120, 120, false), 7.5);
 }
 
+// A suburb of 100 m2 houses and a town of 400 m2 blocks, 5 km apart, with the same 20 x 20 m
+// building of `type` beside each, touching none: ids 1 (suburb) and 2 (town).
+std::vector<Building> suburb_and_town_with(const std::string& type) {
+    std::vector<Building> v;
+    add_field(v, 1000, 0, 6, 10, 25);
+    add_field(v, 2000, 5000, 6, 20, 40);
+    v.push_back(building(1, 150, 50, type, 10, HeightSource::Random, 20));
+    v.push_back(building(2, 5240, 50, type, 10, HeightSource::Random, 20));
+    return v;
+}
+
 TEST(InferHeights, UntypedBuildingsTakeTheirTownsFabric) {
     BuildingParams params;
-    std::vector<Building> v;
-    add_field(v, 1000, 0, 6, 10, 25);       // a suburb of 100 m2 houses
-    add_field(v, 2000, 5000, 6, 20, 40);    // a town of 400 m2 blocks
-    // The same 20 x 20 m building beside each, touching none.
-    v.push_back(building(1, 150, 50, "yes", 10, HeightSource::Random, 20));
-    v.push_back(building(2, 5240, 50, "yes", 10, HeightSource::Random, 20));
+    std::vector<Building> v = suburb_and_town_with("yes");
     ParseReport report;
     infer_heights(v, {}, params, report);
     for (int64_t id : {1, 2}) EXPECT_EQ(by_id(v, id).height_rule, HeightRule::TypeAndArea);
@@ -338,12 +344,8 @@ TEST(InferHeights, TowersStandHigherInADenserFabric) {
 
 TEST(InferHeights, FlatsStandHigherInADenserFabric) {
     BuildingParams params;
-    std::vector<Building> v;
-    add_field(v, 1000, 0, 6, 10, 25);     // a suburb of 100 m2 houses
-    add_field(v, 2000, 5000, 6, 20, 40);  // a town of 400 m2 blocks
-    // The same 20 x 20 m block of flats (plan depth 10 m: no tower) beside each.
-    v.push_back(building(1, 150, 50, "apartments", 10, HeightSource::Random, 20));
-    v.push_back(building(2, 5240, 50, "apartments", 10, HeightSource::Random, 20));
+    // The same 20 x 20 m block of flats (plan depth 10 m: no tower) in a suburb and in a town.
+    std::vector<Building> v = suburb_and_town_with("apartments");
     ParseReport report;
     infer_heights(v, {}, params, report);
     bool sure = false;
@@ -380,6 +382,12 @@ TEST(InferHeights, ATaggedTwinNextDoorDecides) {
     EXPECT_EQ(report.note_count(kBuildingHeights, kTwin), 2);
 }
 
+// A town of 15 x 15 m untyped blocks (grain 225 m2), nothing tagged: ids 100-115.
+void add_blocks(std::vector<Building>& v) {
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) v.push_back(building(100 + 4 * i + j, 25.0 * i, 25.0 * j, "yes", 10, HeightSource::Random));
+}
+
 TEST(InferHeights, UseTagsMakeAHome) {
     OsmData osm;
     auto add = [&](int64_t id, const char* form, const char* key, const char* value) {
@@ -402,8 +410,7 @@ TEST(InferHeights, UseTagsMakeAHome) {
     // point block; without its use tags it is a workplace of the fabric's height.
     BuildingParams params;
     std::vector<Building> v;
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) v.push_back(building(100 + 4 * i + j, 25.0 * i, 25.0 * j, "yes", 10, HeightSource::Random));
+    add_blocks(v);
     v.push_back(building(1, 100, 0, "commercial", 10, HeightSource::Random, 30));
     std::vector<Building> untagged_use = v;
     ParseReport report;
@@ -417,8 +424,7 @@ TEST(InferHeights, UseTagsMakeAHome) {
 TEST(InferHeights, AHouseTypeOnABlocksFootprintIsABlockInEveryRule) {
     BuildingParams params;
     std::vector<Building> v;
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) v.push_back(building(100 + 4 * i + j, 25.0 * i, 25.0 * j, "yes", 10, HeightSource::Random));
+    add_blocks(v);
     // A "terrace" of 40 x 40 m (plan depth 20 m) in a town of 15 x 15 m blocks: a point block.
     v.push_back(building(1, 150, 0, "terrace", 10, HeightSource::Random, 40));
     // A row of ten 100 m2 houses (1,000 m2) is still houses.
