@@ -322,8 +322,8 @@ SceneEncoder::SceneEncoder(const SceneHeader& header, size_t reserve) : state_(s
 
 SceneEncoder::~SceneEncoder() = default;
 
-void SceneEncoder::add_buildings(const std::vector<Building>& buildings, size_t first) {
-    for (size_t i = first; i < buildings.size(); ++i) state_->buildings.push_back(encode_building(state_->b, buildings[i]));
+void SceneEncoder::add_building(const Building& building) {
+    state_->buildings.push_back(encode_building(state_->b, building));
 }
 
 void SceneEncoder::finish(const Scene& scene) { finish_parts(scene, nullptr); }
@@ -454,7 +454,7 @@ namespace {
 
 // The whole scene at once; nothing is freed.
 void encode_into(const Scene& scene, SceneEncoder& encoder) {
-    encoder.add_buildings(scene.buildings);
+    for (const Building& b : scene.buildings) encoder.add_building(b);
     encoder.finish(scene);
 }
 

@@ -16,15 +16,15 @@ std::vector<uint8_t> encode_scene(const Scene& scene);
 
 // Encodes a scene part by part, in the order of encode_scene and with its bytes, so that a
 // producer can hand over each part as soon as it is final and free it: the header first (its
-// bounds are written by finish), then the buildings in one or more calls, then the rest.
+// bounds are written by finish), then the buildings one by one, then the rest.
 class SceneEncoder {
 public:
     // `reserve`: bytes the builder reserves at once (see encoded_size_bound); an unused tail
     // costs no memory, a short one only a copy when the builder grows.
     SceneEncoder(const SceneHeader& header, size_t reserve);
     ~SceneEncoder();
-    // Appends buildings[first..]; nothing later than a building is encoded before the last one.
-    void add_buildings(const std::vector<Building>& buildings, size_t first = 0);
+    // Appends one building; every building comes before finish.
+    void add_building(const Building& building);
     // Encodes every part after the buildings (scene.buildings is not read) and completes the
     // buffer; the header's bounds become scene.header's.
     void finish(const Scene& scene);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <memory>
 
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -34,6 +35,7 @@
 #include "projection.h"
 #include "read_osm.h"
 #include "rng.h"
+#include "scene_io.h"
 
 namespace citygen {
 
@@ -160,8 +162,17 @@ void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
     }
 }
 
-// The stages in order; parse_osm_to_scene runs them on job.threads threads.
-Scene run_pipeline(const ParseJob& job, ParseReport& report) {
+// Hands the pages of freed memory back to the system (see parse_osm_to_scene).
+void trim_heap() {
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+}
+
+// The stages in order; parse_osm_to_scene runs them on job.threads threads. With `encoder`
+// (parse_osm_to_file), the buildings are encoded as soon as they are final and their roof
+// faces, which no later stage reads, are freed; the rest of the scene is encoded by the caller.
+Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<SceneEncoder>* encoder) {
     OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
     if (job.hide_height_tags > 0) hide_height_tags(osm, job.hide_height_tags, job.params.seed);
     const Projection projection = projection_for(osm);
@@ -178,10 +189,12 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
     });
     // The building areas' rings are in the footprints now; the roofs and colours read only their tags.
     for (OsmArea& area : osm.building_areas) release(area.polygons);
-    // Roofs and colours change only the heights, roofs and colours of the buildings; the roads
-    // read only their footprints (outer and holes), and the paths only the OSM data. So these
-    // three groups of stages run side by side: neither the scene nor the printed report depends
-    // on the threads.
+    // Roofs and colours change only the heights, roofs and colours of the buildings; the roads,
+    // the paths and the stages after them read only the buildings' footprints (outer and holes)
+    // or the OSM data. So roofs and colours run side by side with other stages: neither the
+    // scene nor the printed report depends on the threads. They run after the roads, beside
+    // the street lamps, land cover and crossings: the roof faces (Kaiserslautern: 7 MB) are
+    // then not held while the road section's working set is.
     auto roofs_and_colours = [&](ParseReport& report) {
         const BuildingTagIndex building_tags(osm);
         timed(report, "roofs", [&] {
@@ -194,6 +207,22 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
         });
         // The building areas' last readers are done (the other groups read other parts of `osm`).
         release(osm.building_areas);
+    };
+    // The buildings are final once their roofs and colours are (and the empty blocks'
+    // buildings, which have theirs, are added): encoded then, their roof faces freed.
+    auto encode_buildings = [&] {
+        if (!encoder) return;
+        // The encoded scene grows as the roof faces are freed: their pages go back to the
+        // system every megabyte, so the two do not add up (Kaiserslautern: 44 -> 35 MB).
+        size_t trimmed_at = (*encoder)->size();
+        for (Building& b : scene.buildings) {  // the other stages read only footprints
+            (*encoder)->add_building(b);
+            release(b.roof_faces);
+            if ((*encoder)->size() > trimmed_at + (1 << 20)) {
+                trim_heap();
+                trimmed_at = (*encoder)->size();
+            }
+        }
     };
     auto lay_out_roads = [&](ParseReport& report) {  // the road section
         RoadGraph road_graph = timed(report, "road graph", [&] {
@@ -218,21 +247,36 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
     auto lay_out_paths = [&](ParseReport& report) {
         paths = timed(report, "paths and rails", [&] { return build_paths(osm, projection, job.params.roads, report); });
     };
-    side_by_side(report, {roofs_and_colours, lay_out_roads, lay_out_paths});
+    side_by_side(report, {lay_out_roads, lay_out_paths});
     scene.sidewalks = drop_doubled_sidewalks(std::move(scene.sidewalks), paths.paths, report);
     scene.paths = std::move(paths.paths);
     scene.path_joints = std::move(paths.joints);
     release(osm.highways);  // read by the road graph, the lanes and the paths, all done
     release(osm.railways);
+    if (encoder) {
+        // The encoder reserves for the scene so far (without roofs, lamps, trees, land
+        // cover, crossings): its bound is ~3x the actual size, so it rarely grows.
+        *encoder = std::make_unique<SceneEncoder>(scene.header, 2 * encoded_size_bound(scene));
+    }
     if (job.params.blocks.enabled) {
+        // The blocks' own buildings have their roofs and colours: the map's get theirs first.
+        roofs_and_colours(report);
         std::vector<Building> generated = timed(report, "empty blocks", [&] {
             return fill_empty_blocks(scene, job.params.buildings, job.params.blocks, job.params.sidewalks.width, report);
         });
         scene.buildings.insert(scene.buildings.end(), generated.begin(), generated.end());
+        encode_buildings();
     }
     // Street lamps, land cover with the trees in it, and crossings read the scene so far and each
-    // write a part of their own: side by side too.
-    side_by_side(report, {
+    // write a part of their own: side by side too, and with the roofs and colours.
+    trim_heap();  // the road section's working set is freed: its pages back before the roofs
+    std::vector<std::function<void(ParseReport&)>> last_stages;
+    if (!job.params.blocks.enabled)
+        last_stages.push_back([&](ParseReport& report) {
+            roofs_and_colours(report);
+            encode_buildings();
+        });
+    last_stages.insert(last_stages.end(), {
         [&](ParseReport& report) {
             scene.lamps = timed(report, "street lamps", [&] {
                 return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
@@ -254,6 +298,7 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
             scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
         },
     });
+    side_by_side(report, last_stages);
     set_bounds_and_ground(scene);
     return scene;
 }
@@ -262,14 +307,24 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
 
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     tbb::task_arena arena(job.threads > 0 ? job.threads : tbb::task_arena::automatic);
-    Scene scene = arena.execute([&] { return run_pipeline(job, report); });
-#ifdef __GLIBC__
+    Scene scene = arena.execute([&] { return run_pipeline(job, report, nullptr); });
     // The OSM data and the stages' working sets are freed now, in small pieces all over the heap
     // (one arena, see main.cpp): hand their pages back before the scene is encoded, so encoding
     // adds to what the scene holds, not to the stages' peak (Kaiserslautern: 92 MB -> 72 MB).
-    malloc_trim(0);
-#endif
+    trim_heap();
     return scene;
+}
+
+void parse_osm_to_file(const ParseJob& job, ParseReport& report, const std::string& path) {
+    tbb::task_arena arena(job.threads > 0 ? job.threads : tbb::task_arena::automatic);
+    std::unique_ptr<SceneEncoder> encoder;
+    Scene scene = arena.execute([&] { return run_pipeline(job, report, &encoder); });
+    release(scene.buildings);  // encoded, and read for the bounds
+    trim_heap();
+    // Each part is freed once encoded, and its pages handed back before the encoder takes
+    // more: the encoded scene grows as the in-memory one shrinks.
+    encoder->finish_releasing(scene, trim_heap);
+    write_file_atomically(path, encoder->data(), encoder->size());  // no copy of the bytes
 }
 
 }  // namespace citygen
