@@ -247,7 +247,10 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
     auto lay_out_paths = [&](ParseReport& report) {
         paths = timed(report, "paths and rails", [&] { return build_paths(osm, projection, job.params.roads, report); });
     };
-    side_by_side(report, {lay_out_roads, lay_out_paths});
+    // The paths after the roads, not beside them: they are kept to the end, and would then be
+    // held at the road section's peak (the sidewalks') too.
+    lay_out_roads(report);
+    lay_out_paths(report);
     scene.sidewalks = drop_doubled_sidewalks(std::move(scene.sidewalks), paths.paths, report);
     scene.paths = std::move(paths.paths);
     scene.path_joints = std::move(paths.joints);
