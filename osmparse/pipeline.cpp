@@ -1,7 +1,9 @@
 // osmparse from top to bottom: each stage is a function from data to data. The stage numbers in
 // the headers follow this file: 1 read, 2 buildings, 3 heights, 4 roofs, 5 colours, 6 road graph,
 // 7 roads vs buildings, 8 road polygons, 9 lanes, 10 sidewalks, 11 paths and rails, 12 empty
-// blocks (optional), 13 street lamps, 14 land cover and sea, 15 trees, 16 crossings.
+// blocks (optional), 13 street lamps, 14 land cover and sea, 15 trees, 16 crossings. One
+// exception, for peak memory (see run_pipeline): roofs and colours (4, 5), which no other
+// stage reads, run last (or just before the empty blocks, 12, when those are filled).
 #include "pipeline.h"
 
 #include <algorithm>
@@ -191,10 +193,11 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
     for (OsmArea& area : osm.building_areas) release(area.polygons);
     // Roofs and colours change only the heights, roofs and colours of the buildings; the roads,
     // the paths and the stages after them read only the buildings' footprints (outer and holes)
-    // or the OSM data. So roofs and colours run side by side with other stages: neither the
-    // scene nor the printed report depends on the threads. They run after the roads, beside
-    // the street lamps, land cover and crossings: the roof faces (Kaiserslautern: 7 MB) are
-    // then not held while the road section's working set is.
+    // or the OSM data. So roofs and colours run last (before the empty blocks when those are
+    // filled: their buildings get roofs of their own): the roof faces (Kaiserslautern: 7 MB)
+    // are then not held while another stage's working set is, only until they are encoded.
+    // (They ran beside the road section before, which saved little time: build_roofs runs on
+    // every thread anyway.)
     auto roofs_and_colours = [&](ParseReport& report) {
         const BuildingTagIndex building_tags(osm);
         timed(report, "roofs", [&] {
@@ -212,10 +215,14 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
     // buildings, which have theirs, are added): encoded then, their roof faces freed.
     auto encode_buildings = [&] {
         if (!encoder) return;
+        // Reserved for the scene so far (with --fill-empty-blocks, the lamps, trees, land
+        // cover and crossings come later): twice its generous bound (~3x the actual size).
+        // Untouched reserve costs nothing resident; a short one only a copy as it grows.
+        *encoder = std::make_unique<SceneEncoder>(scene.header, 2 * encoded_size_bound(scene));
         // The encoded scene grows as the roof faces are freed: their pages go back to the
-        // system every megabyte, so the two do not add up (Kaiserslautern: 44 -> 35 MB).
+        // system every megabyte, so the two do not add up.
         size_t trimmed_at = (*encoder)->size();
-        for (Building& b : scene.buildings) {  // the other stages read only footprints
+        for (Building& b : scene.buildings) {
             (*encoder)->add_building(b);
             release(b.roof_faces);
             if ((*encoder)->size() > trimmed_at + (1 << 20)) {
@@ -256,11 +263,6 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
     scene.path_joints = std::move(paths.joints);
     release(osm.highways);  // read by the road graph, the lanes and the paths, all done
     release(osm.railways);
-    if (encoder) {
-        // The encoder reserves for the scene so far (without roofs, lamps, trees, land
-        // cover, crossings): its bound is ~3x the actual size, so it rarely grows.
-        *encoder = std::make_unique<SceneEncoder>(scene.header, 2 * encoded_size_bound(scene));
-    }
     if (job.params.blocks.enabled) {
         // The blocks' own buildings have their roofs and colours: the map's get theirs first.
         roofs_and_colours(report);
@@ -271,15 +273,9 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
         encode_buildings();
     }
     // Street lamps, land cover with the trees in it, and crossings read the scene so far and each
-    // write a part of their own: side by side too, and with the roofs and colours.
-    trim_heap();  // the road section's working set is freed: its pages back before the roofs
-    std::vector<std::function<void(ParseReport&)>> last_stages;
-    if (!job.params.blocks.enabled)
-        last_stages.push_back([&](ParseReport& report) {
-            roofs_and_colours(report);
-            encode_buildings();
-        });
-    last_stages.insert(last_stages.end(), {
+    // write a part of their own: side by side too.
+    trim_heap();  // the road section's working set is freed: its pages back first
+    side_by_side(report, {
         [&](ParseReport& report) {
             scene.lamps = timed(report, "street lamps", [&] {
                 return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
@@ -301,7 +297,11 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
             scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
         },
     });
-    side_by_side(report, last_stages);
+    if (!job.params.blocks.enabled) {
+        trim_heap();  // and the last stages' working sets
+        roofs_and_colours(report);
+        encode_buildings();
+    }
     set_bounds_and_ground(scene);
     return scene;
 }

@@ -331,13 +331,24 @@ std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface&
                 outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
             // The outline is shaped on the carriageway layout's nodes, joins and merged junctions.
             out = lay_out_outline(graph, surface.layout, outer, miter_limit);
-            out.quads = {};  // the strips are cut from the end cuts, the corners from the joints
+            // The strips are cut from the end cuts, the corners from the joints: the rest of
+            // the outline (its quads, each node's ends and merged members) is freed now.
+            out.quads = {};
+            for (NodeLayout& node : out.nodes) {
+                std::vector<NodeLayout::End>().swap(node.ends);
+                std::vector<int64_t>().swap(node.members);
+            }
         },
         [&] {
             // The surface's quads and joints, to keep sidewalks off.
             road_index.emplace(surface_polygons(surface.roads, surface.joints));
         });
     SidewalkWork work{graph, surface, inner, std::move(walk), std::move(outer), surface.layout, std::move(out), {}};
+    // At most two strips per edge and two corners per gap of a joint: reserved at once, the
+    // pieces are not copied as they grow (grown by doubling, they needed the heap to grow).
+    size_t gaps = 0;
+    for (const NodeLayout& node : surface.layout.nodes) gaps += node.kind == JoinKind::Joint ? node.ends.size() : 0;
+    work.pieces.reserve(2 * graph.edges.size() + 2 * gaps);
     add_strips(work);
     add_corners(work);
     work.out = {};  // the outline is cut into the pieces: free it before they are checked
