@@ -10,6 +10,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -189,8 +190,10 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
                       named_buildings(osm));
         return 0;
     });
-    // The building areas' rings are in the footprints now; the roofs and colours read only their tags.
-    for (OsmArea& area : osm.building_areas) release(area.polygons);
+    // The building areas' rings are in the footprints now; the roofs and colours read only
+    // some of their tags: those are kept, the areas freed.
+    std::optional<BuildingTagIndex> building_tags;
+    building_tags.emplace(std::move(osm.building_areas));
     // Roofs and colours change only the heights, roofs and colours of the buildings; the roads,
     // the paths and the stages after them read only the buildings' footprints (outer and holes)
     // or the OSM data. So roofs and colours run last (before the empty blocks when those are
@@ -199,17 +202,15 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
     // (They ran beside the road section before, which saved little time: build_roofs runs on
     // every thread anyway.)
     auto roofs_and_colours = [&](ParseReport& report) {
-        const BuildingTagIndex building_tags(osm);
         timed(report, "roofs", [&] {
-            build_roofs(scene.buildings, building_tags, job.params.buildings, report);
+            build_roofs(scene.buildings, *building_tags, job.params.buildings, report);
             return 0;
         });
         timed(report, "colours", [&] {
-            choose_colours_and_materials(scene.buildings, building_tags, job.params.buildings, report);
+            choose_colours_and_materials(scene.buildings, *building_tags, job.params.buildings, report);
             return 0;
         });
-        // The building areas' last readers are done (the other groups read other parts of `osm`).
-        release(osm.building_areas);
+        building_tags.reset();  // their last readers are done
     };
     // The buildings are final once their roofs and colours are (and the empty blocks'
     // buildings, which have theirs, are added): encoded then, their roof faces freed.
