@@ -1,6 +1,8 @@
 #include "build_paths.h"
 
+#include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <map>
 #include <unordered_map>
 
@@ -111,6 +113,26 @@ double path_width(const OsmTags& tags, PathClass c, ParseReport* report) {
     for (const ClassInfo& info : kTable)
         if (info.cls == c) return info.width;
     return 2;
+}
+
+void keep_path_ways(std::vector<OsmWay>& highways) {
+    static const char* const kRead[] = {"highway", "railway", "tunnel", "area", "indoor", "width", "footway"};
+    std::vector<OsmWay> kept;
+    kept.reserve(static_cast<size_t>(
+        std::count_if(highways.begin(), highways.end(), [](const OsmWay& w) { return path_class_of(w.tags).has_value(); })));
+    for (OsmWay& way : highways) {
+        if (!path_class_of(way.tags)) continue;
+        auto& entries = way.tags.entries;
+        entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                     [](const auto& kv) {
+                                         return std::none_of(std::begin(kRead), std::end(kRead),
+                                                             [&](const char* k) { return kv.first == k; });
+                                     }),
+                      entries.end());
+        entries.shrink_to_fit();
+        kept.push_back(std::move(way));
+    }
+    highways = std::move(kept);  // the other ways (and the old list) freed
 }
 
 PathSurface build_paths(const OsmData& osm, const Projection& projection, const RoadParams& roads,

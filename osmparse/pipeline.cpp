@@ -244,6 +244,8 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
             return build_road_polygons(narrowed_graph, std::move(narrowed.layout), report);
         });
         lay_out_lanes(surface.roads, osm, report);  // the sidewalks read no lane
+        // The highways' last reader is the paths, after the sidewalks: only their ways wait.
+        keep_path_ways(osm.highways);
         scene.sidewalks = timed(report, "sidewalks", [&] {
             return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
                                    job.params.roads.miter_limit, report);
