@@ -115,8 +115,10 @@ double path_width(const OsmTags& tags, PathClass c, ParseReport* report) {
     return 2;
 }
 
+// The tags build_paths reads (path_class_of, take, path_width).
+constexpr const char* kPathTagsRead[] = {"highway", "railway", "tunnel", "area", "indoor", "width", "footway"};
+
 void keep_path_ways(std::vector<OsmWay>& highways) {
-    static const char* const kRead[] = {"highway", "railway", "tunnel", "area", "indoor", "width", "footway"};
     std::vector<OsmWay> kept;
     kept.reserve(static_cast<size_t>(
         std::count_if(highways.begin(), highways.end(), [](const OsmWay& w) { return path_class_of(w.tags).has_value(); })));
@@ -125,7 +127,7 @@ void keep_path_ways(std::vector<OsmWay>& highways) {
         auto& entries = way.tags.entries;
         entries.erase(std::remove_if(entries.begin(), entries.end(),
                                      [](const auto& kv) {
-                                         return std::none_of(std::begin(kRead), std::end(kRead),
+                                         return std::none_of(std::begin(kPathTagsRead), std::end(kPathTagsRead),
                                                              [&](const char* k) { return kv.first == k; });
                                      }),
                       entries.end());

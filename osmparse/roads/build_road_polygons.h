@@ -31,7 +31,8 @@ struct RoadSurface {
     std::vector<Joint> joints;
     RoadLayout layout;              // per graph edge and node; sidewalks follow its joins (its
                                     // quads and joint polygons are moved into `roads` and
-                                    // `joints`, its ends' gap points freed)
+                                    // `joints`, its ends' gap points freed; build_sidewalks
+                                    // takes the rest)
     std::vector<int> road_of_edge;  // index into `roads` per graph edge, -1 when dropped
 };
 
