@@ -127,10 +127,15 @@ SceneHeader make_header(const ParseJob& job, const Projection& projection) {
     return h;
 }
 
-// Bounds of everything in the scene, and a ground plane a little larger.
-void set_bounds_and_ground(Scene& scene) {
-    Box2 box;
-    for (const Building& b : scene.buildings) for (Vec2 p : b.outer) box.extend(p);
+// What the scene's bounds take of the buildings: their footprints' outer rings.
+void extend_by_footprints(Box2& box, const std::vector<Building>& buildings) {
+    for (const Building& b : buildings) for (Vec2 p : b.outer) box.extend(p);
+}
+
+// Bounds of everything in the scene, and a ground plane a little larger. `box`: the bounds
+// of buildings already encoded and freed (parse_osm_to_file), or empty.
+void set_bounds_and_ground(Scene& scene, Box2 box = {}) {
+    extend_by_footprints(box, scene.buildings);
     for (const RoadEdge& r : scene.roads) for (Vec2 p : r.quad) box.extend(p);
     for (const Joint& j : scene.joints) for (Vec2 p : j.polygon) box.extend(p);
     for (const Sidewalk& s : scene.sidewalks) for (Vec2 p : s.polygon) box.extend(p);
@@ -232,6 +237,52 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
             }
         }
     };
+    // Without empty blocks, a building is final once it has its roof and colours: with an
+    // encoder, the buildings get theirs a slice at a time, each slice encoded and its roof
+    // faces freed before the next is built, so the roof faces (Kaiserslautern: 7 MB) are never
+    // held all at once. Each building's roof and colours are its own (build_roofs,
+    // choose_colours_and_materials): the same roofs, colours, report and bytes as all at once.
+    Box2 freed_buildings_box;  // the bounds of the buildings it frees
+    auto finish_buildings_in_slices = [&] {
+        // Reserved before the roofs exist: the bound of the rest alone is ~2x the whole
+        // encoded scene on the real extracts; a short reserve costs only a copy as it grows.
+        *encoder = std::make_unique<SceneEncoder>(scene.header, 2 * encoded_size_bound(scene));
+        ParseReport roofs_report, colours_report;  // merged in the order of a run all at once
+        double roofs_seconds = 0, colours_seconds = 0;
+        auto add_seconds = [](double& sum, auto&& f) {
+            const auto start = std::chrono::steady_clock::now();
+            f();
+            sum += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        };
+        constexpr size_t kSlice = 1024;  // buildings; build_roofs still runs on every thread
+        std::vector<Building> slice;
+        slice.reserve(kSlice);
+        size_t trimmed_at = (*encoder)->size();
+        for (size_t begin = 0; begin < scene.buildings.size(); begin += kSlice) {
+            const auto first = scene.buildings.begin() + static_cast<std::ptrdiff_t>(begin);
+            const auto last = scene.buildings.begin() + static_cast<std::ptrdiff_t>(std::min(scene.buildings.size(), begin + kSlice));
+            slice.assign(std::make_move_iterator(first), std::make_move_iterator(last));
+            add_seconds(roofs_seconds, [&] { build_roofs(slice, *building_tags, job.params.buildings, roofs_report); });
+            add_seconds(colours_seconds,
+                        [&] { choose_colours_and_materials(slice, *building_tags, job.params.buildings, colours_report); });
+            // Nothing reads the buildings after this but the scene's bounds: encoded, they
+            // are freed (their footprints too, 4 MB on Kaiserslautern) once their extent is
+            // taken. Their pages go back to the system every megabyte of encoded scene.
+            extend_by_footprints(freed_buildings_box, slice);
+            for (const Building& b : slice) (*encoder)->add_building(b);
+            slice.clear();
+            if ((*encoder)->size() > trimmed_at + (1 << 20)) {
+                trim_heap();
+                trimmed_at = (*encoder)->size();
+            }
+        }
+        release(scene.buildings);
+        building_tags.reset();  // their last readers are done
+        report.merge(roofs_report);
+        report.stage_time("roofs", roofs_seconds);
+        report.merge(colours_report);
+        report.stage_time("colours", colours_seconds);
+    };
     auto lay_out_roads = [&](ParseReport& report) {  // the road section
         RoadGraph road_graph = timed(report, "road graph", [&] {
             return build_road_graph(osm, projection, job.params.roads, report);
@@ -302,10 +353,13 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
     });
     if (!job.params.blocks.enabled) {
         trim_heap();  // and the last stages' working sets
-        roofs_and_colours(report);
-        encode_buildings();
+        if (encoder) {
+            finish_buildings_in_slices();
+        } else {
+            roofs_and_colours(report);
+        }
     }
-    set_bounds_and_ground(scene);
+    set_bounds_and_ground(scene, freed_buildings_box);
     return scene;
 }
 
