@@ -327,14 +327,14 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
         encode_buildings();
     }
     // Street lamps, land cover with the trees in it, and crossings read the scene so far and each
-    // write a part of their own: side by side too.
+    // write a part of their own. The lamps first (they are placed in parallel themselves), then
+    // the other two side by side: the lamps' indexes and the trees' are not held at once
+    // (Kaiserslautern PBF on 2 threads: 34.5 -> 32 MB here). The report is merged in this order.
     trim_heap();  // the road section's working set is freed: its pages back first
+    scene.lamps = timed(report, "street lamps", [&] {
+        return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
+    });
     side_by_side(report, {
-        [&](ParseReport& report) {
-            scene.lamps = timed(report, "street lamps", [&] {
-                return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
-            });
-        },
         [&](ParseReport& report) {
             scene.land_cover = timed(report, "land cover", [&] {
                 std::vector<LandCover> cover = build_land_cover(osm, projection, job.params.buildings, report);
