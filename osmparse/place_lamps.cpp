@@ -121,6 +121,7 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
             r.phase = hash_to_unit(r.h);
             r.offset = 0.5 * road.width + kKerbOffset;
             const int count = static_cast<int>(std::floor((t1 - r.t0) / params.spacing + r.phase));
+            r.spots.reserve(static_cast<size_t>(std::max(count, 0)));  // exactly: not grown by doubling
             for (int k = 0; k < count; ++k) {
                 Spot s;
                 s.first = side_point(r, k, left_first(r, k));

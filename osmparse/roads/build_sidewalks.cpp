@@ -138,7 +138,6 @@ struct SidewalkWork {
     std::vector<EdgeEndCut> in_from_cut, in_to_cut;
     std::vector<bool> joint_at_from, joint_at_to;  // per edge: its end lies at a joint
     RoadLayout out;                                // its nodes: only the joints'
-
     std::vector<Piece> pieces;
 
     void emit(SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band) {
@@ -224,10 +223,10 @@ void add_strips(SidewalkWork& w) {
         const EdgeEndCut& co = at_from ? w.out.from_cut[e] : w.out.to_cut[e];
         t_in = left_of_leaving ? ci.t_left : ci.t_right;
         t_out = left_of_leaving ? co.t_left : co.t_right;
-        // At a joint the strip starts where the outline's joint ends; beside the
-        // carriageway's joint arm it lies outside the carriageway, so this is safe even
-        // where the carriageway's cut reaches further.
-        // Where a strip ends: at a joint both its lines stop at the outline's square cut.
+        // Where a strip ends at a joint both its lines stop at the outline's square cut: the
+        // strip starts where the outline's joint ends; beside the carriageway's joint arm it
+        // lies outside the carriageway, so this is safe even where the carriageway's cut
+        // reaches further.
         if (at_from ? w.joint_at_from[e] : w.joint_at_to[e]) t_in = t_out;
     };
     const std::vector<SideWidths> &inner = w.inner, &outer = w.outer;
@@ -275,14 +274,13 @@ void add_corners(SidewalkWork& w) {
         const SideWidths& s = w.inner[end.edge];
         return end.at_from == left ? s.left : s.right;
     };
-    for (NodeLayout& no : w.out.nodes) {
-        const NodeLayout& ni = no;  // the carriageway's node: its ends and position
-        auto it = joint_of_node.find(ni.node);
+    for (const NodeLayout& node : w.out.nodes) {  // the outline's joints: the carriageway's ends
+        auto it = joint_of_node.find(node.node);
         const int joint = it == joint_of_node.end() ? -1 : it->second;
-        const size_t m = ni.ends.size();
+        const size_t m = node.ends.size();
         for (size_t i = 0; i < m; ++i) {
             const size_t j = (i + 1) % m;
-            const NodeLayout::End &ei = ni.ends[i], &ej = ni.ends[j];
+            const NodeLayout::End &ei = node.ends[i], &ej = node.ends[j];
             // The gap lies on i's left and j's right (relative to leaving the node).
             const double walk_i = ei.at_from ? w.walk[ei.edge].left : w.walk[ei.edge].right;
             const double walk_j = ej.at_from ? w.walk[ej.edge].right : w.walk[ej.edge].left;
@@ -293,16 +291,16 @@ void add_corners(SidewalkWork& w) {
             const std::pair<Vec2, Vec2> beyond_i{pi, pi + di}, beyond_j{pj, pj - dj};
             const double gap = gap_angle(di, dj);
             if (gap < kStraightGap) {
-                w.emit(SidewalkKind::Corner, clean_piece(clip_to_half_planes(no.joint, {beyond_i, beyond_j})), -1, joint,
+                w.emit(SidewalkKind::Corner, clean_piece(clip_to_half_planes(node.joint, {beyond_i, beyond_j})), -1, joint,
                        false);
             } else {
                 const double half = 0.5 * gap;
                 const Vec2 bisector{di.x * std::cos(half) - di.y * std::sin(half), di.x * std::sin(half) + di.y * std::cos(half)};
-                const Vec2 centre = ni.position;
+                const Vec2 centre = node.position;
                 w.emit(SidewalkKind::Corner,
-                       clean_piece(clip_to_half_planes(no.joint, {beyond_i, {centre + bisector, centre}})), -1, joint, false);
+                       clean_piece(clip_to_half_planes(node.joint, {beyond_i, {centre + bisector, centre}})), -1, joint, false);
                 w.emit(SidewalkKind::Corner,
-                       clean_piece(clip_to_half_planes(no.joint, {beyond_j, {centre, centre + bisector}})), -1, joint, false);
+                       clean_piece(clip_to_half_planes(node.joint, {beyond_j, {centre, centre + bisector}})), -1, joint, false);
             }
         }
     }
