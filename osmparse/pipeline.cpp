@@ -334,6 +334,9 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
     scene.lamps = timed(report, "street lamps", [&] {
         return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
     });
+    // Lamps and trees are counted as they are placed (grown by doubling); they are kept to the
+    // end of the parse without the spare capacity (Kaiserslautern: 0.4 and 0.2 MB).
+    scene.lamps.shrink_to_fit();
     side_by_side(report, {
         [&](ParseReport& report) {
             scene.land_cover = timed(report, "land cover", [&] {
@@ -346,6 +349,7 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
             scene.trees = timed(report, "trees", [&] {
                 return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);
             });
+            scene.trees.shrink_to_fit();
         },
         [&](ParseReport& report) {
             scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
