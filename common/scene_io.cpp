@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <iterator>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -220,6 +222,8 @@ void decode_building_look(const fb::Building* x, const Checker& check, Building&
     bld.generated = x->generated();
 }
 
+}  // namespace
+
 // A generous upper bound of the encoded size (points, a table per object, vectors, strings).
 // The builder reserves this once: it grows by half its size at a time, and each growth copies
 // the buffer while the old one is still held (Kaiserslautern: ~23 MB held for a 9.5 MB scene).
@@ -248,11 +252,10 @@ size_t encoded_size_bound(const Scene& scene) {
     return std::min<size_t>(n, FLATBUFFERS_MAX_BUFFER_SIZE / 2);
 }
 
-// Encodes `scene` into `b` and finishes the buffer.
-void encode_into(const Scene& scene, Builder& b) {
-    b.ForceDefaults(true);  // a field equal to its default is still written: stable layout
-    const SceneHeader& h = scene.header;
+namespace {
 
+// The header, with the bounds it has now (SceneEncoder::finish writes the final ones).
+flatbuffers::Offset<fb::Header> encode_header(Builder& b, const SceneHeader& h) {
     // Every nested object is created into a named offset first, in a fixed order: the order in
     // which a compiler evaluates function arguments is unspecified (gcc goes right to left,
     // clang left to right), and it decides the bytes. The order below is gcc's, so scenes
@@ -268,29 +271,74 @@ void encode_into(const Scene& scene, Builder& b) {
     const auto option_vector = b.CreateVector(options);
     const auto projection = b.CreateString(h.projection);
     const auto generator = b.CreateString(h.generator);
-    auto header = fb::CreateHeader(b, h.format_major, h.format_minor, generator,
-                                   h.origin_lat, h.origin_lon, projection,
-                                   &bmin, &bmax, h.seed, option_vector,
-                                   source);
+    return fb::CreateHeader(b, h.format_major, h.format_minor, generator,
+                            h.origin_lat, h.origin_lon, projection,
+                            &bmin, &bmax, h.seed, option_vector,
+                            source);
+}
 
+flatbuffers::Offset<fb::Building> encode_building(Builder& b, const Building& x) {
+    std::vector<flatbuffers::Offset<fb::Ring>> holes;
+    for (const Ring& r : x.holes) holes.push_back(ring(b, r));
+    fb::OsmRef osm = to_fb(x.osm);
+    const auto type = b.CreateString(x.type);
+    const auto hole_vector = b.CreateVector(holes);
+    const auto outer = ring(b, x.outer);
+    const auto roof_faces = encode_roof_faces(b, x.roof_faces);
+    return fb::CreateBuilding(
+        b, &osm, outer, hole_vector, static_cast<float>(x.min_height),
+        static_cast<float>(x.height), static_cast<int16_t>(x.levels),
+        static_cast<fb::HeightSource>(x.height_source), type, x.is_part,
+        static_cast<fb::RoofShape>(x.roof_shape), static_cast<float>(x.roof_height), x.roof_inferred,
+        roof_faces, static_cast<fb::HeightRule>(x.height_rule), x.wall_colour, x.roof_colour,
+        x.colour_inferred, static_cast<fb::WallMaterial>(x.wall_material),
+        static_cast<fb::RoofMaterial>(x.roof_material), x.generated);
+}
+
+// Frees a part of the scene once it is encoded, when the encoder was asked to (a const scene
+// is only read).
+template <typename T>
+void release_part(std::vector<T>& part, const std::function<void()>* released) {
+    if (!released) return;
+    std::vector<T>().swap(part);
+    (*released)();
+}
+template <typename T>
+void release_part(const std::vector<T>&, const std::function<void()>*) {}
+
+}  // namespace
+
+struct SceneEncoder::State {
+    explicit State(size_t reserve) : b(reserve) {}
+    Builder b;
+    flatbuffers::Offset<fb::Header> header;
     std::vector<flatbuffers::Offset<fb::Building>> buildings;
-    for (const Building& x : scene.buildings) {
-        std::vector<flatbuffers::Offset<fb::Ring>> holes;
-        for (const Ring& r : x.holes) holes.push_back(ring(b, r));
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto type = b.CreateString(x.type);
-        const auto hole_vector = b.CreateVector(holes);
-        const auto outer = ring(b, x.outer);
-        const auto roof_faces = encode_roof_faces(b, x.roof_faces);
-        buildings.push_back(fb::CreateBuilding(
-            b, &osm, outer, hole_vector, static_cast<float>(x.min_height),
-            static_cast<float>(x.height), static_cast<int16_t>(x.levels),
-            static_cast<fb::HeightSource>(x.height_source), type, x.is_part,
-            static_cast<fb::RoofShape>(x.roof_shape), static_cast<float>(x.roof_height), x.roof_inferred,
-            roof_faces, static_cast<fb::HeightRule>(x.height_rule), x.wall_colour, x.roof_colour,
-            x.colour_inferred, static_cast<fb::WallMaterial>(x.wall_material),
-            static_cast<fb::RoofMaterial>(x.roof_material), x.generated));
-    }
+};
+
+SceneEncoder::SceneEncoder(const SceneHeader& header, size_t reserve) : state_(std::make_unique<State>(reserve)) {
+    state_->b.ForceDefaults(true);  // a field equal to its default is still written: stable layout
+    state_->header = encode_header(state_->b, header);
+}
+
+SceneEncoder::~SceneEncoder() = default;
+
+void SceneEncoder::add_building(const Building& building) {
+    state_->buildings.push_back(encode_building(state_->b, building));
+}
+
+void SceneEncoder::finish(const Scene& scene) { finish_parts(scene, nullptr); }
+
+void SceneEncoder::finish_releasing(Scene& scene, const std::function<void()>& released) {
+    finish_parts(scene, &released);
+}
+
+template <typename S>
+void SceneEncoder::finish_parts(S& scene, const std::function<void()>* release) {
+    Builder& b = state_->b;
+    // The header was written first, with the bounds known then: now the final ones, in place.
+    fb::Header* header = flatbuffers::GetMutableTemporaryPointer(b, state_->header);
+    *const_cast<fb::Vec2*>(header->bounds_min()) = to_fb(scene.header.bounds_min);
+    *const_cast<fb::Vec2*>(header->bounds_max()) = to_fb(scene.header.bounds_max);
 
     std::vector<flatbuffers::Offset<fb::RoadEdge>> roads;
     for (const RoadEdge& x : scene.roads) {
@@ -305,6 +353,7 @@ void encode_into(const Scene& scene, Builder& b) {
             static_cast<uint8_t>(x.lanes_backward), static_cast<fb::CentreLine>(x.centre_line), x.edge_lines,
             x.cycle_lane_left, x.cycle_lane_right));
     }
+    release_part(scene.roads, release);
 
     std::vector<flatbuffers::Offset<fb::Joint>> joints;
     for (const Joint& x : scene.joints) {
@@ -314,12 +363,14 @@ void encode_into(const Scene& scene, Builder& b) {
         joints.push_back(
             fb::CreateJoint(b, &osm, polygon, edges));
     }
+    release_part(scene.joints, release);
 
     std::vector<flatbuffers::Offset<fb::Sidewalk>> sidewalks;
     for (const Sidewalk& x : scene.sidewalks)
         sidewalks.push_back(fb::CreateSidewalk(b, static_cast<fb::SidewalkKind>(x.kind),
                                                points(b, x.polygon), x.road, x.joint,
                                                static_cast<float>(x.curb_height)));
+    release_part(scene.sidewalks, release);
 
     std::vector<flatbuffers::Offset<fb::Lamp>> lamps;
     for (const Lamp& x : scene.lamps) {
@@ -328,7 +379,7 @@ void encode_into(const Scene& scene, Builder& b) {
         lamps.push_back(fb::CreateLamp(b, &osm, &pos, static_cast<float>(x.height),
                                        static_cast<fb::LampSource>(x.source)));
     }
-
+    release_part(scene.lamps, release);
     fb::Vec2 gmin = to_fb(scene.ground.min), gmax = to_fb(scene.ground.max);
     auto ground = fb::CreateGround(b, &gmin, &gmax, static_cast<float>(scene.ground.z));
 
@@ -341,6 +392,7 @@ void encode_into(const Scene& scene, Builder& b) {
         const auto outer = ring(b, x.outer);
         land_cover.push_back(fb::CreateLandCover(b, &osm, static_cast<fb::LandCoverClass>(x.cover), outer, hole_vector));
     }
+    release_part(scene.land_cover, release);
 
     std::vector<fb::Tree> trees;
     trees.reserve(scene.trees.size());
@@ -349,6 +401,7 @@ void encode_into(const Scene& scene, Builder& b) {
                            static_cast<float>(x.height), static_cast<float>(x.crown_diameter), x.osm.id,
                            static_cast<fb::OsmType>(x.osm.type), static_cast<fb::LeafType>(x.leaf_type),
                            static_cast<fb::TreeSource>(x.source));
+    release_part(scene.trees, release);
 
     std::vector<flatbuffers::Offset<fb::PathEdge>> paths;
     for (const PathEdge& x : scene.paths) {
@@ -359,6 +412,7 @@ void encode_into(const Scene& scene, Builder& b) {
                                            static_cast<float>(x.width), static_cast<fb::PathClass>(x.path_class),
                                            x.from_joint, x.to_joint, x.sidewalk));
     }
+    release_part(scene.paths, release);
     std::vector<flatbuffers::Offset<fb::Joint>> path_joints;
     for (const Joint& x : scene.path_joints) {
         fb::OsmRef osm = to_fb(x.osm);
@@ -366,6 +420,7 @@ void encode_into(const Scene& scene, Builder& b) {
         const auto polygon = points(b, x.polygon);
         path_joints.push_back(fb::CreateJoint(b, &osm, polygon, edges));
     }
+    release_part(scene.path_joints, release);
 
     std::vector<flatbuffers::Offset<fb::Crossing>> crossings;
     for (const Crossing& x : scene.crossings) {
@@ -374,6 +429,7 @@ void encode_into(const Scene& scene, Builder& b) {
         crossings.push_back(fb::CreateCrossing(b, &osm, x.road, &pos, static_cast<fb::CrossingKind>(x.kind),
                                                static_cast<fb::RoadSide>(x.side)));
     }
+    release_part(scene.crossings, release);
 
     const auto crossing_vector = b.CreateVector(crossings);
     const auto path_joint_vector = b.CreateVector(path_joints);
@@ -384,19 +440,30 @@ void encode_into(const Scene& scene, Builder& b) {
     const auto sidewalk_vector = b.CreateVector(sidewalks);
     const auto joint_vector = b.CreateVector(joints);
     const auto road_vector = b.CreateVector(roads);
-    const auto building_vector = b.CreateVector(buildings);
-    auto root = fb::CreateScene(b, header, building_vector, road_vector, joint_vector, sidewalk_vector, lamp_vector,
+    const auto building_vector = b.CreateVector(state_->buildings);
+    auto root = fb::CreateScene(b, state_->header, building_vector, road_vector, joint_vector, sidewalk_vector, lamp_vector,
                                 ground, land_cover_vector, tree_vector, path_vector, path_joint_vector,
                                 crossing_vector);
     fb::FinishSceneBuffer(b, root);
 }
 
+const uint8_t* SceneEncoder::data() const { return state_->b.GetBufferPointer(); }
+size_t SceneEncoder::size() const { return state_->b.GetSize(); }
+
+namespace {
+
+// The whole scene at once; nothing is freed.
+void encode_into(const Scene& scene, SceneEncoder& encoder) {
+    for (const Building& b : scene.buildings) encoder.add_building(b);
+    encoder.finish(scene);
+}
+
 }  // namespace
 
 std::vector<uint8_t> encode_scene(const Scene& scene) {
-    Builder b(encoded_size_bound(scene));
-    encode_into(scene, b);
-    return {b.GetBufferPointer(), b.GetBufferPointer() + b.GetSize()};
+    SceneEncoder encoder(scene.header, encoded_size_bound(scene));
+    encode_into(scene, encoder);
+    return {encoder.data(), encoder.data() + encoder.size()};
 }
 
 Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
@@ -648,9 +715,9 @@ void write_file_atomically(const std::string& path, const void* data, size_t siz
 }
 
 void save_scene(const Scene& scene, const std::string& path) {
-    Builder b(encoded_size_bound(scene));
-    encode_into(scene, b);
-    write_file_atomically(path, b.GetBufferPointer(), b.GetSize());  // no copy of the bytes
+    SceneEncoder encoder(scene.header, encoded_size_bound(scene));
+    encode_into(scene, encoder);
+    write_file_atomically(path, encoder.data(), encoder.size());  // no copy of the bytes
 }
 
 }  // namespace citygen

@@ -1,6 +1,8 @@
 // Reading and writing scene files (format: schema/scene.fbs).
 #pragma once
 
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,37 @@ namespace citygen {
 // Serializes the scene. Coordinates are stored as float32 metres.
 // The same scene always gives the same bytes.
 std::vector<uint8_t> encode_scene(const Scene& scene);
+
+// Encodes a scene part by part, in the order of encode_scene and with its bytes, so that a
+// producer can hand over each part as soon as it is final and free it: the header first (its
+// bounds are written by finish), then the buildings one by one, then the rest.
+class SceneEncoder {
+public:
+    // `reserve`: bytes the builder reserves at once (see encoded_size_bound); an unused tail
+    // costs no memory, a short one only a copy when the builder grows.
+    SceneEncoder(const SceneHeader& header, size_t reserve);
+    ~SceneEncoder();
+    // Appends one building; every building comes before finish.
+    void add_building(const Building& building);
+    // Encodes every part after the buildings (scene.buildings is not read) and completes the
+    // buffer; the header's bounds become scene.header's.
+    void finish(const Scene& scene);
+    // The same, freeing each part of `scene` as soon as it is encoded and then calling
+    // `released` (e.g. to hand the freed memory back to the system).
+    void finish_releasing(Scene& scene, const std::function<void()>& released);
+    // The encoded scene, once finished.
+    const uint8_t* data() const;
+    size_t size() const;
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+    template <typename S>
+    void finish_parts(S& scene, const std::function<void()>* released);
+};
+
+// A generous upper bound of encode_scene(scene).size(), for SceneEncoder's reserve.
+size_t encoded_size_bound(const Scene& scene);
 
 // Parses and checks bytes from an untrusted source. Throws citygen::Error whose message
 // names `name` and the problem: wrong identifier, newer major version, truncated or

@@ -1,6 +1,8 @@
 #include "build_paths.h"
 
+#include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <map>
 #include <unordered_map>
 
@@ -49,7 +51,7 @@ void lay_out(std::vector<OsmWay> ways, const Projection& projection, const RoadP
         e.width = info.at(e.way_id).second;
         widths.push_back({0.5 * e.width, 0.5 * e.width});
     }
-    const RoadLayout layout = layout_road_polygons(graph, widths, roads.miter_limit);
+    RoadLayout layout = layout_road_polygons(graph, widths, roads.miter_limit);
     // Exactly (the paths are the scene's, kept to the end of the parse).
     out.paths.reserve(out.paths.size() + quad_count(layout));
     out.joints.reserve(out.joints.size() + joint_count(layout));
@@ -66,7 +68,7 @@ void lay_out(std::vector<OsmWay> ways, const Projection& projection, const RoadP
         p.from_node = g.from_node;
         p.to_node = g.to_node;
         p.centreline = {g.from, g.to};
-        p.quad = layout.quads[e];
+        p.quad = std::move(layout.quads[e]);  // moved, as the joints below: nothing reads the layout after
         p.width = g.width;
         p.path_class = info.at(g.way_id).first;
         auto s = sidewalk.find(g.way_id);
@@ -74,11 +76,11 @@ void lay_out(std::vector<OsmWay> ways, const Projection& projection, const RoadP
         path_of_edge[e] = static_cast<int>(out.paths.size());
         out.paths.push_back(std::move(p));
     }
-    for (const NodeLayout& node : layout.nodes) {
+    for (NodeLayout& node : layout.nodes) {
         if (node.kind != JoinKind::Joint || node.joint.empty()) continue;
         Joint j;
         j.osm = {OsmType::Node, node.node};
-        j.polygon = node.joint;
+        j.polygon = std::move(node.joint);
         const int index = static_cast<int>(out.joints.size());
         for (const NodeLayout::End& end : node.ends) {
             const int path = path_of_edge[end.edge];
@@ -111,6 +113,28 @@ double path_width(const OsmTags& tags, PathClass c, ParseReport* report) {
     for (const ClassInfo& info : kTable)
         if (info.cls == c) return info.width;
     return 2;
+}
+
+// The tags build_paths reads (path_class_of, take, path_width).
+constexpr const char* kPathTagsRead[] = {"highway", "railway", "tunnel", "area", "indoor", "width", "footway"};
+
+void keep_path_ways(std::vector<OsmWay>& highways) {
+    std::vector<OsmWay> kept;
+    kept.reserve(static_cast<size_t>(
+        std::count_if(highways.begin(), highways.end(), [](const OsmWay& w) { return path_class_of(w.tags).has_value(); })));
+    for (OsmWay& way : highways) {
+        if (!path_class_of(way.tags)) continue;
+        auto& entries = way.tags.entries;
+        entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                     [](const auto& kv) {
+                                         return std::none_of(std::begin(kPathTagsRead), std::end(kPathTagsRead),
+                                                             [&](const char* k) { return kv.first == k; });
+                                     }),
+                      entries.end());
+        entries.shrink_to_fit();
+        kept.push_back(std::move(way));
+    }
+    highways = std::move(kept);  // the other ways (and the old list) freed
 }
 
 PathSurface build_paths(const OsmData& osm, const Projection& projection, const RoadParams& roads,

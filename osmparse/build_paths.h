@@ -38,6 +38,11 @@ struct PathSurface {
     std::vector<Joint> joints;  // edges index into paths
 };
 
+// Keeps of `highways` only what build_paths reads: the ways with a path class, with the tags
+// it reads (highway, railway, tunnel, area, indoor, width, footway), in their order. The
+// road stages read every highway first; the paths run after them (see pipeline.cpp).
+void keep_path_ways(std::vector<OsmWay>& highways);
+
 PathSurface build_paths(const OsmData& osm, const Projection& projection, const RoadParams& roads,
                         ParseReport& report);
 

@@ -140,9 +140,13 @@ int main(int argc, char** argv) {
         p.trees.mode = trees == "none" ? TreeMode::None : trees == "mapped" ? TreeMode::Mapped : TreeMode::All;
 
         ParseReport report;
-        const Scene scene = parse_osm_to_scene(job, report);
-        save_scene(scene, output);
-        if (!geojson.empty()) write_geojson(scene, geojson);
+        if (geojson.empty()) {
+            parse_osm_to_file(job, report, output);  // the lower peak memory
+        } else {
+            const Scene scene = parse_osm_to_scene(job, report);
+            save_scene(scene, output);
+            write_geojson(scene, geojson);
+        }
         if (!job.quiet) report.print(stderr);
         return 0;
     } catch (const Error& e) {

@@ -1,12 +1,16 @@
 // osmparse from top to bottom: each stage is a function from data to data. The stage numbers in
 // the headers follow this file: 1 read, 2 buildings, 3 heights, 4 roofs, 5 colours, 6 road graph,
 // 7 roads vs buildings, 8 road polygons, 9 lanes, 10 sidewalks, 11 paths and rails, 12 empty
-// blocks (optional), 13 street lamps, 14 land cover and sea, 15 trees, 16 crossings.
+// blocks (optional), 13 street lamps, 14 land cover and sea, 15 trees, 16 crossings. One
+// exception, for peak memory (see run_pipeline): roofs and colours (4, 5), which no other
+// stage reads, run last (or just before the empty blocks, 12, when those are filled).
 #include "pipeline.h"
 
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <memory>
+#include <optional>
 
 #ifdef __GLIBC__
 #include <malloc.h>
@@ -34,6 +38,7 @@
 #include "projection.h"
 #include "read_osm.h"
 #include "rng.h"
+#include "scene_io.h"
 
 namespace citygen {
 
@@ -122,10 +127,15 @@ SceneHeader make_header(const ParseJob& job, const Projection& projection) {
     return h;
 }
 
-// Bounds of everything in the scene, and a ground plane a little larger.
-void set_bounds_and_ground(Scene& scene) {
-    Box2 box;
-    for (const Building& b : scene.buildings) for (Vec2 p : b.outer) box.extend(p);
+// What the scene's bounds take of the buildings: their footprints' outer rings.
+void extend_by_footprints(Box2& box, const std::vector<Building>& buildings) {
+    for (const Building& b : buildings) for (Vec2 p : b.outer) box.extend(p);
+}
+
+// Bounds of everything in the scene, and a ground plane a little larger. `box`: the bounds
+// of buildings already encoded and freed (parse_osm_to_file), or empty.
+void set_bounds_and_ground(Scene& scene, Box2 box = {}) {
+    extend_by_footprints(box, scene.buildings);
     for (const RoadEdge& r : scene.roads) for (Vec2 p : r.quad) box.extend(p);
     for (const Joint& j : scene.joints) for (Vec2 p : j.polygon) box.extend(p);
     for (const Sidewalk& s : scene.sidewalks) for (Vec2 p : s.polygon) box.extend(p);
@@ -160,8 +170,17 @@ void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
     }
 }
 
-// The stages in order; parse_osm_to_scene runs them on job.threads threads.
-Scene run_pipeline(const ParseJob& job, ParseReport& report) {
+// Hands the pages of freed memory back to the system (see parse_osm_to_scene).
+void trim_heap() {
+#ifdef __GLIBC__
+    malloc_trim(0);
+#endif
+}
+
+// The stages in order; parse_osm_to_scene runs them on job.threads threads. With `encoder`
+// (parse_osm_to_file), the buildings are encoded as soon as they are final and their roof
+// faces, which no later stage reads, are freed; the rest of the scene is encoded by the caller.
+Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<SceneEncoder>* encoder) {
     OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
     if (job.hide_height_tags > 0) hide_height_tags(osm, job.hide_height_tags, job.params.seed);
     const Projection projection = projection_for(osm);
@@ -176,24 +195,93 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
                       named_buildings(osm), homes_by_use(osm));
         return 0;
     });
-    // The building areas' rings are in the footprints now; the roofs and colours read only their tags.
-    for (OsmArea& area : osm.building_areas) release(area.polygons);
-    // Roofs and colours change only the heights, roofs and colours of the buildings; the roads
-    // read only their footprints (outer and holes), and the paths only the OSM data. So these
-    // three groups of stages run side by side: neither the scene nor the printed report depends
-    // on the threads.
+    // The building areas' rings are in the footprints now; the roofs and colours read only
+    // some of their tags: those are kept, the areas freed.
+    std::optional<BuildingTagIndex> building_tags;
+    building_tags.emplace(std::move(osm.building_areas));
+    // Roofs and colours change only the heights, roofs and colours of the buildings; the roads,
+    // the paths and the stages after them read only the buildings' footprints (outer and holes)
+    // or the OSM data. So roofs and colours run last (before the empty blocks when those are
+    // filled: their buildings get roofs of their own): the roof faces (Kaiserslautern: 7 MB)
+    // are then not held while another stage's working set is, only until they are encoded.
+    // (They ran beside the road section before, which saved little time: build_roofs runs on
+    // every thread anyway.)
     auto roofs_and_colours = [&](ParseReport& report) {
-        const BuildingTagIndex building_tags(osm);
         timed(report, "roofs", [&] {
-            build_roofs(scene.buildings, building_tags, job.params.buildings, report);
+            build_roofs(scene.buildings, *building_tags, job.params.buildings, report);
             return 0;
         });
         timed(report, "colours", [&] {
-            choose_colours_and_materials(scene.buildings, building_tags, job.params.buildings, report);
+            choose_colours_and_materials(scene.buildings, *building_tags, job.params.buildings, report);
             return 0;
         });
-        // The building areas' last readers are done (the other groups read other parts of `osm`).
-        release(osm.building_areas);
+        building_tags.reset();  // their last readers are done
+    };
+    // The buildings are final once their roofs and colours are (and the empty blocks'
+    // buildings, which have theirs, are added): encoded then, their roof faces freed.
+    auto encode_buildings = [&] {
+        if (!encoder) return;
+        // Reserved for the scene so far (with --fill-empty-blocks, the lamps, trees, land
+        // cover and crossings come later): twice its generous bound (~3x the actual size).
+        // Untouched reserve costs nothing resident; a short one only a copy as it grows.
+        *encoder = std::make_unique<SceneEncoder>(scene.header, 2 * encoded_size_bound(scene));
+        // The encoded scene grows as the roof faces are freed: their pages go back to the
+        // system every megabyte, so the two do not add up.
+        size_t trimmed_at = (*encoder)->size();
+        for (Building& b : scene.buildings) {
+            (*encoder)->add_building(b);
+            release(b.roof_faces);
+            if ((*encoder)->size() > trimmed_at + (1 << 20)) {
+                trim_heap();
+                trimmed_at = (*encoder)->size();
+            }
+        }
+    };
+    // Without empty blocks, a building is final once it has its roof and colours: with an
+    // encoder, the buildings get theirs a slice at a time, each slice encoded and its roof
+    // faces freed before the next is built, so the roof faces (Kaiserslautern: 7 MB) are never
+    // held all at once. Each building's roof and colours are its own (build_roofs,
+    // choose_colours_and_materials): the same roofs, colours, report and bytes as all at once.
+    Box2 freed_buildings_box;  // the bounds of the buildings it frees
+    auto finish_buildings_in_slices = [&] {
+        // Reserved before the roofs exist: the bound of the rest alone is ~2x the whole
+        // encoded scene on the real extracts; a short reserve costs only a copy as it grows.
+        *encoder = std::make_unique<SceneEncoder>(scene.header, 2 * encoded_size_bound(scene));
+        ParseReport roofs_report, colours_report;  // merged in the order of a run all at once
+        double roofs_seconds = 0, colours_seconds = 0;
+        auto add_seconds = [](double& sum, auto&& f) {
+            const auto start = std::chrono::steady_clock::now();
+            f();
+            sum += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        };
+        constexpr size_t kSlice = 1024;  // buildings; build_roofs still runs on every thread
+        std::vector<Building> slice;
+        slice.reserve(kSlice);
+        size_t trimmed_at = (*encoder)->size();
+        for (size_t begin = 0; begin < scene.buildings.size(); begin += kSlice) {
+            const auto first = scene.buildings.begin() + static_cast<std::ptrdiff_t>(begin);
+            const auto last = scene.buildings.begin() + static_cast<std::ptrdiff_t>(std::min(scene.buildings.size(), begin + kSlice));
+            slice.assign(std::make_move_iterator(first), std::make_move_iterator(last));
+            add_seconds(roofs_seconds, [&] { build_roofs(slice, *building_tags, job.params.buildings, roofs_report); });
+            add_seconds(colours_seconds,
+                        [&] { choose_colours_and_materials(slice, *building_tags, job.params.buildings, colours_report); });
+            // Nothing reads the buildings after this but the scene's bounds: encoded, they
+            // are freed (their footprints too, 4 MB on Kaiserslautern) once their extent is
+            // taken. Their pages go back to the system every megabyte of encoded scene.
+            extend_by_footprints(freed_buildings_box, slice);
+            for (const Building& b : slice) (*encoder)->add_building(b);
+            slice.clear();
+            if ((*encoder)->size() > trimmed_at + (1 << 20)) {
+                trim_heap();
+                trimmed_at = (*encoder)->size();
+            }
+        }
+        release(scene.buildings);
+        building_tags.reset();  // their last readers are done
+        report.merge(roofs_report);
+        report.stage_time("roofs", roofs_seconds);
+        report.merge(colours_report);
+        report.stage_time("colours", colours_seconds);
     };
     auto lay_out_roads = [&](ParseReport& report) {  // the road section
         RoadGraph road_graph = timed(report, "road graph", [&] {
@@ -207,6 +295,8 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
             return build_road_polygons(narrowed_graph, std::move(narrowed.layout), report);
         });
         lay_out_lanes(surface.roads, osm, report);  // the sidewalks read no lane
+        // The highways' last reader is the paths, after the sidewalks: only their ways wait.
+        keep_path_ways(osm.highways);
         scene.sidewalks = timed(report, "sidewalks", [&] {
             return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
                                    job.params.roads.miter_limit, report);
@@ -218,26 +308,36 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
     auto lay_out_paths = [&](ParseReport& report) {
         paths = timed(report, "paths and rails", [&] { return build_paths(osm, projection, job.params.roads, report); });
     };
-    side_by_side(report, {roofs_and_colours, lay_out_roads, lay_out_paths});
+    // The paths after the roads, not beside them: they are kept to the end, and would then be
+    // held at the road section's peak (the sidewalks') too.
+    lay_out_roads(report);
+    lay_out_paths(report);
     scene.sidewalks = drop_doubled_sidewalks(std::move(scene.sidewalks), paths.paths, report);
     scene.paths = std::move(paths.paths);
     scene.path_joints = std::move(paths.joints);
     release(osm.highways);  // read by the road graph, the lanes and the paths, all done
     release(osm.railways);
     if (job.params.blocks.enabled) {
+        // The blocks' own buildings have their roofs and colours: the map's get theirs first.
+        roofs_and_colours(report);
         std::vector<Building> generated = timed(report, "empty blocks", [&] {
             return fill_empty_blocks(scene, job.params.buildings, job.params.blocks, job.params.sidewalks.width, report);
         });
         scene.buildings.insert(scene.buildings.end(), generated.begin(), generated.end());
+        encode_buildings();
     }
     // Street lamps, land cover with the trees in it, and crossings read the scene so far and each
-    // write a part of their own: side by side too.
+    // write a part of their own. The lamps first (they are placed in parallel themselves), then
+    // the other two side by side: the lamps' indexes and the trees' are not held at once
+    // (Kaiserslautern PBF on 2 threads: 34.5 -> 32 MB here). The report is merged in this order.
+    trim_heap();  // the road section's working set is freed: its pages back first
+    scene.lamps = timed(report, "street lamps", [&] {
+        return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
+    });
+    // Lamps and trees are counted as they are placed (grown by doubling); they are kept to the
+    // end of the parse without the spare capacity (Kaiserslautern: 0.4 and 0.2 MB).
+    scene.lamps.shrink_to_fit();
     side_by_side(report, {
-        [&](ParseReport& report) {
-            scene.lamps = timed(report, "street lamps", [&] {
-                return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
-            });
-        },
         [&](ParseReport& report) {
             scene.land_cover = timed(report, "land cover", [&] {
                 std::vector<LandCover> cover = build_land_cover(osm, projection, job.params.buildings, report);
@@ -249,12 +349,21 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
             scene.trees = timed(report, "trees", [&] {
                 return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);
             });
+            scene.trees.shrink_to_fit();
         },
         [&](ParseReport& report) {
             scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
         },
     });
-    set_bounds_and_ground(scene);
+    if (!job.params.blocks.enabled) {
+        trim_heap();  // and the last stages' working sets
+        if (encoder) {
+            finish_buildings_in_slices();
+        } else {
+            roofs_and_colours(report);
+        }
+    }
+    set_bounds_and_ground(scene, freed_buildings_box);
     return scene;
 }
 
@@ -262,14 +371,24 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report) {
 
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     tbb::task_arena arena(job.threads > 0 ? job.threads : tbb::task_arena::automatic);
-    Scene scene = arena.execute([&] { return run_pipeline(job, report); });
-#ifdef __GLIBC__
+    Scene scene = arena.execute([&] { return run_pipeline(job, report, nullptr); });
     // The OSM data and the stages' working sets are freed now, in small pieces all over the heap
     // (one arena, see main.cpp): hand their pages back before the scene is encoded, so encoding
     // adds to what the scene holds, not to the stages' peak (Kaiserslautern: 92 MB -> 72 MB).
-    malloc_trim(0);
-#endif
+    trim_heap();
     return scene;
+}
+
+void parse_osm_to_file(const ParseJob& job, ParseReport& report, const std::string& path) {
+    tbb::task_arena arena(job.threads > 0 ? job.threads : tbb::task_arena::automatic);
+    std::unique_ptr<SceneEncoder> encoder;
+    Scene scene = arena.execute([&] { return run_pipeline(job, report, &encoder); });
+    release(scene.buildings);  // encoded, and read for the bounds
+    trim_heap();
+    // Each part is freed once encoded, and its pages handed back before the encoder takes
+    // more: the encoded scene grows as the in-memory one shrinks.
+    encoder->finish_releasing(scene, trim_heap);
+    write_file_atomically(path, encoder->data(), encoder->size());  // no copy of the bytes
 }
 
 }  // namespace citygen

@@ -20,4 +20,9 @@ struct ParseJob {
 // The same scene and the same report rows whatever job.threads is.
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report);
 
+// Parses and writes the scene file at `path` (save_scene's atomic write): the bytes of
+// save_scene(parse_osm_to_scene(job)), at a lower peak memory, as each part of the scene is
+// encoded as soon as it is final and then freed.
+void parse_osm_to_file(const ParseJob& job, ParseReport& report, const std::string& path);
+
 }  // namespace citygen

@@ -101,60 +101,67 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
         return r.from + r.d * t + r.n * (left ? r.offset : -r.offset);
     };
     auto left_first = [](const RoadSpots& r, int k) { return ((k + (r.h >> 60)) & 1) == 0; };
-    std::vector<RoadSpots> roads(scene.roads.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, scene.roads.size(), 64), [&](const tbb::blocked_range<size_t>& range) {
-        for (size_t i = range.begin(); i != range.end(); ++i) {
-            const RoadEdge& road = scene.roads[i];
-            RoadSpots& r = roads[i];
-            r.from = road.centreline.front();
-            const Vec2 to = road.centreline.back();
-            r.d = normalize(to - r.from);
-            r.n = perp_left(r.d);
-            // Usable stretch: the quad's extent along the centreline.
-            r.t0 = std::max(dot(road.quad[0] - r.from, r.d), dot(road.quad[3] - r.from, r.d));
-            const double t1 = std::min(dot(road.quad[1] - r.from, r.d), dot(road.quad[2] - r.from, r.d));
-            if (t1 <= r.t0) continue;
-            // A random phase per edge keeps the average at one lamp per `spacing` even on
-            // edges shorter than it.
-            r.h = hash_keys(seed, static_cast<uint64_t>(road.osm.id), static_cast<uint64_t>(road.from_node),
-                            static_cast<uint64_t>(road.to_node));
-            r.phase = hash_to_unit(r.h);
-            r.offset = 0.5 * road.width + kKerbOffset;
-            const int count = static_cast<int>(std::floor((t1 - r.t0) / params.spacing + r.phase));
-            for (int k = 0; k < count; ++k) {
-                Spot s;
-                s.first = side_point(r, k, left_first(r, k));
-                s.first_blocked = blocked(s.first);
-                if (!s.first_blocked) s.first_z = ground_z(s.first);
-                r.spots.push_back(s);
-            }
-        }
-    });
-
     PointGrid generated(std::max(0.5 * params.spacing, 1.0));
     int64_t placed = 0;
     auto too_close = [&](Vec2 p) {
         return tagged.any_within(p, params.min_distance_to_tagged) || generated.any_within(p, 0.5 * params.spacing);
     };
-    for (size_t i = 0; i < roads.size(); ++i) {
-        const RoadSpots& r = roads[i];
-        for (int k = 0; k < static_cast<int>(r.spots.size()); ++k) {
-            const Spot& s = r.spots[static_cast<size_t>(k)];
-            Vec2 p = s.first;
-            double z = s.first_z;
-            if (s.first_blocked || too_close(p)) {
-                p = side_point(r, k, !left_first(r, k));
-                if (blocked(p) || too_close(p)) continue;
-                z = ground_z(p);
+    // The roads are taken a batch at a time (the spots of all of them at once were 1.5 MB on
+    // Kaiserslautern): the same lamps in the same order, as each batch is decided in order.
+    constexpr size_t kRoadsPerBatch = 1024;
+    std::vector<RoadSpots> roads;
+    for (size_t begin = 0; begin < scene.roads.size(); begin += kRoadsPerBatch) {
+        const size_t end = std::min(scene.roads.size(), begin + kRoadsPerBatch);
+        roads.assign(end - begin, RoadSpots{});
+        tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 64), [&](const tbb::blocked_range<size_t>& range) {
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+                const RoadEdge& road = scene.roads[i];
+                RoadSpots& r = roads[i - begin];
+                r.from = road.centreline.front();
+                const Vec2 to = road.centreline.back();
+                r.d = normalize(to - r.from);
+                r.n = perp_left(r.d);
+                // Usable stretch: the quad's extent along the centreline.
+                r.t0 = std::max(dot(road.quad[0] - r.from, r.d), dot(road.quad[3] - r.from, r.d));
+                const double t1 = std::min(dot(road.quad[1] - r.from, r.d), dot(road.quad[2] - r.from, r.d));
+                if (t1 <= r.t0) continue;
+                // A random phase per edge keeps the average at one lamp per `spacing` even on
+                // edges shorter than it.
+                r.h = hash_keys(seed, static_cast<uint64_t>(road.osm.id), static_cast<uint64_t>(road.from_node),
+                                static_cast<uint64_t>(road.to_node));
+                r.phase = hash_to_unit(r.h);
+                r.offset = 0.5 * road.width + kKerbOffset;
+                const int count = static_cast<int>(std::floor((t1 - r.t0) / params.spacing + r.phase));
+                r.spots.reserve(static_cast<size_t>(std::max(count, 0)));  // exactly: not grown by doubling
+                for (int k = 0; k < count; ++k) {
+                    Spot s;
+                    s.first = side_point(r, k, left_first(r, k));
+                    s.first_blocked = blocked(s.first);
+                    if (!s.first_blocked) s.first_z = ground_z(s.first);
+                    r.spots.push_back(s);
+                }
             }
-            Lamp lamp;
-            lamp.osm = scene.roads[i].osm;
-            lamp.position = {p.x, p.y, z};
-            lamp.height = params.height;
-            lamp.source = LampSource::Generated;
-            lamps.push_back(lamp);
-            generated.add(p);
-            ++placed;
+        });
+        for (size_t i = begin; i < end; ++i) {
+            const RoadSpots& r = roads[i - begin];
+            for (int k = 0; k < static_cast<int>(r.spots.size()); ++k) {
+                const Spot& s = r.spots[static_cast<size_t>(k)];
+                Vec2 p = s.first;
+                double z = s.first_z;
+                if (s.first_blocked || too_close(p)) {
+                    p = side_point(r, k, !left_first(r, k));
+                    if (blocked(p) || too_close(p)) continue;
+                    z = ground_z(p);
+                }
+                Lamp lamp;
+                lamp.osm = scene.roads[i].osm;
+                lamp.position = {p.x, p.y, z};
+                lamp.height = params.height;
+                lamp.source = LampSource::Generated;
+                lamps.push_back(lamp);
+                generated.add(p);
+                ++placed;
+            }
         }
     }
     report.kept(kGeneratedStreetLamps, placed);

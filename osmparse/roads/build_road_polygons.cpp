@@ -73,7 +73,10 @@ RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, Parse
     }
     report.kept(kRoadEdges, static_cast<int64_t>(out.roads.size()));
 
-    for (const NodeLayout& node : out.layout.nodes) {
+    for (NodeLayout& node : out.layout.nodes) {
+        // Nothing reads an end's gap points after the joint is shaped (the sidewalks' outline
+        // shapes its own): freed, as the joint polygon is moved into the scene's joint.
+        for (NodeLayout::End& end : node.ends) std::vector<Vec2>().swap(end.gap_points);
         if (node.kind != JoinKind::Joint) continue;
         report.read(kRoadJoints);
         if (node.joint.empty()) {
@@ -84,7 +87,7 @@ RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, Parse
         if (node.joint_is_hull) report.note(kRoadJoints, kStarOrHullJoint);
         Joint j;
         j.osm = {OsmType::Node, node.node};
-        j.polygon = node.joint;
+        j.polygon = std::move(node.joint);
         const int index = static_cast<int>(out.joints.size());
         for (const NodeLayout::End& end : node.ends) {
             const int road = out.road_of_edge[end.edge];

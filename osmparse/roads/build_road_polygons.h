@@ -30,7 +30,9 @@ struct RoadSurface {
     std::vector<RoadEdge> roads;
     std::vector<Joint> joints;
     RoadLayout layout;              // per graph edge and node; sidewalks follow its joins (its
-                                    // quads are moved into `roads`)
+                                    // quads and joint polygons are moved into `roads` and
+                                    // `joints`, its ends' gap points freed; build_sidewalks
+                                    // takes the rest)
     std::vector<int> road_of_edge;  // index into `roads` per graph edge, -1 when dropped
 };
 

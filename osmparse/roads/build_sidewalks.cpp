@@ -3,11 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <optional>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 
 #include "narrow_roads.h"
 #include "polygon_overlap.h"
@@ -130,14 +128,16 @@ struct Piece {
     bool in_cleared_band;
 };
 
-// What steps 2 and 3 share: the carriageway (`in`) and its outline (`out`), and the pieces
-// they cut.
+// What steps 2 and 3 share: the carriageway's end cuts (`in_*_cut`), its outline (`out`,
+// which has the carriageway's nodes, ends and joins: lay_out_outline takes them over), and
+// the pieces they cut.
 struct SidewalkWork {
     const RoadGraph& graph;
     const RoadSurface& surface;
     std::vector<SideWidths> inner, walk, outer;
-    const RoadLayout& in;
-    RoadLayout out;
+    std::vector<EdgeEndCut> in_from_cut, in_to_cut;
+    std::vector<bool> joint_at_from, joint_at_to;  // per edge: its end lies at a joint
+    RoadLayout out;                                // its nodes: only the joints'
     std::vector<Piece> pieces;
 
     void emit(SidewalkKind kind, Ring polygon, int road, int joint, bool in_cleared_band) {
@@ -218,20 +218,16 @@ std::vector<Sidewalk> check_pieces(std::vector<Piece> pieces, const BuildingInde
 // line and the outline's.
 void add_strips(SidewalkWork& w) {
     const size_t n = w.graph.edges.size();
-    // Where a strip ends: at a joint both its lines stop at the outline's square cut.
-    std::vector<const NodeLayout*> node_of_from(n, nullptr), node_of_to(n, nullptr);
-    for (const NodeLayout& node : w.in.nodes)
-        for (const NodeLayout::End& end : node.ends) (end.at_from ? node_of_from : node_of_to)[end.edge] = &node;
     auto strip_cut = [&](size_t e, bool at_from, bool left_of_leaving, double& t_in, double& t_out) {
-        const EdgeEndCut& ci = at_from ? w.in.from_cut[e] : w.in.to_cut[e];
+        const EdgeEndCut& ci = at_from ? w.in_from_cut[e] : w.in_to_cut[e];
         const EdgeEndCut& co = at_from ? w.out.from_cut[e] : w.out.to_cut[e];
         t_in = left_of_leaving ? ci.t_left : ci.t_right;
         t_out = left_of_leaving ? co.t_left : co.t_right;
-        const NodeLayout* node = at_from ? node_of_from[e] : node_of_to[e];
-        // At a joint the strip starts where the outline's joint ends; beside the
-        // carriageway's joint arm it lies outside the carriageway, so this is safe even
-        // where the carriageway's cut reaches further.
-        if (node && node->kind == JoinKind::Joint) t_in = t_out;
+        // Where a strip ends at a joint both its lines stop at the outline's square cut: the
+        // strip starts where the outline's joint ends; beside the carriageway's joint arm it
+        // lies outside the carriageway, so this is safe even where the carriageway's cut
+        // reaches further.
+        if (at_from ? w.joint_at_from[e] : w.joint_at_to[e]) t_in = t_out;
     };
     const std::vector<SideWidths> &inner = w.inner, &outer = w.outer;
     for (size_t e = 0; e < n; ++e) {
@@ -278,16 +274,13 @@ void add_corners(SidewalkWork& w) {
         const SideWidths& s = w.inner[end.edge];
         return end.at_from == left ? s.left : s.right;
     };
-    for (size_t k = 0; k < w.in.nodes.size(); ++k) {
-        const NodeLayout& ni = w.in.nodes[k];
-        const NodeLayout& no = w.out.nodes[k];
-        if (ni.kind != JoinKind::Joint || no.joint.empty()) continue;
-        auto it = joint_of_node.find(ni.node);
+    for (const NodeLayout& node : w.out.nodes) {  // the outline's joints: the carriageway's ends
+        auto it = joint_of_node.find(node.node);
         const int joint = it == joint_of_node.end() ? -1 : it->second;
-        const size_t m = ni.ends.size();
+        const size_t m = node.ends.size();
         for (size_t i = 0; i < m; ++i) {
             const size_t j = (i + 1) % m;
-            const NodeLayout::End &ei = ni.ends[i], &ej = ni.ends[j];
+            const NodeLayout::End &ei = node.ends[i], &ej = node.ends[j];
             // The gap lies on i's left and j's right (relative to leaving the node).
             const double walk_i = ei.at_from ? w.walk[ei.edge].left : w.walk[ei.edge].right;
             const double walk_j = ej.at_from ? w.walk[ej.edge].right : w.walk[ej.edge].left;
@@ -298,16 +291,16 @@ void add_corners(SidewalkWork& w) {
             const std::pair<Vec2, Vec2> beyond_i{pi, pi + di}, beyond_j{pj, pj - dj};
             const double gap = gap_angle(di, dj);
             if (gap < kStraightGap) {
-                w.emit(SidewalkKind::Corner, clean_piece(clip_to_half_planes(no.joint, {beyond_i, beyond_j})), -1, joint,
+                w.emit(SidewalkKind::Corner, clean_piece(clip_to_half_planes(node.joint, {beyond_i, beyond_j})), -1, joint,
                        false);
             } else {
                 const double half = 0.5 * gap;
                 const Vec2 bisector{di.x * std::cos(half) - di.y * std::sin(half), di.x * std::sin(half) + di.y * std::cos(half)};
-                const Vec2 centre = ni.position;
+                const Vec2 centre = node.position;
                 w.emit(SidewalkKind::Corner,
-                       clean_piece(clip_to_half_planes(no.joint, {beyond_i, {centre + bisector, centre}})), -1, joint, false);
+                       clean_piece(clip_to_half_planes(node.joint, {beyond_i, {centre + bisector, centre}})), -1, joint, false);
                 w.emit(SidewalkKind::Corner,
-                       clean_piece(clip_to_half_planes(no.joint, {beyond_j, {centre, centre + bisector}})), -1, joint, false);
+                       clean_piece(clip_to_half_planes(node.joint, {beyond_j, {centre, centre + bisector}})), -1, joint, false);
             }
         }
     }
@@ -315,33 +308,56 @@ void add_corners(SidewalkWork& w) {
 
 }  // namespace
 
-std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface& surface,
+std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, RoadSurface& surface,
                                       const std::vector<Building>& buildings,
                                       const SidewalkParams& params, double miter_limit,
                                       ParseReport& report) {
     const BuildingIndex building_index(buildings);
+    const size_t n = graph.edges.size();
     const std::vector<SideWidths> inner = carriageway_widths(graph);
-    std::vector<SideWidths> walk, outer(graph.edges.size());
-    RoadLayout out;
-    std::optional<BuildingIndex> road_index;
-    tbb::parallel_invoke(  // the outline beside the index of the road pieces
-        [&] {
-            walk = sidewalk_widths(graph, building_index, params, report);
-            for (size_t e = 0; e < graph.edges.size(); ++e)
-                outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
-            // The outline is shaped on the carriageway layout's nodes, joins and merged junctions.
-            out = lay_out_outline(graph, surface.layout, outer, miter_limit);
-            out.quads = {};  // the strips are cut from the end cuts, the corners from the joints
-        },
-        [&] {
-            // The surface's quads and joints, to keep sidewalks off.
-            road_index.emplace(surface_polygons(surface.roads, surface.joints));
-        });
-    SidewalkWork work{graph, surface, inner, std::move(walk), std::move(outer), surface.layout, std::move(out), {}};
+    std::vector<SideWidths> walk = sidewalk_widths(graph, building_index, params, report), outer(n);
+    for (size_t e = 0; e < n; ++e) outer[e] = {inner[e].left + walk[e].left, inner[e].right + walk[e].right};
+    // The strips read the carriageway's end cuts; the rest of its layout (nodes, ends, joins,
+    // merged junctions) is what the outline is shaped on: lay_out_outline takes it over.
+    SidewalkWork work{graph, surface, inner, std::move(walk), std::move(outer),
+                      std::move(surface.layout.from_cut), std::move(surface.layout.to_cut), {}, {}, {}, {}};
+    work.out = lay_out_outline(graph, std::move(surface.layout), work.outer, miter_limit);
+    surface.layout = {};
+    // What the strips and corners read of the outline: where each edge ends at a joint, the
+    // end cuts, and the joints' nodes (their ends and polygon). The rest (its quads, the
+    // other nodes, merged members, gap points) is freed before any piece is cut.
+    work.out.quads = {};
+    work.joint_at_from.assign(n, false);
+    work.joint_at_to.assign(n, false);
+    size_t joints = 0, gaps = 0;
+    for (const NodeLayout& node : work.out.nodes) {
+        if (node.kind != JoinKind::Joint) continue;
+        for (const NodeLayout::End& end : node.ends) (end.at_from ? work.joint_at_from : work.joint_at_to)[end.edge] = true;
+        gaps += node.ends.size();
+        joints += node.joint.empty() ? 0 : 1;
+    }
+    std::vector<NodeLayout> joint_nodes;
+    joint_nodes.reserve(joints);
+    for (NodeLayout& node : work.out.nodes) {
+        if (node.kind != JoinKind::Joint || node.joint.empty()) continue;
+        std::vector<int64_t>().swap(node.members);
+        for (NodeLayout::End& end : node.ends) std::vector<Vec2>().swap(end.gap_points);
+        joint_nodes.push_back(std::move(node));
+    }
+    work.out.nodes = std::move(joint_nodes);
+    // At most two strips per edge and two corners per gap of a joint: reserved at once, the
+    // pieces are not copied as they grow (grown by doubling, they needed the heap to grow).
+    work.pieces.reserve(2 * n + 2 * gaps);
     add_strips(work);
+    work.in_from_cut = {};
+    work.in_to_cut = {};
+    work.out.from_cut = {};
+    work.out.to_cut = {};
     add_corners(work);
     work.out = {};  // the outline is cut into the pieces: free it before they are checked
-    return check_pieces(std::move(work.pieces), building_index, *road_index, params, report);
+    // The surface's quads and joints, to keep sidewalks off.
+    const BuildingIndex road_index(surface_polygons(surface.roads, surface.joints));
+    return check_pieces(std::move(work.pieces), building_index, road_index, params, report);
 }
 
 }  // namespace citygen

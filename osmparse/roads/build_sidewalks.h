@@ -28,7 +28,9 @@ inline constexpr char kLiesOnAnotherRoad[] = "lies on another road";
 // whose sidewalk would reach into a building is narrowed in 25 cm steps and left out
 // below 75 cm; pieces that still overlap a building, or overlap another road by more
 // than half a square metre (the median of a dual carriageway), are dropped and counted.
-std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, const RoadSurface& surface,
+// surface.layout is taken (the outline is shaped on its nodes, then freed): nothing reads
+// it after the sidewalks.
+std::vector<Sidewalk> build_sidewalks(const RoadGraph& graph, RoadSurface& surface,
                                       const std::vector<Building>& buildings,
                                       const SidewalkParams& params, double miter_limit,
                                       ParseReport& report);

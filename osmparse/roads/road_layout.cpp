@@ -219,14 +219,16 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
     return take_layout(std::move(state));
 }
 
-RoadLayout lay_out_outline(const RoadGraph& graph, const RoadLayout& carriageway,
+RoadLayout lay_out_outline(const RoadGraph& graph, RoadLayout carriageway,
                            const std::vector<SideWidths>& widths, double miter_limit) {
     LayoutState state(graph, widths, miter_limit);
-    state.out.absorbed = carriageway.absorbed;
-    for (const NodeLayout& node : carriageway.nodes) {
-        NodeLayout& copy = state.nodes[node.node] = node;
-        follow_join(state, copy, node.kind);
+    state.out.absorbed = std::move(carriageway.absorbed);
+    for (NodeLayout& node : carriageway.nodes) {
+        const JoinKind kind = node.kind;
+        NodeLayout& moved = state.nodes[node.node] = std::move(node);
+        follow_join(state, moved, kind);
     }
+    carriageway = {};  // its nodes are the outline's now
     shape_everything(state);
     return take_layout(std::move(state));
 }

@@ -77,8 +77,9 @@ RoadLayout layout_road_polygons(const RoadGraph& graph, const std::vector<SideWi
 
 // An outline around a finished layout (sidewalks follow their carriageway): the same
 // nodes, ends, joins and merged junctions as `carriageway`, shaped again with the wider
-// `widths` (a miter is kept, clamped to fit).
-RoadLayout lay_out_outline(const RoadGraph& graph, const RoadLayout& carriageway,
+// `widths` (a miter is kept, clamped to fit). The carriageway's nodes are taken over (the
+// sidewalks pass theirs in, moved: one copy of the nodes, not two, at their peak).
+RoadLayout lay_out_outline(const RoadGraph& graph, RoadLayout carriageway,
                            const std::vector<SideWidths>& widths, double miter_limit);
 
 // The four corners of edge `e`'s quad for the given cuts, CCW: right side from -> to,

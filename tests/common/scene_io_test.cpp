@@ -149,3 +149,32 @@ TEST(SceneIo, LoadMissingFileNamesIt) {
         EXPECT_NE(std::string(e.what()).find("/nonexistent/city.scene"), std::string::npos);
     }
 }
+
+// SceneEncoder, as osmparse uses it: the header written before the bounds are known, the
+// buildings one by one, then the rest with each part freed once encoded.
+TEST(SceneIo, EncoderPartByPartGivesEncodeScenesBytes) {
+    Scene s = small_scene();
+    s.header.bounds_min = {-1, -7};
+    s.header.bounds_max = {12, 10};
+    s.buildings.push_back(s.buildings.front());
+    s.buildings.back().osm.id = 43;
+    s.buildings.back().roof_faces = {{{{0, 0, 12}, {10, 0, 12}, {5, 5, 15}}, RoofFaceKind::Roof}};
+    const std::vector<uint8_t> whole = encode_scene(s);
+
+    SceneHeader early = s.header;
+    early.bounds_min = early.bounds_max = {0, 0};  // not known yet when the header is written
+    SceneEncoder encoder(early, 64);               // a short reserve: the builder grows
+    for (const Building& b : s.buildings) encoder.add_building(b);
+    Scene rest = s;
+    int released = 0;
+    encoder.finish_releasing(rest, [&] { ++released; });
+    EXPECT_EQ(std::vector<uint8_t>(encoder.data(), encoder.data() + encoder.size()), whole);
+    EXPECT_EQ(released, 9) << "one call per part after the buildings";
+    EXPECT_TRUE(rest.roads.empty() && rest.joints.empty() && rest.lamps.empty()) << "encoded parts are freed";
+
+    const Scene t = decode_scene(encoder.data(), encoder.size(), "mem");
+    EXPECT_FLOAT_EQ(t.header.bounds_min.y, -7);
+    EXPECT_FLOAT_EQ(t.header.bounds_max.x, 12);
+    ASSERT_EQ(t.buildings.size(), 2u);
+    EXPECT_EQ(t.buildings[1].roof_faces.size(), 1u);
+}

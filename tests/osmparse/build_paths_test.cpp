@@ -8,6 +8,8 @@
 #include "build_paths.h"
 #include "parse_quietly.h"
 #include "pipeline.h"
+#include "projection.h"
+#include "read_osm.h"
 #include "ring_is_simple.h"
 
 using namespace citygen;
@@ -80,4 +82,41 @@ TEST(Paths, MonacoGivesValidStripsAndJoints) {
         EXPECT_GT(s.paths.size(), 1000u) << name;
         expect_valid_strips(s);
     }
+}
+
+// The pipeline keeps only the path ways (with the tags build_paths reads) from the road
+// stages to the paths: the paths and their report must be what all the highways give.
+TEST(Paths, KeepPathWaysKeepsWhatBuildPathsReads) {
+    ParseReport read_report;
+    OsmData osm = read_osm(std::string(CITYGEN_SOURCE_DIR) + "/tests/data/map_paths.osm", true, read_report);
+    for (OsmWay& w : osm.highways) w.tags.entries.push_back({"surface", "asphalt"});  // read by no path rule
+    const Projection projection(0.5 * (osm.min.lat + osm.max.lat), 0.5 * (osm.min.lon + osm.max.lon));
+    const RoadParams params;
+    ParseReport all_report, kept_report;
+    const PathSurface all = build_paths(osm, projection, params, all_report);
+    const size_t ways = osm.highways.size();
+    keep_path_ways(osm.highways);
+    EXPECT_LT(osm.highways.size(), ways);  // the street is gone
+    for (const OsmWay& w : osm.highways) {
+        EXPECT_TRUE(path_class_of(w.tags).has_value());
+        EXPECT_EQ(w.tags.get("surface"), nullptr);
+    }
+    const PathSurface kept = build_paths(osm, projection, params, kept_report);
+    ASSERT_GT(all.paths.size(), 0u);
+    ASSERT_EQ(kept.paths.size(), all.paths.size());
+    for (size_t i = 0; i < all.paths.size(); ++i) {
+        EXPECT_EQ(kept.paths[i].osm, all.paths[i].osm);
+        EXPECT_EQ(kept.paths[i].quad, all.paths[i].quad);
+        EXPECT_EQ(kept.paths[i].width, all.paths[i].width);
+        EXPECT_EQ(kept.paths[i].path_class, all.paths[i].path_class);
+        EXPECT_EQ(kept.paths[i].sidewalk, all.paths[i].sidewalk);
+    }
+    ASSERT_EQ(kept.joints.size(), all.joints.size());
+    for (size_t i = 0; i < all.joints.size(); ++i) EXPECT_EQ(kept.joints[i].polygon, all.joints[i].polygon);
+    for (const char* row : {kPathWays, kPathEdges, kPathJoints}) {
+        EXPECT_EQ(kept_report.read_count(row), all_report.read_count(row)) << row;
+        EXPECT_EQ(kept_report.kept_count(row), all_report.kept_count(row)) << row;
+    }
+    EXPECT_EQ(kept_report.dropped_count(kPathWays, kPathTunnel), all_report.dropped_count(kPathWays, kPathTunnel));
+    EXPECT_EQ(kept_report.dropped_count(kPathWays, kPathTunnel), 1);
 }

@@ -41,7 +41,7 @@ TEST(Sidewalks, OutlineFollowsTheCarriagewayLayout) {
 TEST(Sidewalks, PiecesFillTheBandBesideTheCarriageway) {
     const RoadGraph g = t_junction();
     ParseReport report;
-    const RoadSurface surface = build_road_polygons(g, lay_out(g), report);
+    RoadSurface surface = build_road_polygons(g, lay_out(g), report);
     SidewalkParams params;
     const std::vector<Sidewalk> walks = build_sidewalks(g, surface, {}, params, kMiterLimit, report);
     int strips = 0, corners = 0;
