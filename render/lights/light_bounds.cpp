@@ -36,11 +36,12 @@ inline F4 select(F4 mask, F4 a, F4 b) { return _mm_or_ps(_mm_and_ps(mask.v, a.v)
 inline F4 sqrt(F4 a) { return _mm_sqrt_ps(a.v); }
 inline F4 max(F4 a, F4 b) { return _mm_max_ps(a.v, b.v); }
 inline F4 abs(F4 a) { return _mm_andnot_ps(_mm_set1_ps(-0.f), a.v); }
+inline bool any(F4 mask) { return _mm_movemask_ps(mask.v) != 0; }
 #else
 struct F4 {
     float v[4];
     explicit F4(float x) : v{x, x, x, x} {}
-    F4() = default;
+    F4() : v{} {}
     static F4 load(const float* p) { F4 r; std::copy(p, p + 4, r.v); return r; }
     void store(float* p) const { std::copy(v, v + 4, p); }
     template <class Op> static F4 map(F4 a, F4 b, Op op) { F4 r; for (int i = 0; i < 4; ++i) r.v[i] = op(a.v[i], b.v[i]); return r; }
@@ -61,6 +62,7 @@ inline F4 select(F4 m, F4 a, F4 b) { F4 r; for (int i = 0; i < 4; ++i) r.v[i] = 
 inline F4 sqrt(F4 a) { return F4::map(a, a, [](float x, float) { return std::sqrt(x); }); }
 inline F4 max(F4 a, F4 b) { return F4::map(a, b, [](float x, float y) { return std::max(x, y); }); }
 inline F4 abs(F4 a) { return F4::map(a, a, [](float x, float) { return std::fabs(x); }); }
+inline bool any(F4 m) { return bits(m.v[0]) | bits(m.v[1]) | bits(m.v[2]) | bits(m.v[3]); }
 #endif
 
 
@@ -123,38 +125,44 @@ void LightBounds4::importance(const LightQuery& q, float most[4], float least[4]
     const F4 cos_o = F4::load(cos_theta_o);
     const F4 tx = px - F4::load(cx), ty = py - F4::load(cy), tz = pz - F4::load(cz);  // towards p
     const F4 dist2 = tx * tx + ty * ty + tz * tz;
+    // The cosines below are dot products with t over |t|, their sines sqrt(|t|^2 - dot^2) over
+    // |t|: every square root depends on the inputs alone, so they run side by side rather than
+    // one after another.
+    const F4 tw = wx4 * tx + wy4 * ty + wz4 * tz;  // |t| cos theta_w
     const F4 dist = sqrt(dist2);
-    const F4 positive = dist > zero;
-    const F4 inv_dist = select(positive, one / dist, zero);
-    const F4 dx = tx * inv_dist, dy = ty * inv_dist, dz = select(positive, tz * inv_dist, one);  // unit, box to p
+    const F4 inv_dist = select(dist > zero, one / dist, zero);
     // The sphere around the box, rounded outwards (it must hold the box), and the cone of
     // directions from p that it subtends (all of them from inside).
     const F4 radius2 = (hx4 * hx4 + hy4 * hy4 + hz4 * hz4) * F4(1 + 1e-5f);
     const F4 radius = sqrt(radius2);
     const F4 inside = dist2 <= radius2;
     const F4 sin_b = select(inside, zero, radius * inv_dist);
-    const F4 cos_b = select(inside, F4(-1.f), sqrt(max(zero, one - sin_b * sin_b)));
+    const F4 cos_b = select(inside, F4(-1.f), sqrt(max(zero, dist2 - radius2)) * inv_dist);
     // The box itself, tighter than its sphere up close (a wall's own windows from a point on the
     // wall): wholly behind emitters that all face w, or wholly below the horizon of n, it sends p
     // nothing. The extremes of a linear function over a box are centre +- half extents.
-    F4 dark = (cos_o >= one) & (wx4 * tx + wy4 * ty + wz4 * tz + hx4 * abs(wx4) + hy4 * abs(wy4) + hz4 * abs(wz4) <= zero);
-    if (q.has_normal)
-        dark = dark | (hx4 * abs(nx) + hy4 * abs(ny) + hz4 * abs(nz) - (tx * nx + ty * ny + tz * nz) <= zero);
+    F4 dark = (cos_o >= one) & (tw + hx4 * abs(wx4) + hy4 * abs(wy4) + hz4 * abs(wz4) <= zero);
+    const F4 tn = zero - (tx * nx + ty * ny + tz * nz);  // |t| cos theta_i (n towards the light)
+    if (q.has_normal) dark = dark | (hx4 * abs(nx) + hy4 * abs(ny) + hz4 * abs(nz) + tn <= zero);
     // theta_x = max(0, theta_w - theta_o), then cos(max(0, theta_x - theta_b)); normals pointing
-    // everywhere (cos theta_o = -1: any cluster holding a lamp's globe) have no bound.
-    const F4 cos_w = wx4 * dx + wy4 * dy + wz4 * dz;
-    const F4 sin_w = sqrt(max(zero, one - cos_w * cos_w));
-    const F4 within_o = cos_w > cos_o;
-    const F4 sin_o = sqrt(max(zero, one - cos_o * cos_o));
-    const F4 cos_x = select(within_o, one, cos_w * cos_o + sin_w * sin_o);
-    const F4 sin_x = select(within_o, zero, sin_w * cos_o - cos_w * sin_o);
-    const F4 cos_p = select((cos_o <= F4(-1.f)) | (cos_x > cos_b), one, cos_x * cos_b + sin_x * sin_b);
+    // everywhere (cos theta_o = -1: any cluster holding a lamp's globe) have no bound, and a
+    // node of such clusters only (all of the lamps' tree) skips the cone.
+    F4 cos_p = one;
+    if (any(cos_o > F4(-1.f))) {
+        const F4 cos_w = tw * inv_dist;
+        const F4 sin_w = sqrt(max(zero, dist2 - tw * tw)) * inv_dist;
+        const F4 within_o = cos_w > cos_o;
+        const F4 sin_o = sqrt(max(zero, one - cos_o * cos_o));
+        const F4 cos_x = select(within_o, one, cos_w * cos_o + sin_w * sin_o);
+        const F4 sin_x = select(within_o, zero, sin_w * cos_o - cos_w * sin_o);
+        cos_p = select((cos_o <= F4(-1.f)) | (cos_x > cos_b), one, cos_x * cos_b + sin_x * sin_b);
+    }
     F4 factor = F4::load(phi) * cos_p;  // theta_e = 90 degrees: cos_p <= 0 sends nothing
     if (q.has_normal) {
         // Our surfaces only reflect (glass is never sampled): a cluster wholly below the
         // horizon of n cannot light p.
-        const F4 cos_i = zero - (dx * nx + dy * ny + dz * nz);
-        const F4 sin_i = sqrt(max(zero, one - cos_i * cos_i));
+        const F4 cos_i = tn * inv_dist;
+        const F4 sin_i = sqrt(max(zero, dist2 - tn * tn)) * inv_dist;
         factor = factor * select(cos_i > cos_b, one, cos_i * cos_b + sin_i * sin_b);
     }
     factor = select(dark | !(factor > zero), zero, factor);

@@ -273,15 +273,14 @@ void LightSampler::lane_probabilities(const LightQuery& q, const Node& node, dou
         sum_least += least[i];
         sum_phi += node.bounds.phi[i];
     }
-    for (int i = 0; i < 4; ++i) {
-        if (!(sum_most > 0)) {
-            p[i] = node.bounds.phi[i] / sum_phi;
-            continue;
-        }
-        const double by_most = most[i] / sum_most;
-        const double by_least = sum_least > 0 ? least[i] / sum_least : by_most;
-        p[i] = kMostShare * by_most + (1 - kMostShare) * by_least;
+    if (!(sum_most > 0)) {
+        for (int i = 0; i < 4; ++i) p[i] = node.bounds.phi[i] / sum_phi;
+        return;
     }
+    // kMostShare x most / sum_most + (1 - kMostShare) x least / sum_least, two divisions a node.
+    const double by_most = sum_least > 0 ? kMostShare / sum_most : 1 / sum_most;
+    const double by_least = sum_least > 0 ? (1 - kMostShare) / sum_least : 0;
+    for (int i = 0; i < 4; ++i) p[i] = most[i] * by_most + least[i] * by_least;
 }
 
 size_t LightSampler::bytes() const {
