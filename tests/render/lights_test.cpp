@@ -161,8 +161,9 @@ TEST(SceneLights, WindowChoiceByRejectionIsInProportionToWeight) {
             EXPECT_NEAR(double(hits[i]) / n, p, 4 * std::sqrt(p * (1 - p) / n) + 1e-12)
                 << "candidate " << i << ", bound " << c.bound << ", " << c.rounds << " rounds";
         }
-        if (c.bound == 3.0 && c.rounds == 8)
+        if (c.bound == 3.0 && c.rounds == 8) {
             EXPECT_LT(evaluations, 4 * n) << "a tight bound should rarely need the sum";
+        }
     }
     EXPECT_EQ(choose_in_proportion(3, 1.0, 4, 0.5, [](int) { return 0.0; }), -1);
 }
