@@ -210,6 +210,8 @@ WindowPoint SceneLights::window_point(const WallGeometry& g, int floor, int slot
 
 Color WindowPoint::radiance() const { return window_base_radiance(key, shop) * window_pattern(key, s, t); }
 
+double WindowPoint::mean_luminance() const { return window_base_luminance(key, shop) * kWindowPatternMean; }
+
 bool SceneLights::lit_window_at(const Hit& hit) const {
     if (hit.kind != ObjectKind::Building || hit.cell == 0 || !is_pane_material(hit.material)) return false;
     if (!scene_ || !(options_.lit_windows > 0) || hit.object >= scene_->buildings.size()) return false;

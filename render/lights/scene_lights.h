@@ -70,6 +70,7 @@ struct WindowPoint {
     bool shop = false;
     double s = 0, t = 0;  // across the pane, in [0, 1]
     Color radiance() const;
+    double mean_luminance() const;  // of the whole pane (its noise pattern's mean)
 };
 
 struct LightSample {

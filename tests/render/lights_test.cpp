@@ -329,19 +329,27 @@ TEST(SceneLights, EverySamplerAndBsdfSamplingAloneConvergeToTheSameMean) {
     r.integrator.max_depth = 3;
     const Camera camera = Camera::look_at({-30, 0, 1.7}, {10, 0, 4}, 70, r.width, r.height);
 
-    auto render_with = [&](LightSamplerKind kind, bool next_event, int spp) {
+    auto render_with = [&](LightSamplerKind kind, bool next_event, int spp, double shadow_roulette = 0) {
         const SceneLights lights(scene, FacadeOptions{scene.header.seed}, night_lights(kind));
         RenderSettings settings = r;
         settings.spp = spp;
         settings.integrator.sample_lights = next_event;
+        settings.integrator.shadow_roulette = shadow_roulette;
         return render_image({*render_scene, materials, sky, settings.integrator, nullptr, &lights}, camera, settings);
     };
     const Film reference = render_with(LightSamplerKind::Tree, true, 256);
+    // Shadow roulette with a threshold at the image's mean radiance: most shadow rays are left
+    // to chance, and the mean must not move.
+    double mean_radiance = 0;
+    for (float v : reference.rgb) mean_radiance += v;
+    mean_radiance /= double(reference.rgb.size());
     const Film cases[] = {render_with(LightSamplerKind::Power, true, 256),
                           render_with(LightSamplerKind::Uniform, true, 256),
-                          render_with(LightSamplerKind::Tree, false, 1024)};
-    const char* names[] = {"power", "uniform", "BSDF sampling alone"};
-    for (int i = 0; i < 3; ++i) {
+                          render_with(LightSamplerKind::Tree, false, 1024),
+                          render_with(LightSamplerKind::Tree, true, 256, mean_radiance)};
+    EXPECT_NE(cases[3].rgb, reference.rgb) << "the roulette should have left shadow rays out";
+    const char* names[] = {"power", "uniform", "BSDF sampling alone", "shadow roulette"};
+    for (int i = 0; i < 4; ++i) {
         const Difference d = difference(cases[i], reference);
         EXPECT_LT(std::fabs(d.mean), 4 * d.standard_error)
             << names[i] << " differs from the tree by " << d.mean << " +- " << d.standard_error << " (mean "
