@@ -24,7 +24,7 @@ double russian_roulette_survival(Color throughput, double min_survival) {
     return std::clamp(strongest, min_survival, 1.0);
 }
 
-double shadow_roulette_for(double exposure) { return exposure > 0 ? 0.01 / exposure : 0; }
+double shadow_roulette_for(double exposure) { return exposure > 0 ? 0.03 / exposure : 0; }
 
 Vec3 offset_origin(Vec3 position, Vec3 normal) {
     const double scale = std::max({std::fabs(position.x), std::fabs(position.y), std::fabs(position.z)});
