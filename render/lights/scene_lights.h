@@ -7,7 +7,7 @@
 // (choose_in_proportion: the strip keeps which cells are lit and its brightest window's power)
 // and a point on the part of its pane the shading point sees through the opening.
 // Strips are small (a few metres) so that the light BVH, not the choice inside a strip, tells
-// the near windows from the far ones, and the choice inside loops over a few windows only.
+// the near windows from the far ones.
 // Sun, moon and sky are not here: the integrator samples them beside these.
 #pragma once
 
