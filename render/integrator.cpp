@@ -24,6 +24,8 @@ double russian_roulette_survival(Color throughput, double min_survival) {
     return std::clamp(strongest, min_survival, 1.0);
 }
 
+double shadow_roulette_for(double exposure) { return exposure > 0 ? 0.03 / exposure : 0; }
+
 Vec3 offset_origin(Vec3 position, Vec3 normal) {
     const double scale = std::max({std::fabs(position.x), std::fabs(position.y), std::fabs(position.z)});
     return position + normal * (1e-4 + 2e-6 * scale);
@@ -145,14 +147,24 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         const bool inside_room = hit.material == kRoomInterior;
         if (lights) {
             // One lamp or window through the light sampler, MIS-weighted against BSDF sampling.
-            // Four numbers drawn whatever the material, so streams stay aligned.
+            // Five numbers drawn whatever the material, so streams stay aligned.
             const double u[4] = {rng.next_double(), rng.next_double(), rng.next_double(), rng.next_double()};
+            const double roulette_u = rng.next_double();  // for shadow_roulette
             LightSample ls;
             if (!delta && sample_lights && !inside_room && lights->sample(hit.position, n, u, &ls)) {
                 const double cos_i = dot(ns, ls.direction);
                 const Color f = cos_i > 0 && dot(n, ls.direction) > 0 ? bsdf_eval(material, ns, wo, ls.direction)
                                                                       : Color{0, 0, 0};
-                if (f.x + f.y + f.z > 0 && ls.pdf > 0) {
+                // Roulette on dim samples, judged before the shadow ray by the window's mean
+                // radiance (its noise pattern is worked out only if the ray passes).
+                double kept = 1;
+                if (settings.shadow_roulette > 0 && f.x + f.y + f.z > 0 && ls.pdf > 0) {
+                    const double emitted = ls.window ? ls.window_point.mean_luminance() : luminance(ls.lamp_radiance);
+                    const double contribution = luminance(throughput * f) * emitted * cos_i / ls.pdf;
+                    kept = std::min(1.0, contribution / settings.shadow_roulette);
+                    if (roulette_u >= kept) kept = 0;
+                }
+                if (kept > 0 && f.x + f.y + f.z > 0 && ls.pdf > 0) {
                     const Vec3 origin = offset_origin(hit.position, n);
                     const Vec3 to = ls.position - origin;
                     const double distance = length(to);
@@ -162,7 +174,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
                     if (shadow.tmax > 0 && !context.scene.occluded(shadow)) {
                         const double w = power_heuristic(ls.pdf, bsdf_pdf(material, ns, wo, ls.direction)) *
                                          fog.transmittance(origin, shadow.direction, distance);
-                        radiance = radiance + throughput * f * ls.radiance() * (cos_i * w / ls.pdf);
+                        radiance = radiance + throughput * f * ls.radiance() * (cos_i * w / (ls.pdf * kept));
                     }
                 }
             }

@@ -46,7 +46,10 @@ Film crop(const Film& film, const PixelRegion& region) {
 
 Film render_view(const PathContext& context, const Camera& camera, const RenderSettings& settings, bool denoise,
                  double exposure, RenderStats* stats) {
-    if (!denoise) return render_image(context, camera, settings, stats);
+    // Shadow rays of lamp and window samples too dim to see at this exposure: roulette (integrator.h).
+    PathContext traced = context;
+    traced.settings.shadow_roulette = shadow_roulette_for(exposure);
+    if (!denoise) return render_image(traced, camera, settings, stats);
     const PixelRegion region = render_region(settings);
     const DenoiseSettings denoise_settings;
     const int margin = denoise_margin(denoise_settings);
@@ -55,7 +58,7 @@ Film render_view(const PathContext& context, const Camera& camera, const RenderS
     wider.denoise_guides = true;
     wider.region = {std::max(0, region.x0 - margin), std::max(0, region.y0 - margin),
                     std::min(settings.width, region.x1 + margin), std::min(settings.height, region.y1 + margin)};
-    Film film = render_image(context, camera, wider, stats);
+    Film film = render_image(traced, camera, wider, stats);
     const auto filter_start = std::chrono::steady_clock::now();
     citygen::denoise(film, exposure, denoise_settings);
     if (stats) stats->denoise_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - filter_start).count();

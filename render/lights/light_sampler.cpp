@@ -11,7 +11,7 @@ namespace {
 
 constexpr int kBuckets = 12;
 constexpr double kMostShare = 0.75;  // weight of the nearest-point share in a descent step
-constexpr int kMaxSahDepth = 40;  // below this, plain median splits keep the trail within 64 bits
+constexpr int kMaxSahDepth = 40;  // below this, plain median splits
 
 // pbrt-v4's cost of a cluster for the split search: power x solid angle of its orientation
 // cone x surface area, stretched for thin boxes across the split axis.
@@ -60,21 +60,58 @@ LightSampler::LightSampler(const std::vector<LightBounds>& lights, LightSamplerK
     } else if (kind == LightSamplerKind::Tree) {
         std::vector<Item> items(lights.size());
         for (size_t i = 0; i < lights.size(); ++i) items[i] = {lights[i], static_cast<uint32_t>(i)};
-        trails_.assign(lights.size(), 0);
-        nodes_.reserve(2 * lights.size());
+        std::vector<BinaryNode> tree(1);
+        tree.reserve(2 * lights.size());
+        build(items, 0, items.size(), 0, 0, tree);
+        leaf_of_.assign(lights.size(), 0);
         nodes_.emplace_back();
-        LightBounds all;
-        build(items, 0, items.size(), 0, 0, 0, &all);
+        parents_.push_back(kRoot);
+        collapse(tree, 0, 0);
+        nodes_.shrink_to_fit();
+        parents_.shrink_to_fit();
     }
 }
 
-void LightSampler::build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth, uint32_t self,
-                         LightBounds* bounds) {
+void LightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self) {
+    // The lanes: b's children, each replaced by its own two children where it has them (a lone
+    // light at the root is a node with one lane).
+    uint32_t lanes[4];
+    int count = 0;
+    if (tree[b].index & kLeaf) {
+        lanes[count++] = b;
+    } else {
+        for (uint32_t c = tree[b].index; c < tree[b].index + 2; ++c) {
+            if (tree[c].index & kLeaf) {
+                lanes[count++] = c;
+            } else {
+                lanes[count++] = tree[c].index;
+                lanes[count++] = tree[c].index + 1;
+            }
+        }
+    }
+    for (int lane = 0; lane < count; ++lane) {
+        const BinaryNode& child = tree[lanes[lane]];
+        nodes_[self].bounds.set(lane, child.bounds);
+        if (child.index & kLeaf) {
+            nodes_[self].child[lane] = child.index;
+            leaf_of_[child.index & ~kLeaf] = self * 4 + lane;
+        } else {
+            const uint32_t node = static_cast<uint32_t>(nodes_.size());
+            if (node >= kLeaf / 4) throw Error("too many lights for the light sampler");
+            nodes_.emplace_back();
+            parents_.push_back(self * 4 + lane);
+            nodes_[self].child[lane] = node;
+            collapse(tree, lanes[lane], node);
+        }
+    }
+    for (int lane = count; lane < 4; ++lane) nodes_[self].child[lane] = kLeaf;  // empty: power 0, never chosen
+}
+
+void LightSampler::build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint32_t self,
+                         std::vector<BinaryNode>& tree) {
     if (end - begin == 1) {
-        *bounds = items[begin].bounds;
-        nodes_[self].bounds = CompactLightBounds(items[begin].bounds);
-        nodes_[self].index = kLeaf | items[begin].light;
-        trails_[items[begin].light] = trail;
+        tree[self].bounds = items[begin].bounds;
+        tree[self].index = kLeaf | items[begin].light;
         return;
     }
     Vec3 cmin{1e300, 1e300, 1e300}, cmax{-1e300, -1e300, -1e300};
@@ -133,14 +170,12 @@ void LightSampler::build(std::vector<Item>& items, size_t begin, size_t end, uin
                              return ca < cb || (ca == cb && a.light < b.light);
                          });
     }
-    const uint32_t first = static_cast<uint32_t>(nodes_.size());
-    nodes_.resize(nodes_.size() + 2);
-    LightBounds first_bounds, second_bounds;
-    build(items, begin, mid, trail, depth + 1, first, &first_bounds);
-    build(items, mid, end, trail | (uint64_t{1} << depth), depth + 1, first + 1, &second_bounds);
-    *bounds = union_of(first_bounds, second_bounds);
-    nodes_[self].bounds = CompactLightBounds(*bounds);
-    nodes_[self].index = first;
+    const uint32_t first = static_cast<uint32_t>(tree.size());
+    tree.resize(tree.size() + 2);
+    build(items, begin, mid, depth + 1, first, tree);
+    build(items, mid, end, depth + 1, first + 1, tree);
+    tree[self].bounds = union_of(tree[first].bounds, tree[first + 1].bounds);
+    tree[self].index = first;
 }
 
 bool LightSampler::sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {
@@ -168,22 +203,29 @@ bool LightSampler::sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf
     const LightQuery q(p, n);
     uint32_t node = 0;
     double probability = 1;
-    while (!nodes_[node].leaf()) {
-        const uint32_t first = nodes_[node].index, second = first + 1;
-        const double p0 = first_child_probability(q, node);
-        if (u < p0) {
-            node = first;
-            u = std::min(u / p0, 0x1.fffffffffffffp-1);
-            probability *= p0;
-        } else {
-            node = second;
-            u = std::min((u - p0) / (1 - p0), 0x1.fffffffffffffp-1);
-            probability *= 1 - p0;
+    for (;;) {
+        double lane_p[4];
+        lane_probabilities(q, nodes_[node], lane_p);
+        // The lane u falls in (the last with a chance if rounding leaves u above their sum),
+        // and u rescaled to it for the next step.
+        int lane = -1;
+        for (int i = 0; i < 4; ++i) {
+            if (!(lane_p[i] > 0)) continue;
+            lane = i;
+            if (u < lane_p[i]) break;
+            u -= lane_p[i];
         }
+        if (lane < 0) return false;
+        u = std::min(u / lane_p[lane], 0x1.fffffffffffffp-1);
+        probability *= lane_p[lane];
+        const uint32_t child = nodes_[node].child[lane];
+        if (child & kLeaf) {
+            *light = child & ~kLeaf;
+            *pmf = probability;
+            return true;
+        }
+        node = child;
     }
-    *light = nodes_[node].light();
-    *pmf = probability;
-    return true;
 }
 
 double LightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
@@ -196,42 +238,54 @@ double LightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
         }
         case LightSamplerKind::Tree: break;
     }
-    uint64_t trail = trails_[light];
+    // The lanes from the light up to the root, then their probabilities multiplied from the
+    // root down, in the order sample() multiplies them (the same double, bit for bit).
+    uint32_t path[64];
+    int depth = 0;
+    for (uint32_t at = leaf_of_[light]; at != kRoot && depth < 64; at = parents_[at / 4]) path[depth++] = at;
     const LightQuery q(p, n);
-    uint32_t node = 0;
     double probability = 1;
-    while (!nodes_[node].leaf()) {
-        const double p0 = first_child_probability(q, node);
-        probability *= (trail & 1) ? 1 - p0 : p0;
-        node = nodes_[node].index + (trail & 1);
-        trail >>= 1;
+    while (depth > 0) {
+        const uint32_t at = path[--depth];
+        double lane_p[4];
+        lane_probabilities(q, nodes_[at / 4], lane_p);
+        probability *= lane_p[at % 4];
     }
     return probability;
 }
 
-// The chance of descending into the first child: a blend of the two children's shares of the
-// `most` bounds and of the `least` bounds (CompactLightBounds::importance; Cycles' light tree
-// takes their mean): the nearest-point bound alone would favour any big cluster around p, the
-// farthest-point bound alone any small one. Weighting the nearest-point share 3:1 gave the
-// lowest error on the night street of tests/bench/night_bench.sh at 320x180 (display MSE 0.020
-// with 1:1, 0.015 with 3:1, 0.016 with 9:1, 0.025 with the nearest point alone, 0.041 with 1:3).
-// Where neither child can light p (the bounds are loose enough that a cluster may pass the test
+// The chance of each lane: a blend of its share of the lanes' `most` bounds and of their
+// `least` bounds (LightBounds4::importance; Cycles' light tree takes their mean): the
+// nearest-point bound alone would favour any big cluster around p, the farthest-point bound
+// alone any small one. Weighting the nearest-point share 3:1 gave the lowest error on the night
+// street of tests/bench/night_bench.sh at 320x180 (display MSE 0.020 with 1:1, 0.015 with 3:1,
+// 0.016 with 9:1, 0.025 with the nearest point alone, 0.041 with 1:3; measured with the binary
+// tree, whose two-child steps follow the same rule).
+// Where no lane can light p (the bounds are loose enough that a cluster may pass the test
 // its children all fail), in proportion to power. So every descent ends at a light and the
 // probabilities of all lights sum to one; a light that cannot reach p then contributes nothing.
-double LightSampler::first_child_probability(const LightQuery& q, uint32_t node) const {
-    const CompactLightBounds& a = nodes_[nodes_[node].index].bounds;
-    const CompactLightBounds& b = nodes_[nodes_[node].index + 1].bounds;
-    double most_a, least_a, most_b, least_b;
-    a.importance(q, &most_a, &least_a);
-    b.importance(q, &most_b, &least_b);
-    if (!(most_a + most_b > 0)) return double(a.phi) / (double(a.phi) + double(b.phi));
-    const double by_most = most_a / (most_a + most_b);
-    const double by_least = least_a + least_b > 0 ? least_a / (least_a + least_b) : by_most;
-    return kMostShare * by_most + (1 - kMostShare) * by_least;
+void LightSampler::lane_probabilities(const LightQuery& q, const Node& node, double p[4]) const {
+    float most[4], least[4];
+    node.bounds.importance(q, most, least);
+    double sum_most = 0, sum_least = 0, sum_phi = 0;
+    for (int i = 0; i < 4; ++i) {
+        sum_most += most[i];
+        sum_least += least[i];
+        sum_phi += node.bounds.phi[i];
+    }
+    if (!(sum_most > 0)) {
+        for (int i = 0; i < 4; ++i) p[i] = node.bounds.phi[i] / sum_phi;
+        return;
+    }
+    // kMostShare x most / sum_most + (1 - kMostShare) x least / sum_least, two divisions a node.
+    const double by_most = sum_least > 0 ? kMostShare / sum_most : 1 / sum_most;
+    const double by_least = sum_least > 0 ? (1 - kMostShare) / sum_least : 0;
+    for (int i = 0; i < 4; ++i) p[i] = most[i] * by_most + least[i] * by_least;
 }
 
 size_t LightSampler::bytes() const {
-    return nodes_.capacity() * sizeof(Node) + trails_.capacity() * sizeof(uint64_t) + cdf_.capacity() * sizeof(double);
+    return nodes_.capacity() * sizeof(Node) + parents_.capacity() * sizeof(uint32_t) + leaf_of_.capacity() * sizeof(uint32_t) +
+           cdf_.capacity() * sizeof(double);
 }
 
 }  // namespace citygen

@@ -34,27 +34,35 @@ public:
     size_t bytes() const;
 
 private:
+    // A node of the 4-wide tree: up to four children (the grandchildren of a node of the binary
+    // tree the build makes, or its children where those are leaves).
     struct Node {
-        CompactLightBounds bounds;
-        uint32_t index = 0;  // leaf: kLeaf | the light; interior: its first child (the second follows it)
-        bool leaf() const { return index & kLeaf; }
-        uint32_t light() const { return index & ~kLeaf; }
+        LightBounds4 bounds;
+        uint32_t child[4];  // kLeaf | the light, or a node; lanes with no power are empty
     };
     static constexpr uint32_t kLeaf = 0x80000000u;
+    static constexpr uint32_t kRoot = ~0u;
     struct Item {
         LightBounds bounds;
         uint32_t light;
     };
-    double first_child_probability(const LightQuery& q, uint32_t node) const;
-    // Builds the subtree of items [begin, end) in node `self`; its bounds go to `bounds`.
-    // Siblings are stored side by side, so each step down reads one place in memory.
-    void build(std::vector<Item>& items, size_t begin, size_t end, uint64_t trail, int depth, uint32_t self,
-               LightBounds* bounds);
+    struct BinaryNode {
+        LightBounds bounds;
+        uint32_t index = 0;  // leaf: kLeaf | the light; interior: its first child (the second follows it)
+    };
+    // The probability of each of a node's lanes for q (empty lanes: 0).
+    void lane_probabilities(const LightQuery& q, const Node& node, double p[4]) const;
+    // Builds the binary subtree of items [begin, end) in tree[self] (siblings side by side).
+    static void build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint32_t self,
+                      std::vector<BinaryNode>& tree);
+    // Makes node `self` of the 4-wide tree from binary node `b` and its descendants.
+    void collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self);
 
     LightSamplerKind kind_ = LightSamplerKind::Tree;
     size_t light_count_ = 0;
-    std::vector<Node> nodes_;          // tree, depth first
-    std::vector<uint64_t> trails_;     // tree: per light, the child taken at each depth (bit d)
+    std::vector<Node> nodes_;          // tree, root first
+    std::vector<uint32_t> parents_;    // tree: per node, its parent x 4 + its lane there (root: kRoot)
+    std::vector<uint32_t> leaf_of_;    // tree: per light, the node holding it x 4 + its lane
     std::vector<double> cdf_;          // power: running sum of powers
 };
 

@@ -17,6 +17,10 @@ namespace {
 
 bool is_pane_material(uint16_t m) { return m == kGlass || m == kShopWindow; }
 
+// Rejection rounds before a strip's window is chosen by summing: a round keeps its candidate
+// with probability (its weight / the strip's brightest), about one in two; rarely all 8 refuse.
+constexpr int kRejectionRounds = 8;
+
 // 1 - cos of the half-angle a sphere of radius r subtends from distance d > r (stable when far).
 double one_minus_cos_sphere(double r, double d) {
     const double sin2 = (r * r) / (d * d);
@@ -63,18 +67,25 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
                 const int count = std::min(kFloorsPerStrip, L.floors - first);
                 for (int first_slot = 0; first_slot < L.slots; first_slot += kSlotsPerStrip) {
                     const int slot_count = std::min(kSlotsPerStrip, L.slots - first_slot);
-                    double weight = 0;
+                    double weight = 0, max_weight = 0;
+                    uint16_t lit = 0;
                     for (int floor = first; floor < first + count; ++floor) {
                         for (int slot = first_slot; slot < first_slot + slot_count; ++slot) {
                             ++windows_;
                             const double wgt = window_weight(g, floor, slot);
-                            lit_windows_ += wgt > 0;
+                            if (!(wgt > 0)) continue;
+                            ++lit_windows_;
+                            lit |= uint16_t(1u << ((floor - first) * slot_count + slot - first_slot));
                             weight += wgt;
+                            max_weight = std::max(max_weight, wgt);
                         }
                     }
                     if (!(weight > 0)) continue;
-                    strips_.push_back({b, w, static_cast<uint16_t>(first), static_cast<uint16_t>(count),
-                                       static_cast<uint16_t>(first_slot), static_cast<uint16_t>(slot_count), float(weight)});
+                    float max_rounded = static_cast<float>(max_weight);  // a bound for rejection: never below
+                    if (max_rounded < max_weight) max_rounded = std::nextafter(max_rounded, 1e30f);
+                    strips_.push_back({b, w, static_cast<uint16_t>(first), static_cast<uint16_t>(first_slot),
+                                       static_cast<uint8_t>(count), static_cast<uint8_t>(slot_count), lit, float(weight),
+                                       max_rounded});
                     // Bounds: the strip's cells of the wall at the pane depth, facing out of the building.
                     const double v0 = L.grid_v0 + first * L.floor_height, v1 = v0 + count * L.floor_height;
                     const double u0 = L.grid_u0 + first_slot * L.slot_width, u1 = u0 + slot_count * L.slot_width;
@@ -172,6 +183,10 @@ bool SceneLights::derive_wall_geometry(const BuildingWalls& walls, uint32_t buil
 // area; 0 when the window is dark.
 double SceneLights::window_weight(const WallGeometry& g, int floor, int slot) const {
     if (!window_lit(facades_, g.building_key, g.wall, g.layout, floor, slot, options_.lit_windows)) return 0;
+    return lit_window_weight(g, floor, slot);
+}
+
+double SceneLights::lit_window_weight(const WallGeometry& g, int floor, int slot) const {
     const bool shop = cell_kind(g.layout, floor, slot) == CellKind::Shop;
     const uint64_t key = window_key(facades_.seed, g.building_key, g.wall, floor, slot);
     // The opening's size from the rules' own rectangles (cheaper than building the cell's panes).
@@ -180,31 +195,6 @@ double SceneLights::window_weight(const WallGeometry& g, int floor, int slot) co
                         : kind == CellKind::Balcony ? g.layout.door
                                                     : g.layout.window;
     return window_base_luminance(key, shop) * kWindowPatternMean * (r.u1 - r.u0) * (r.v1 - r.v0);
-}
-
-struct SceneLights::SeenWindow {
-    int floor, slot;
-    double power;  // window_weight x visible area / pane area
-    Pane visible;
-};
-
-double SceneLights::seen_windows(const Strip& strip, const WallGeometry& g, Vec3 p, SeenWindow* out, int* count) const {
-    const Vec3 local = g.frame.point_to_local(p);
-    double total = 0;
-    *count = 0;
-    for (int f = strip.first_floor; f < strip.first_floor + strip.floor_count; ++f) {
-        for (int s = strip.first_slot; s < strip.first_slot + strip.slot_count; ++s) {
-            const double w = window_weight(g, f, s);
-            if (!(w > 0)) continue;
-            const Pane pane = window_pane(g.layout, f, s);
-            const Pane visible = visible_pane(pane, local);
-            const double power = w * (visible.area() / pane.area());
-            if (!(power > 0)) continue;
-            out[(*count)++] = {f, s, power, visible};
-            total += power;
-        }
-    }
-    return total;
 }
 
 WindowPoint SceneLights::window_point(const WallGeometry& g, int floor, int slot, Vec3 position) const {
@@ -219,6 +209,8 @@ WindowPoint SceneLights::window_point(const WallGeometry& g, int floor, int slot
 }
 
 Color WindowPoint::radiance() const { return window_base_radiance(key, shop) * window_pattern(key, s, t); }
+
+double WindowPoint::mean_luminance() const { return window_base_luminance(key, shop) * kWindowPatternMean; }
 
 bool SceneLights::lit_window_at(const Hit& hit) const {
     if (hit.kind != ObjectKind::Building || hit.cell == 0 || !is_pane_material(hit.material)) return false;
@@ -289,28 +281,25 @@ bool SceneLights::sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) co
         out->pdf *= pmf;
         return true;
     }
-    // A strip of windows: one lit window in proportion to the power it sends through its opening
-    // towards p, then a point on the part of its pane p can see (the rest is behind the reveals:
-    // its samples would all be blocked).
+    // A strip of windows: one lit window in proportion to its power (its weight: the strip's
+    // total weight is known, so the chance needs no sum over the strip), then a point on the
+    // part of its pane p can see (the rest is behind the reveals: its samples would all be blocked).
     const Strip& strip = strips_[light - lamps_.size()];
     WallGeometry g;
     if (!wall_geometry(strip.building, strip.wall, &g)) return false;
-    SeenWindow windows[kFloorsPerStrip * kSlotsPerStrip];
-    int count = 0;
-    const double total = seen_windows(strip, g, p, windows, &count);
-    if (!(total > 0)) return false;
-    const double target = u[3] * total;
-    int chosen = count - 1;  // the last if rounding leaves target above the sum
-    double sum = 0;
-    for (int i = 0; i < count; ++i) {
-        sum += windows[i].power;
-        if (target < sum) {
-            chosen = i;
-            break;
-        }
-    }
-    const SeenWindow& window = windows[chosen];
-    const Pane& pane = window.visible;
+    int cells[kFloorsPerStrip * kSlotsPerStrip], count = 0;
+    for (int bit = 0; bit < strip.floor_count * strip.slot_count; ++bit)
+        if (strip.lit >> bit & 1) cells[count++] = bit;
+    auto floor_of = [&](int i) { return strip.first_floor + cells[i] / strip.slot_count; };
+    auto slot_of = [&](int i) { return strip.first_slot + cells[i] % strip.slot_count; };
+    const int chosen = choose_in_proportion(count, strip.max_weight, kRejectionRounds, u[3], [&](int i) {
+        return lit_window_weight(g, floor_of(i), slot_of(i));
+    });
+    if (chosen < 0) return false;
+    const int floor = floor_of(chosen), slot = slot_of(chosen);
+    const double weight = lit_window_weight(g, floor, slot);
+    const Pane pane = visible_pane(window_pane(g.layout, floor, slot), g.frame.point_to_local(p));
+    if (!(pane.area() > 0)) return false;  // p sees none of it: no light from it reaches p
     const Vec3 position = g.frame.to_world(pane.u0 + u[1] * (pane.u1 - pane.u0), pane.v0 + u[2] * (pane.v1 - pane.v0),
                                            pane.at);
     const Vec3 to = position - p;
@@ -323,8 +312,8 @@ bool SceneLights::sample(Vec3 p, Vec3 n, const double u[4], LightSample* out) co
     out->direction = dir;
     out->distance = distance;
     out->window = true;
-    out->window_point = window_point(g, window.floor, window.slot, position);
-    out->pdf = pmf * (window.power / total) / pane.area() * distance * distance / cos_light;
+    out->window_point = window_point(g, floor, slot, position);
+    out->pdf = pmf * (weight / strip.weight) / pane.area() * distance * distance / cos_light;
     return true;
 }
 
@@ -344,15 +333,10 @@ double SceneLights::pdf(Vec3 p, Vec3 n, const Hit& hit) const {
     const double distance2 = dot(to, to);
     const double cos_light = dot(to * (1 / std::sqrt(distance2)), g.frame.w_axis);
     if (!(cos_light > 0)) return 0;
-    SeenWindow windows[kFloorsPerStrip * kSlotsPerStrip];
-    int count = 0;
-    const double total = seen_windows(strip, g, p, windows, &count);
-    for (int i = 0; i < count; ++i) {
-        if (windows[i].floor != floor || windows[i].slot != slot) continue;
-        const double pmf = light_pmf(p, n, static_cast<uint32_t>(light));
-        return pmf * (windows[i].power / total) / windows[i].visible.area() * distance2 / cos_light;
-    }
-    return 0;  // a window p cannot see (rounding at the edge of its opening): sampling never picks it
+    const Pane visible = visible_pane(window_pane(g.layout, floor, slot), g.frame.point_to_local(p));
+    if (!(visible.area() > 0)) return 0;  // a window p cannot see (rounding at the edge of its opening)
+    return light_pmf(p, n, static_cast<uint32_t>(light)) * (lit_window_weight(g, floor, slot) / strip.weight) /
+           visible.area() * distance2 / cos_light;
 }
 
 }  // namespace citygen

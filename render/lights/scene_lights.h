@@ -3,12 +3,15 @@
 //
 // Lit windows store nothing per window: a light is a strip of one wall, up to kFloorsPerStrip
 // floors by kSlotsPerStrip slots, carrying the summed power of its lit windows; sampling it picks
-// one lit window from the facade rules (window_lit, window_glow.h) and a point on its pane.
+// one lit window from the facade rules (window_lit, window_glow.h) in proportion to its power
+// (choose_in_proportion: the strip keeps which cells are lit and its brightest window's power)
+// and a point on the part of its pane the shading point sees through the opening.
 // Strips are small (a few metres) so that the light BVH, not the choice inside a strip, tells
-// the near windows from the far ones, and the choice inside loops over a few windows only.
+// the near windows from the far ones.
 // Sun, moon and sky are not here: the integrator samples them beside these.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +22,39 @@
 #include "scene.h"
 
 namespace citygen {
+
+// Picks one of `count` candidates with probability weight(i) / (the sum of all weights), each
+// weight at most `bound`, usually without working out every weight: a uniform candidate is kept
+// with probability weight(i) / bound (rejection sampling), the retries' numbers taken from u
+// itself (what is left of it after each step, rescaled to [0, 1)). After `rounds` refusals it
+// chooses by summing all weights: a mixture of two choices in proportion to weight is one too.
+// -1 when every weight is 0.
+template <class Weight>
+int choose_in_proportion(int count, double bound, int rounds, double u, const Weight& weight) {
+    constexpr double kBelowOne = 0x1.fffffffffffffp-1;
+    for (int round = 0; round < rounds && count > 0 && bound > 0; ++round) {
+        const double x = u * count;
+        const int i = std::min(static_cast<int>(x), count - 1);
+        const double v = std::min(x - i, kBelowOne);
+        const double keep = weight(i) / bound;
+        if (v < keep) return i;
+        u = std::min((v - keep) / (1 - keep), kBelowOne);
+    }
+    double total = 0;
+    for (int i = 0; i < count; ++i) total += weight(i);
+    if (!(total > 0)) return -1;
+    const double target = u * total;
+    double sum = 0;
+    int last = -1;
+    for (int i = 0; i < count; ++i) {
+        const double w = weight(i);
+        if (!(w > 0)) continue;
+        last = i;
+        sum += w;
+        if (target < sum) break;
+    }
+    return last;  // the last with weight if rounding leaves target above the sum
+}
 
 struct LightOptions {
     bool lamps = true;                // lamps glow
@@ -34,6 +70,7 @@ struct WindowPoint {
     bool shop = false;
     double s = 0, t = 0;  // across the pane, in [0, 1]
     Color radiance() const;
+    double mean_luminance() const;  // of the whole pane (its noise pattern's mean)
 };
 
 struct LightSample {
@@ -86,8 +123,11 @@ private:
     };
     struct Strip {
         uint32_t building, wall;
-        uint16_t first_floor, floor_count, first_slot, slot_count;
-        float weight;  // sum of the lit windows' weights (window_weight)
+        uint16_t first_floor, first_slot;
+        uint8_t floor_count, slot_count;
+        uint16_t lit;      // bit (floor - first_floor) x slot_count + slot - first_slot: the cell's window is lit
+        float weight;      // sum of the lit windows' weights (window_weight)
+        float max_weight;  // the largest of them, rounded up
     };
     struct WallGeometry {
         WallLayout layout;
@@ -97,12 +137,8 @@ private:
     };
     bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;  // cached per thread
     bool derive_wall_geometry(const BuildingWalls& walls, uint32_t building, uint32_t wall, WallGeometry* out) const;
-    double window_weight(const WallGeometry& g, int floor, int slot) const;
-    // The lit windows of a strip as point p sees them: each one's power reaching p's side
-    // through its opening (its weight times the share of its pane p can see, visible_pane) and
-    // that visible part; returns their sum. Sampling and pdf both choose by it.
-    struct SeenWindow;
-    double seen_windows(const Strip& strip, const WallGeometry& g, Vec3 p, SeenWindow* out, int* count) const;
+    double window_weight(const WallGeometry& g, int floor, int slot) const;  // 0: dark
+    double lit_window_weight(const WallGeometry& g, int floor, int slot) const;  // of a window known lit
     // Light index of the strip holding a pane hit; -1 if none.
     int64_t strip_light(const Hit& hit) const;
     WindowPoint window_point(const WallGeometry& g, int floor, int slot, Vec3 position) const;

@@ -130,6 +130,44 @@ double lamp_choice_spread(const SceneLights& lights, const Scene& scene, Vec3 p,
     return second / (sum * sum);
 }
 
+TEST(SceneLights, WindowChoiceByRejectionIsInProportionToWeight) {
+    // A strip's window is chosen by rejection with a fallback to summing (choose_in_proportion);
+    // the chance of each must be its weight over the sum, as the pdf assumes, whether the
+    // rejection rounds mostly succeed (tight bound), mostly fail (loose bound: the fallback takes
+    // over) or are not tried at all.
+    const double weights[] = {0.5, 0, 2.0, 1.0, 0.25, 3.0, 0, 1.25};
+    const int count = 8;
+    double sum = 0;
+    for (double w : weights) sum += w;
+    struct Case {
+        double bound;
+        int rounds;
+    };
+    for (const Case c : {Case{3.0, 8}, Case{30.0, 3}, Case{3.0, 0}, Case{3.0, 1}}) {
+        int hits[count] = {};
+        int evaluations = 0;
+        const int n = 200000;
+        Rng rng(21);
+        for (int k = 0; k < n; ++k) {
+            const int i = choose_in_proportion(count, c.bound, c.rounds, rng.next_double(), [&](int j) {
+                ++evaluations;
+                return weights[j];
+            });
+            ASSERT_GE(i, 0);
+            ++hits[i];
+        }
+        for (int i = 0; i < count; ++i) {
+            const double p = weights[i] / sum;
+            EXPECT_NEAR(double(hits[i]) / n, p, 4 * std::sqrt(p * (1 - p) / n) + 1e-12)
+                << "candidate " << i << ", bound " << c.bound << ", " << c.rounds << " rounds";
+        }
+        if (c.bound == 3.0 && c.rounds == 8) {
+            EXPECT_LT(evaluations, 4 * n) << "a tight bound should rarely need the sum";
+        }
+    }
+    EXPECT_EQ(choose_in_proportion(3, 1.0, 4, 0.5, [](int) { return 0.0; }), -1);
+}
+
 TEST(SceneLights, LitWindowsDoNotBlurTheTreesChoiceOfLamp) {
     // The lamps have a tree of their own: with windows lit, a point on the road or a facade
     // chooses among the lamps exactly as it does with every window dark.
@@ -291,19 +329,27 @@ TEST(SceneLights, EverySamplerAndBsdfSamplingAloneConvergeToTheSameMean) {
     r.integrator.max_depth = 3;
     const Camera camera = Camera::look_at({-30, 0, 1.7}, {10, 0, 4}, 70, r.width, r.height);
 
-    auto render_with = [&](LightSamplerKind kind, bool next_event, int spp) {
+    auto render_with = [&](LightSamplerKind kind, bool next_event, int spp, double shadow_roulette = 0) {
         const SceneLights lights(scene, FacadeOptions{scene.header.seed}, night_lights(kind));
         RenderSettings settings = r;
         settings.spp = spp;
         settings.integrator.sample_lights = next_event;
+        settings.integrator.shadow_roulette = shadow_roulette;
         return render_image({*render_scene, materials, sky, settings.integrator, nullptr, &lights}, camera, settings);
     };
     const Film reference = render_with(LightSamplerKind::Tree, true, 256);
+    // Shadow roulette with a threshold at the image's mean radiance: most shadow rays are left
+    // to chance, and the mean must not move.
+    double mean_radiance = 0;
+    for (float v : reference.rgb) mean_radiance += v;
+    mean_radiance /= double(reference.rgb.size());
     const Film cases[] = {render_with(LightSamplerKind::Power, true, 256),
                           render_with(LightSamplerKind::Uniform, true, 256),
-                          render_with(LightSamplerKind::Tree, false, 1024)};
-    const char* names[] = {"power", "uniform", "BSDF sampling alone"};
-    for (int i = 0; i < 3; ++i) {
+                          render_with(LightSamplerKind::Tree, false, 1024),
+                          render_with(LightSamplerKind::Tree, true, 256, mean_radiance)};
+    EXPECT_NE(cases[3].rgb, reference.rgb) << "the roulette should have left shadow rays out";
+    const char* names[] = {"power", "uniform", "BSDF sampling alone", "shadow roulette"};
+    for (int i = 0; i < 4; ++i) {
         const Difference d = difference(cases[i], reference);
         EXPECT_LT(std::fabs(d.mean), 4 * d.standard_error)
             << names[i] << " differs from the tree by " << d.mean << " +- " << d.standard_error << " (mean "
