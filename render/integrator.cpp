@@ -43,6 +43,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
     const bool sample_lights = lights && settings.sample_lights;
     Vec3 previous_position, previous_normal;
     bool previous_inside_room = false;
+    double previous_light_chance = 1;  // the probability that the previous vertex sampled a light
     const FogSettings& fog = settings.fog;
 
     // Light reaching a point x in the fog from the sun (or moon) and one lamp or window, scattered
@@ -94,6 +95,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
             previous_position = x;
             previous_normal = {0, 0, 0};
             previous_inside_room = false;
+            previous_light_chance = 1;
             if (bounce >= settings.rr_depth) {
                 const double survival = russian_roulette_survival(throughput, settings.rr_prob);
                 if (rng.next_double() >= survival) break;
@@ -128,7 +130,8 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
             if (emitted.x + emitted.y + emitted.z > 0) {
                 const double w = previous_delta || !sample_lights || previous_inside_room
                                      ? 1
-                                     : power_heuristic(previous_pdf, lights->pdf(previous_position, previous_normal, hit));
+                                     : power_heuristic(previous_pdf, previous_light_chance *
+                                                                         lights->pdf(previous_position, previous_normal, hit));
                 radiance = radiance + throughput * emitted * w;
             }
         }
@@ -145,13 +148,20 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         // room still reach an emitter without passing a pane, it keeps its full weight, as
         // next-event estimation did not look for it: unbiased either way.
         const bool inside_room = hit.material == kRoomInterior;
+        double light_chance = 1;
         if (lights) {
             // One lamp or window through the light sampler, MIS-weighted against BSDF sampling.
             // Five numbers drawn whatever the material, so streams stay aligned.
             const double u[4] = {rng.next_double(), rng.next_double(), rng.next_double(), rng.next_double()};
-            const double roulette_u = rng.next_double();  // for shadow_roulette
+            double roulette_u = rng.next_double();  // for light_sampling_throughput, then shadow_roulette
+            const double dim = luminance(throughput);
+            if (settings.light_sampling_throughput > 0 && dim < settings.light_sampling_throughput) {
+                light_chance = std::max(dim / settings.light_sampling_throughput, 1e-6);
+                // The same number decides both roulettes: rescaled to [0, 1) when this one passes.
+                roulette_u = roulette_u < light_chance ? std::min(roulette_u / light_chance, 0x1.fffffffffffffp-1) : 2;
+            }
             LightSample ls;
-            if (!delta && sample_lights && !inside_room && lights->sample(hit.position, n, u, &ls)) {
+            if (!delta && sample_lights && !inside_room && roulette_u < 1 && lights->sample(hit.position, n, u, &ls)) {
                 const double cos_i = dot(ns, ls.direction);
                 const Color f = cos_i > 0 && dot(n, ls.direction) > 0 ? bsdf_eval(material, ns, wo, ls.direction)
                                                                       : Color{0, 0, 0};
@@ -160,7 +170,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
                 double kept = 1;
                 if (settings.shadow_roulette > 0 && f.x + f.y + f.z > 0 && ls.pdf > 0) {
                     const double emitted = ls.window ? ls.window_point.mean_luminance() : luminance(ls.lamp_radiance);
-                    const double contribution = luminance(throughput * f) * emitted * cos_i / ls.pdf;
+                    const double contribution = luminance(throughput * f) * emitted * cos_i / (ls.pdf * light_chance);
                     kept = std::min(1.0, contribution / settings.shadow_roulette);
                     if (roulette_u >= kept) kept = 0;
                 }
@@ -172,9 +182,9 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
                     Ray shadow{origin, to * (1 / distance), 0, distance * (1 - 1e-6) - 2e-3};
                     ++rays;
                     if (shadow.tmax > 0 && !context.scene.occluded(shadow)) {
-                        const double w = power_heuristic(ls.pdf, bsdf_pdf(material, ns, wo, ls.direction)) *
+                        const double w = power_heuristic(light_chance * ls.pdf, bsdf_pdf(material, ns, wo, ls.direction)) *
                                          fog.transmittance(origin, shadow.direction, distance);
-                        radiance = radiance + throughput * f * ls.radiance() * (cos_i * w / (ls.pdf * kept));
+                        radiance = radiance + throughput * f * ls.radiance() * (cos_i * w / (ls.pdf * kept * light_chance));
                     }
                 }
             }
@@ -214,6 +224,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         previous_position = hit.position;
         previous_normal = n;
         previous_inside_room = inside_room;
+        previous_light_chance = light_chance;
 
         // The next ray is bounce number bounce + 1: the first rr_depth are always traced.
         if (bounce >= settings.rr_depth) {

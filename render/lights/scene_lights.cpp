@@ -104,9 +104,7 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
     strips_.shrink_to_fit();
     split_ = options.sampler == LightSamplerKind::Tree && !lamps_.empty() && !strips_.empty();
     if (split_) {
-        double lamp_power = 0, strip_power = 0;
-        for (size_t i = 0; i < bounds.size(); ++i) (i < lamps_.size() ? lamp_power : strip_power) += bounds[i].phi;
-        lamp_share_ = lamp_power / (lamp_power + strip_power);
+        lamp_share_ = kLampShare;
         strip_sampler_ = LightSampler(std::vector<LightBounds>(bounds.begin() + lamps_.size(), bounds.end()), options.sampler);
         bounds.resize(lamps_.size());
     }

@@ -329,12 +329,14 @@ TEST(SceneLights, EverySamplerAndBsdfSamplingAloneConvergeToTheSameMean) {
     r.integrator.max_depth = 3;
     const Camera camera = Camera::look_at({-30, 0, 1.7}, {10, 0, 4}, 70, r.width, r.height);
 
-    auto render_with = [&](LightSamplerKind kind, bool next_event, int spp, double shadow_roulette = 0) {
+    auto render_with = [&](LightSamplerKind kind, bool next_event, int spp, double shadow_roulette = 0,
+                           double light_sampling_throughput = 0) {
         const SceneLights lights(scene, FacadeOptions{scene.header.seed}, night_lights(kind));
         RenderSettings settings = r;
         settings.spp = spp;
         settings.integrator.sample_lights = next_event;
         settings.integrator.shadow_roulette = shadow_roulette;
+        settings.integrator.light_sampling_throughput = light_sampling_throughput;
         return render_image({*render_scene, materials, sky, settings.integrator, nullptr, &lights}, camera, settings);
     };
     const Film reference = render_with(LightSamplerKind::Tree, true, 256);
@@ -346,10 +348,15 @@ TEST(SceneLights, EverySamplerAndBsdfSamplingAloneConvergeToTheSameMean) {
     const Film cases[] = {render_with(LightSamplerKind::Power, true, 256),
                           render_with(LightSamplerKind::Uniform, true, 256),
                           render_with(LightSamplerKind::Tree, false, 1024),
-                          render_with(LightSamplerKind::Tree, true, 256, mean_radiance)};
+                          render_with(LightSamplerKind::Tree, true, 256, mean_radiance),
+                          // Every vertex samples a light with probability throughput / 10 (at
+                          // most 0.1): the emitter hits must take over the rest of the light.
+                          render_with(LightSamplerKind::Tree, true, 512, 0, 10)};
     EXPECT_NE(cases[3].rgb, reference.rgb) << "the roulette should have left shadow rays out";
-    const char* names[] = {"power", "uniform", "BSDF sampling alone", "shadow roulette"};
-    for (int i = 0; i < 4; ++i) {
+    EXPECT_NE(cases[4].rgb, reference.rgb) << "most vertices should have skipped light sampling";
+    const char* names[] = {"power", "uniform", "BSDF sampling alone", "shadow roulette",
+                           "light sampling left to chance"};
+    for (int i = 0; i < 5; ++i) {
         const Difference d = difference(cases[i], reference);
         EXPECT_LT(std::fabs(d.mean), 4 * d.standard_error)
             << names[i] << " differs from the tree by " << d.mean << " +- " << d.standard_error << " (mean "
