@@ -113,8 +113,9 @@ public:
 
     // Whether the pane at `hit` belongs to a lit window (tests).
     bool lit_window_at(const Hit& hit) const;
-    // Lit windows decided by the rules, counted over the scene: (windows, lit) per cell kind.
+    // A window strip's size: at most this many floors by slots of one wall.
     static constexpr int kFloorsPerStrip = 4, kSlotsPerStrip = 4;
+    static_assert(kFloorsPerStrip * kSlotsPerStrip <= 16, "Strip::lit keeps one bit per cell");
 
 private:
     struct Lamp {
