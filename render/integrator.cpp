@@ -31,7 +31,7 @@ Vec3 offset_origin(Vec3 position, Vec3 normal) {
     return position + normal * (1e-4 + 2e-6 * scale);
 }
 
-Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) {
+Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays, const FirstVertexNumbers* first) {
     const Sky& sky = context.sky;
     const IntegratorSettings& settings = context.settings;
     const double sun_pdf = sky.has_sun() ? 1 / sky.sun_solid_angle() : 0;
@@ -77,6 +77,12 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
     };
 
     for (int bounce = 0;; ++bounce) {
+        // The first surface's numbers come stratified over the pixel's samples when given; the
+        // stream is drawn all the same, so later bounces do not depend on whether they were.
+        auto draw = [&](int i) {
+            const double u = rng.next_double();
+            return bounce == 0 && first ? first->u[i] : u;
+        };
         Hit hit;
         ++rays;
         const bool found = context.scene.intersect(ray, hit);
@@ -152,8 +158,8 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         if (lights) {
             // One lamp or window through the light sampler, MIS-weighted against BSDF sampling.
             // Five numbers drawn whatever the material, so streams stay aligned.
-            const double u[4] = {rng.next_double(), rng.next_double(), rng.next_double(), rng.next_double()};
-            double roulette_u = rng.next_double();  // for light_sampling_throughput, then shadow_roulette
+            const double u[4] = {draw(0), draw(1), draw(2), draw(3)};
+            double roulette_u = draw(4);  // for light_sampling_throughput, then shadow_roulette
             const double dim = luminance(throughput);
             if (settings.light_sampling_throughput > 0 && dim < settings.light_sampling_throughput) {
                 light_chance = std::max(dim / settings.light_sampling_throughput, 1e-6);
@@ -213,7 +219,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays) 
         }
 
         BsdfSample sample;
-        const double u1 = rng.next_double(), u2 = rng.next_double(), u3 = rng.next_double();
+        const double u1 = draw(5), u2 = draw(6), u3 = draw(7);
         const Vec3 scatter_normal = material.type == MaterialType::Glass ? hit.geometric_normal : ns;
         if (!bsdf_sample(material, scatter_normal, wo, u1, u2, u3, sample)) break;
         if (material.type != MaterialType::Glass && dot(sample.wi, n) <= 0) break;  // bumped below the surface

@@ -62,8 +62,17 @@ struct PathContext {
 // probability below the albedo would let survivors' weights grow without bound.
 double russian_roulette_survival(Color throughput, double min_survival);
 
+// Random numbers for a path's first surface, stratified over a pixel's samples (render_image):
+// the light choice, the point on the light and the window on a strip (0-3), the roulettes (4),
+// the BSDF sample (5-7).
+struct FirstVertexNumbers {
+    double u[8];
+};
+
 // Radiance arriving along `ray`. `rays` counts every ray traced (closest hit and shadow).
-Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays);
+// `first`, if given, replaces the stream's numbers at the first surface.
+Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays,
+                 const FirstVertexNumbers* first = nullptr);
 
 // Moves a ray origin off the surface along `normal` by a distance that covers float error at
 // city coordinates (a few hundred micrometres at 2 km from the origin).

@@ -42,8 +42,10 @@ double to_unit(uint32_t x) { return x * 0x1.0p-32; }
 
 }  // namespace
 
-Vec2 pixel_jitter(uint64_t pixel_key, uint32_t index) {
-    const uint64_t h = mix64(pixel_key);
+Vec2 pixel_jitter(uint64_t pixel_key, uint32_t index) { return stratified_pair(pixel_key, index, 0); }
+
+Vec2 stratified_pair(uint64_t pixel_key, uint32_t index, uint32_t pair) {
+    const uint64_t h = pair == 0 ? mix64(pixel_key) : mix64(hash_keys(pixel_key, pair));
     // Shuffling the order keeps every aligned run of 2^k samples a (0,k,2)-net and decorrelates
     // pixels; the two scrambles randomise the point set itself.
     const uint32_t shuffled = owen_scramble(index, static_cast<uint32_t>(h));

@@ -16,4 +16,9 @@ namespace citygen {
 // Position of sample `index` of the pixel whose samples are keyed by `pixel_key`, in [0, 1)^2.
 Vec2 pixel_jitter(uint64_t pixel_key, uint32_t index);
 
+// Pair `pair` of a pixel's padded sequence: for each pair its own shuffle and scramble of the
+// same 2D Sobol points (pair 0 is pixel_jitter), so every pair is stratified over the pixel's
+// samples on its own and the pairs are independent of each other.
+Vec2 stratified_pair(uint64_t pixel_key, uint32_t index, uint32_t pair);
+
 }  // namespace citygen

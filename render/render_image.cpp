@@ -139,9 +139,18 @@ PixelSamples start_pixel(const RenderSettings& settings, int x, int y) {
 void add_samples(const PathContext& context, const Camera& camera, int x, int y, int count, PixelSamples& pixel,
                  uint64_t& rays, bool direct) {
     for (int s = 0; s < count; ++s) {
-        const Vec2 j = pixel_jitter(pixel.jitter_key, pixel.count++);
+        const uint32_t index = pixel.count++;
+        const Vec2 j = pixel_jitter(pixel.jitter_key, index);
         const Ray ray = camera.generate_ray(x + j.x, y + j.y);
-        const Color L = trace_path(context, ray, pixel.rng, rays);
+        // The first surface's numbers, stratified in pairs over the pixel's samples: the light
+        // with the window on it, the point on the light, the BSDF's direction, its lobe with
+        // the roulettes.
+        const Vec2 choice = stratified_pair(pixel.jitter_key, index, 1);
+        const Vec2 point = stratified_pair(pixel.jitter_key, index, 2);
+        const Vec2 direction = stratified_pair(pixel.jitter_key, index, 3);
+        const Vec2 lobe = stratified_pair(pixel.jitter_key, index, 4);
+        const FirstVertexNumbers first{{choice.x, point.x, point.y, choice.y, lobe.y, direction.x, direction.y, lobe.x}};
+        const Color L = trace_path(context, ray, pixel.rng, rays, &first);
         // A lone non-finite sample would poison the pixel; count it as black.
         if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {
             pixel.sum = pixel.sum + L;
