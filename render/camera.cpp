@@ -6,9 +6,6 @@
 
 namespace citygen {
 
-namespace {
-}
-
 Camera Camera::look_at(Vec3 position, Vec3 target, double vertical_fov_deg, int width, int height) {
     Camera c;
     c.position_ = position;
@@ -39,6 +36,15 @@ Ray Camera::generate_ray(double px, double py) const {
     ray.origin = position_;
     ray.direction = normalize(forward_ + right_ * sx + up_ * sy);
     return ray;
+}
+
+bool Camera::project(Vec3 p, double* px, double* py) const {
+    const Vec3 d = p - position_;
+    const double z = dot(d, forward_);
+    if (!(z > 0)) return false;
+    *px = (dot(d, right_) / (z * tan_half_fov_ * aspect_) + 1) * 0.5 * width_;
+    *py = (1 - dot(d, up_) / (z * tan_half_fov_)) * 0.5 * height_;
+    return true;
 }
 
 Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, int height) {

@@ -12,8 +12,13 @@ public:
     static Camera look_at(Vec3 position, Vec3 target, double vertical_fov_deg, int width, int height);
     // Primary ray through image position (px, py) in pixels, py growing downwards.
     Ray generate_ray(double px, double py) const;
+    // Where point p appears on the image, in pixels as generate_ray takes them; false when p is
+    // not in front of the camera.
+    bool project(Vec3 p, double* px, double* py) const;
     Vec3 position() const { return position_; }
     Vec3 forward() const { return forward_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
     // The same view on an image of another size (e.g. a small metering image).
     Camera resized(int width, int height) const;
 

@@ -5,6 +5,7 @@
 
 #include "bsdf.h"
 #include "scene_lights.h"
+#include "small_globes.h"
 
 namespace citygen {
 
@@ -131,7 +132,7 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays, 
         const Vec3 wo = -ray.direction;
         const bool front = dot(hit.geometric_normal, wo) > 0;
         if (front) radiance = radiance + throughput * material.emission;
-        if (front && lights) {
+        if (front && lights && !(bounce == 0 && context.small_globes && context.small_globes->counts_on_film(hit))) {
             const Color emitted = lights->emitted(hit);
             if (emitted.x + emitted.y + emitted.z > 0) {
                 const double w = previous_delta || !sample_lights || previous_inside_room

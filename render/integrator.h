@@ -45,6 +45,7 @@ struct IntegratorSettings {
 double shadow_roulette_for(double exposure);
 
 class SceneLights;
+class SmallGlobes;
 
 struct PathContext {
     const RenderScene& scene;
@@ -53,6 +54,9 @@ struct PathContext {
     IntegratorSettings settings;
     const BuildingLooks* building_looks = nullptr;  // buildings' own colours and patterns (none: stock)
     const SceneLights* lights = nullptr;  // lamps and lit windows (lights/scene_lights.h); none if null
+    // Lamp globes whose light the film gathers itself (small_globes.h): camera rays that hit one
+    // count no emission. render_image sets it for its camera; none if null.
+    const SmallGlobes* small_globes = nullptr;
 };
 
 // Survival probability of a Russian roulette step: the path's largest throughput component,

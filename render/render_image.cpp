@@ -14,6 +14,7 @@
 #include "bsdf.h"
 #include "lights/scene_lights.h"
 #include "pixel_jitter.h"
+#include "small_globes.h"
 #include "progress.h"
 
 namespace citygen {
@@ -150,7 +151,8 @@ void add_samples(const PathContext& context, const Camera& camera, int x, int y,
         const Vec2 direction = stratified_pair(pixel.jitter_key, index, 3);
         const Vec2 lobe = stratified_pair(pixel.jitter_key, index, 4);
         const FirstVertexNumbers first{{choice.x, point.x, point.y, choice.y, lobe.y, direction.x, direction.y, lobe.x}};
-        const Color L = trace_path(context, ray, pixel.rng, rays, &first);
+        Color L = trace_path(context, ray, pixel.rng, rays, &first);
+        if (context.small_globes) L = L + context.small_globes->light_in_pixel(context, camera, x, y, pixel.jitter_key, index, rays);
         // A lone non-finite sample would poison the pixel; count it as black.
         if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {
             pixel.sum = pixel.sum + L;
@@ -204,8 +206,14 @@ PixelRegion render_region(const RenderSettings& settings) {
     return r;
 }
 
-Film render_image(const PathContext& context, const Camera& camera, const RenderSettings& settings,
+Film render_image(const PathContext& scene_context, const Camera& camera, const RenderSettings& settings,
                   RenderStats* stats) {
+    PathContext context = scene_context;
+    SmallGlobes small_globes;
+    if (context.lights && context.lights->lamp_count() > 0) {
+        small_globes = SmallGlobes(*context.lights, camera);
+        context.small_globes = &small_globes;
+    }
     const PixelRegion region = render_region(settings);
     Film film;
     film.width = region.width();

@@ -96,6 +96,9 @@ public:
     size_t light_count() const { return lamps_.size() + strips_.size(); }
     size_t lamp_count() const { return lamps_.size(); }
     size_t strip_count() const { return strips_.size(); }
+    // Lamp i's globe, the sphere that glows.
+    Vec3 lamp_center(size_t i) const { return {lamps_[i].center[0], lamps_[i].center[1], lamps_[i].center[2]}; }
+    double lamp_radius(size_t i) const { return lamps_[i].radius; }
     uint64_t lit_window_count() const { return lit_windows_; }
     uint64_t window_count() const { return windows_; }
     // The light choice: light i < lamp_count() is lamp i, the rest window strips in order.
