@@ -14,8 +14,8 @@
 #include "bsdf.h"
 #include "lights/scene_lights.h"
 #include "pixel_jitter.h"
-#include "small_globes.h"
 #include "progress.h"
+#include "small_globes.h"
 
 namespace citygen {
 
@@ -150,9 +150,11 @@ void add_samples(const PathContext& context, const Camera& camera, int x, int y,
         const Vec2 point = stratified_pair(pixel.jitter_key, index, 2);
         const Vec2 direction = stratified_pair(pixel.jitter_key, index, 3);
         const Vec2 lobe = stratified_pair(pixel.jitter_key, index, 4);
-        const FirstVertexNumbers first{{choice.x, point.x, point.y, choice.y, lobe.y, direction.x, direction.y, lobe.x}};
+        const FirstVertexNumbers first{
+            {choice.x, point.x, point.y, choice.y, lobe.y, direction.x, direction.y, lobe.x}};
         Color L = trace_path(context, ray, pixel.rng, rays, &first);
-        if (context.small_globes) L = L + context.small_globes->light_in_pixel(context, camera, x, y, pixel.jitter_key, index, rays);
+        if (context.small_globes)
+            L = L + context.small_globes->light_in_pixel(context, camera, x, y, pixel.jitter_key, index, rays);
         // A lone non-finite sample would poison the pixel; count it as black.
         if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {
             pixel.sum = pixel.sum + L;

@@ -1,6 +1,8 @@
 // Rendering a whole image: tiles in parallel (TBB), one random stream per pixel so the result
-// does not depend on the thread count (and per pixel a scrambled Sobol sequence placing its
-// samples, pixel_jitter.h), optional AOVs from the ray through each pixel centre.
+// does not depend on the thread count (and per pixel scrambled Sobol pairs placing its samples
+// and drawing their first surface's numbers, pixel_jitter.h), the light of lamp globes a few
+// pixels wide gathered per pixel (small_globes.h), optional AOVs from the ray through each pixel
+// centre.
 #pragma once
 
 #include <cstdint>

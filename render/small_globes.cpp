@@ -35,8 +35,10 @@ SmallGlobes::SmallGlobes(const SceneLights& lights, const Camera& camera) : widt
         }
         if (!in_front || x1 - x0 > kMaxPixels || y1 - y0 > kMaxPixels) continue;
         small_[lamp] = 1;
-        const int first_x = std::max(0, static_cast<int>(std::floor(x0))), last_x = std::min(camera.width() - 1, static_cast<int>(std::floor(x1)));
-        const int first_y = std::max(0, static_cast<int>(std::floor(y0))), last_y = std::min(camera.height() - 1, static_cast<int>(std::floor(y1)));
+        const int first_x = std::max(0, static_cast<int>(std::floor(x0)));
+        const int last_x = std::min(camera.width() - 1, static_cast<int>(std::floor(x1)));
+        const int first_y = std::max(0, static_cast<int>(std::floor(y0)));
+        const int last_y = std::min(camera.height() - 1, static_cast<int>(std::floor(y1)));
         if (first_x > last_x || first_y > last_y) continue;  // off the image: no camera ray meets it
         const uint32_t rectangle = static_cast<uint32_t>(rectangles_.size());
         rectangles_.push_back({lamp, float(x0), float(y0), float(x1), float(y1)});
@@ -48,14 +50,16 @@ SmallGlobes::SmallGlobes(const SceneLights& lights, const Camera& camera) : widt
 }
 
 bool SmallGlobes::counts_on_film(const Hit& hit) const {
-    return hit.kind == ObjectKind::Lamp && hit.material == kLampGlobe && hit.object < small_.size() && small_[hit.object];
+    return hit.kind == ObjectKind::Lamp && hit.material == kLampGlobe && hit.object < small_.size() &&
+           small_[hit.object];
 }
 
 Color SmallGlobes::light_in_pixel(const PathContext& context, const Camera& camera, int x, int y, uint64_t pixel_key,
                                   uint32_t index, uint64_t& rays) const {
     Color sum{0, 0, 0};
     const uint64_t pixel = static_cast<uint64_t>(y) * width_ + x;
-    for (auto at = std::lower_bound(covers_.begin(), covers_.end(), Cover{pixel, 0}); at != covers_.end() && at->pixel == pixel; ++at) {
+    for (auto at = std::lower_bound(covers_.begin(), covers_.end(), Cover{pixel, 0});
+         at != covers_.end() && at->pixel == pixel; ++at) {
         const Rectangle& r = rectangles_[at->rectangle];
         // The part of the pixel inside the rectangle: a uniform point of it, and its area (the
         // pixel's is 1).
@@ -71,8 +75,9 @@ Color SmallGlobes::light_in_pixel(const PathContext& context, const Camera& came
             continue;
         // As trace_path's camera ray: haze, and the chance of crossing the fog unscattered.
         double transmittance = 1;
-        if (context.settings.haze_extinction > 0) transmittance *= aerial_transmittance(context.settings.haze_extinction, hit.t);
-        if (context.settings.fog.on()) transmittance *= context.settings.fog.transmittance(ray.origin, ray.direction, hit.t);
+        const IntegratorSettings& settings = context.settings;
+        if (settings.haze_extinction > 0) transmittance *= aerial_transmittance(settings.haze_extinction, hit.t);
+        if (settings.fog.on()) transmittance *= settings.fog.transmittance(ray.origin, ray.direction, hit.t);
         sum = sum + context.lights->emitted(hit) * (transmittance * (x1 - x0) * (y1 - y0));
     }
     return sum;
