@@ -55,7 +55,9 @@ Color direct_light_at(const PathContext& context, const Ray& ray, Hit hit, uint6
     Color light{0, 0, 0};
     if (front) {  // emitters shine from their front
         light = material.emission;
-        if (context.lights && !context.lights->empty()) light = light + context.lights->emitted(hit);
+        // Small globes: gathered by the film, not seen by camera rays (small_globes.h).
+        const bool gathered = context.small_globes && context.small_globes->counts_on_film(hit);
+        if (context.lights && !context.lights->empty() && !gathered) light = light + context.lights->emitted(hit);
     }
     const Sky& sky = context.sky;
     if (!is_delta(material) && sky.has_sun() && settings.sample_sun) {
@@ -113,7 +115,7 @@ void fill_guides(const PathContext& context, const Camera& camera, int x, int y,
     for (int c = 0; c < 3; ++c) {
         film.guide_albedo[3 * i + c] = static_cast<float>(albedo[c] * inv);
         film.guide_normal[3 * i + c] = static_cast<float>(normal[c] * inv);
-        film.guide_direct[3 * i + c] = static_cast<float>(direct[c] * inv);
+        film.guide_direct[3 * i + c] += static_cast<float>(direct[c] * inv);
     }
     film.guide_depth[i] = static_cast<float>(depth * inv);
 }
@@ -127,11 +129,12 @@ struct PixelSamples {
     Color sum{0, 0, 0};
     double luminance_squares = 0;  // sum of the samples' squared luminance (for the variance)
     Color direct_sum{0, 0, 0};     // direct_light_at along the sample rays (for --denoise)
+    Color globe_sum{0, 0, 0};      // the small globes' light the film gathered (small_globes.h)
 };
 
 PixelSamples start_pixel(const RenderSettings& settings, int x, int y) {
     const uint64_t key = hash_keys(settings.seed, static_cast<uint64_t>(x), static_cast<uint64_t>(y));
-    return {Rng(key), hash_keys(key, 0x6a177e4), 0, Color{0, 0, 0}, 0, Color{0, 0, 0}};
+    return {Rng(key), hash_keys(key, 0x6a177e4), 0, Color{0, 0, 0}, 0, Color{0, 0, 0}, Color{0, 0, 0}};
 }
 
 // With `direct`, also sums direct_light_at along each sample's ray (it takes no random numbers,
@@ -153,11 +156,14 @@ void add_samples(const PathContext& context, const Camera& camera, int x, int y,
         const FirstVertexNumbers first{
             {choice.x, point.x, point.y, choice.y, lobe.y, direction.x, direction.y, lobe.x}};
         Color L = trace_path(context, ray, pixel.rng, rays, &first);
-        if (context.small_globes)
-            L = L + context.small_globes->light_in_pixel(context, camera, x, y, pixel.jitter_key, index, rays);
+        const Color globes = context.small_globes ? context.small_globes->light_in_pixel(
+                                                        context, camera, x, y, pixel.jitter_key, index, rays)
+                                                  : Color{0, 0, 0};
+        L = L + globes;
         // A lone non-finite sample would poison the pixel; count it as black.
         if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {
             pixel.sum = pixel.sum + L;
+            pixel.globe_sum = pixel.globe_sum + globes;
             pixel.luminance_squares += luminance(L) * luminance(L);
             Hit hit;
             if (direct && (++rays, context.scene.intersect(ray, hit)))
@@ -174,7 +180,12 @@ void store_pixel(const PixelSamples& pixel, int spp, size_t i, Film& film) {
         const double mean = luminance(pixel.sum) * inv;
         const double sample_variance = std::max(0.0, pixel.luminance_squares * inv - mean * mean) * spp / std::max(1, spp - 1);
         film.guide_variance[i] = static_cast<float>(sample_variance * inv);
-        for (int c = 0; c < 3; ++c) film.guide_sample_direct[3 * i + c] = static_cast<float>(pixel.direct_sum[c] * inv);
+        // The gathered globes are as good as noise-free: the denoiser leaves them out of what it
+        // filters and puts them back (fill_guides adds its grid to guide_direct).
+        for (int c = 0; c < 3; ++c) {
+            film.guide_sample_direct[3 * i + c] = static_cast<float>((pixel.direct_sum[c] + pixel.globe_sum[c]) * inv);
+            film.guide_direct[3 * i + c] = static_cast<float>(pixel.globe_sum[c] * inv);
+        }
     }
 }
 
@@ -227,6 +238,7 @@ Film render_image(const PathContext& scene_context, const Camera& camera, const 
     if (settings.denoise_guides) {
         film.guide_variance.assign(pixels, 0.f);
         film.guide_sample_direct.assign(3 * pixels, 0.f);
+        film.guide_direct.assign(3 * pixels, 0.f);
     }
     if (settings.aovs) {
         film.depth.assign(pixels, 0.f);
@@ -284,7 +296,6 @@ Film render_image(const PathContext& scene_context, const Camera& camera, const 
         film.guide_albedo.assign(3 * pixels, 0.f);
         film.guide_normal.assign(3 * pixels, 0.f);
         film.guide_depth.assign(pixels, 0.f);
-        film.guide_direct.assign(3 * pixels, 0.f);
         for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
             fill_guides(context, camera, x, y, i, film, rays);
         });

@@ -51,7 +51,8 @@ struct Film {
     // Denoiser guides, present when RenderSettings::denoise_guides: albedo, normal and depth
     // averaged over 6x6 positions in the pixel, so a window narrower than a pixel still shows.
     std::vector<float> guide_albedo, guide_normal, guide_depth;
-    std::vector<float> guide_direct;    // 3 per pixel, emission and haze seen directly (noise-free)
+    std::vector<float> guide_direct;    // 3 per pixel, emission and haze seen directly and the
+                                        // small globes' gathered light (noise-free)
     std::vector<float> guide_variance;  // of each pixel's mean luminance, from its samples
     std::vector<float> guide_sample_direct;  // 3 per pixel, guide_direct's light along the sample rays (mean)
 };

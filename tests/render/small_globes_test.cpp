@@ -4,7 +4,9 @@
 
 #include "build_render_scene.h"
 #include "camera.h"
+#include "denoise.h"
 #include "lamp_shape.h"
+#include "render_image.h"
 #include "scene_lights.h"
 #include "small_globes.h"
 
@@ -90,4 +92,41 @@ TEST(SmallGlobes, PixelLightIsWhatCameraRaysSeeOfTheGlobes) {
         EXPECT_GT(pixels_with_globes, 20);
         EXPECT_NEAR(gathered_total, seen_total, 0.02 * seen_total) << (mode == GeometryMode::Stored ? "stored" : "procedural");
     }
+}
+
+TEST(SmallGlobes, DenoisingKeepsTheirLightWhereItIs) {
+    // The gathered light is nearly noise-free: the denoiser must put it back unfiltered, not
+    // spread it over the road around the globe.
+    const Scene scene = lamps_down_a_road();
+    const auto render_scene = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural), FacadeOptions{scene.header.seed});
+    const MaterialTable materials = default_materials();
+    const Sky sky = Sky::daylight(TimeOfDay::Night);
+    LightOptions options;
+    options.lit_windows = 0;
+    const SceneLights lights(scene, FacadeOptions{scene.header.seed}, options);
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 40;
+    settings.spp = 16;
+    settings.quiet = true;
+    settings.aovs = true;
+    settings.denoise_guides = true;
+    const Camera camera = Camera::look_at({-4, 0, 5}, {100, 0, 5}, 30, settings.width, settings.height);
+    Film film = render_image({*render_scene, materials, sky, settings.integrator, nullptr, &lights}, camera, settings);
+    double mean = 0;
+    for (float v : film.rgb) mean += v;
+    mean /= film.rgb.size();
+    denoise(film, 0.2 / mean, DenoiseSettings{});
+    // The bright pixels, the distant globes', keep their light.
+    double raw = 0, filtered = 0;
+    int globe_pixels = 0;
+    for (size_t i = 0; i < film.rgb.size() / 3; ++i) {
+        const double r = luminance_of({film.raw_rgb[3 * i], film.raw_rgb[3 * i + 1], film.raw_rgb[3 * i + 2]});
+        if (!(r > 5 * mean)) continue;
+        ++globe_pixels;
+        raw += r;
+        filtered += luminance_of({film.rgb[3 * i], film.rgb[3 * i + 1], film.rgb[3 * i + 2]});
+    }
+    EXPECT_GT(globe_pixels, 10);
+    EXPECT_NEAR(filtered, raw, 0.01 * raw);  // 2.4% of it went astray when the filter had it
 }
