@@ -21,4 +21,11 @@ Vec2 pixel_jitter(uint64_t pixel_key, uint32_t index);
 // samples on its own and the pairs are independent of each other.
 Vec2 stratified_pair(uint64_t pixel_key, uint32_t index, uint32_t pair);
 
+// The same with the pair's seeds worked out once for all of a pixel's samples.
+struct PairSeeds {
+    uint32_t shuffle, x, y;
+};
+PairSeeds pair_seeds(uint64_t pixel_key, uint32_t pair);
+Vec2 stratified_pair(const PairSeeds& seeds, uint32_t index);
+
 }  // namespace citygen

@@ -142,17 +142,17 @@ PixelSamples start_pixel(const RenderSettings& settings, int x, int y) {
 // the pixel the samples fell (a lamp globe or a sunlit edge covering part of the pixel).
 void add_samples(const PathContext& context, const Camera& camera, int x, int y, int count, PixelSamples& pixel,
                  uint64_t& rays, bool direct) {
+    // Pair 0 places the sample in the pixel; the first surface's numbers come from pairs 1-4:
+    // the light with the window on it, the point on the light, the BSDF's direction, its lobe
+    // with the roulettes.
+    PairSeeds seeds[5];
+    for (uint32_t pair = 0; pair < 5; ++pair) seeds[pair] = pair_seeds(pixel.jitter_key, pair);
     for (int s = 0; s < count; ++s) {
         const uint32_t index = pixel.count++;
-        const Vec2 j = pixel_jitter(pixel.jitter_key, index);
+        const Vec2 j = stratified_pair(seeds[0], index);
         const Ray ray = camera.generate_ray(x + j.x, y + j.y);
-        // The first surface's numbers, stratified in pairs over the pixel's samples: the light
-        // with the window on it, the point on the light, the BSDF's direction, its lobe with
-        // the roulettes.
-        const Vec2 choice = stratified_pair(pixel.jitter_key, index, 1);
-        const Vec2 point = stratified_pair(pixel.jitter_key, index, 2);
-        const Vec2 direction = stratified_pair(pixel.jitter_key, index, 3);
-        const Vec2 lobe = stratified_pair(pixel.jitter_key, index, 4);
+        const Vec2 choice = stratified_pair(seeds[1], index), point = stratified_pair(seeds[2], index);
+        const Vec2 direction = stratified_pair(seeds[3], index), lobe = stratified_pair(seeds[4], index);
         const FirstVertexNumbers first{
             {choice.x, point.x, point.y, choice.y, lobe.y, direction.x, direction.y, lobe.x}};
         Color L = trace_path(context, ray, pixel.rng, rays, &first);
