@@ -39,15 +39,19 @@ Scene lamps_down_a_road() {
 
 double luminance_of(Color c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
+LightOptions lamps_alone() {
+    LightOptions options;
+    options.lit_windows = 0;
+    return options;
+}
+
 }  // namespace
 
 TEST(SmallGlobes, PixelLightIsWhatCameraRaysSeeOfTheGlobes) {
     const Scene scene = lamps_down_a_road();
     const MaterialTable materials = default_materials();
     const Sky sky = Sky::daylight(TimeOfDay::Night);
-    LightOptions options;
-    options.lit_windows = 0;
-    const SceneLights lights(scene, FacadeOptions{scene.header.seed}, options);
+    const SceneLights lights(scene, FacadeOptions{scene.header.seed}, lamps_alone());
     constexpr int kWidth = 64, kHeight = 40, kGrid = 32, kSamples = 64;
     const Camera camera = Camera::look_at({-4, 0, 5}, {100, 0, 5}, 30, kWidth, kHeight);
     const SmallGlobes globes(lights, camera);
@@ -101,9 +105,7 @@ TEST(SmallGlobes, DenoisingKeepsTheirLightWhereItIs) {
     const auto render_scene = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural), FacadeOptions{scene.header.seed});
     const MaterialTable materials = default_materials();
     const Sky sky = Sky::daylight(TimeOfDay::Night);
-    LightOptions options;
-    options.lit_windows = 0;
-    const SceneLights lights(scene, FacadeOptions{scene.header.seed}, options);
+    const SceneLights lights(scene, FacadeOptions{scene.header.seed}, lamps_alone());
     RenderSettings settings;
     settings.width = 64;
     settings.height = 40;
