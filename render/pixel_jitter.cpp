@@ -33,7 +33,9 @@ uint32_t laine_karras(uint32_t x, uint32_t seed) {
 struct ReversedSobolSecond {
     uint32_t byte[4][256];
     ReversedSobolSecond() {
-        uint32_t v[32];  // v[i]: direction number of index bit i, reversed; indexed by reversed bit
+        // v[j]: for bit j of the reversed index (bit 31 - j of the index), that bit's direction
+        // number, reversed.
+        uint32_t v[32];
         uint32_t d = 0x80000000u;
         for (int i = 0; i < 32; ++i, d ^= d >> 1) v[31 - i] = reverse_bits(d);
         for (int k = 0; k < 4; ++k)
@@ -66,7 +68,8 @@ Vec2 stratified_pair(const PairSeeds& seeds, uint32_t index) {
     // reverse(laine_karras(reverse(.))); the reversals that cancel are left out: the first
     // dimension is the reversed index, and the second is read from the reversed index directly.
     const uint32_t reversed_shuffled = laine_karras(reverse_bits(index), seeds.shuffle);
-    const uint32_t x = reverse_bits(laine_karras(reverse_bits(reversed_shuffled), seeds.x));
+    const uint32_t shuffled = reverse_bits(reversed_shuffled);
+    const uint32_t x = reverse_bits(laine_karras(shuffled, seeds.x));
     const uint32_t y = reverse_bits(laine_karras(reversed_second(reversed_shuffled), seeds.y));
     return {to_unit(x), to_unit(y)};
 }
