@@ -42,17 +42,20 @@ TEST(PixelJitter, EveryPowerOfTwoPrefixCoversThePixelEvenly) {
 TEST(PixelJitter, EachSampleIsUniformOverThePixelAndPixelsDiffer) {
     // Sample 0 and sample 5 over many pixels: the counts in an 8x8 grid are what uniform
     // points give (chi-square with 63 degrees of freedom, far below its 99.9% point of 104).
-    for (uint32_t index : {0u, 5u}) {
-        constexpr int kCells = 64, kPixels = 64000;
-        std::vector<int> counts(kCells, 0);
-        for (uint64_t key = 0; key < kPixels; ++key) {
-            const Vec2 j = pixel_jitter(mix64(key), index);
-            ++counts[static_cast<int>(j.y * 8) * 8 + static_cast<int>(j.x * 8)];
+    // Likewise for the first surface's pairs (1-4).
+    for (uint32_t pair = 0; pair < 5; ++pair) {
+        for (uint32_t index : {0u, 5u}) {
+            constexpr int kCells = 64, kPixels = 64000;
+            std::vector<int> counts(kCells, 0);
+            for (uint64_t key = 0; key < kPixels; ++key) {
+                const Vec2 j = stratified_pair(mix64(key), index, pair);
+                ++counts[static_cast<int>(j.y * 8) * 8 + static_cast<int>(j.x * 8)];
+            }
+            const double expected = double(kPixels) / kCells;
+            double chi2 = 0;
+            for (int c : counts) chi2 += (c - expected) * (c - expected) / expected;
+            EXPECT_LT(chi2, 104) << "pair " << pair << ", sample " << index;
         }
-        const double expected = double(kPixels) / kCells;
-        double chi2 = 0;
-        for (int c : counts) chi2 += (c - expected) * (c - expected) / expected;
-        EXPECT_LT(chi2, 104) << "sample " << index;
     }
     const Vec2 a = pixel_jitter(1, 0), b = pixel_jitter(2, 0);
     EXPECT_TRUE(a.x != b.x || a.y != b.y);
