@@ -147,6 +147,8 @@ void add_samples(const PathContext& context, const Camera& camera, int x, int y,
     // with the roulettes.
     PairSeeds seeds[5];
     for (uint32_t pair = 0; pair < 5; ++pair) seeds[pair] = pair_seeds(pixel.jitter_key, pair);
+    const SmallGlobes::InPixel globes_here =
+        context.small_globes ? context.small_globes->in_pixel(x, y) : SmallGlobes::InPixel{};
     for (int s = 0; s < count; ++s) {
         const uint32_t index = pixel.count++;
         const Vec2 j = stratified_pair(seeds[0], index);
@@ -156,9 +158,9 @@ void add_samples(const PathContext& context, const Camera& camera, int x, int y,
         const FirstVertexNumbers first{
             {choice.x, point.x, point.y, choice.y, lobe.y, direction.x, direction.y, lobe.x}};
         Color L = trace_path(context, ray, pixel.rng, rays, &first);
-        const Color globes = context.small_globes ? context.small_globes->light_in_pixel(
-                                                        context, camera, x, y, pixel.jitter_key, index, rays)
-                                                  : Color{0, 0, 0};
+        const Color globes = globes_here.empty() ? Color{0, 0, 0}
+                                                 : context.small_globes->light_in_pixel(
+                                                       globes_here, context, camera, x, y, pixel.jitter_key, index, rays);
         L = L + globes;
         // A lone non-finite sample would poison the pixel; count it as black.
         if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {

@@ -54,13 +54,19 @@ bool SmallGlobes::counts_on_film(const Hit& hit) const {
            small_[hit.object];
 }
 
-Color SmallGlobes::light_in_pixel(const PathContext& context, const Camera& camera, int x, int y, uint64_t pixel_key,
-                                  uint32_t index, uint64_t& rays) const {
-    Color sum{0, 0, 0};
+SmallGlobes::InPixel SmallGlobes::in_pixel(int x, int y) const {
     const uint64_t pixel = static_cast<uint64_t>(y) * width_ + x;
-    for (auto at = std::lower_bound(covers_.begin(), covers_.end(), Cover{pixel, 0});
-         at != covers_.end() && at->pixel == pixel; ++at) {
-        const Rectangle& r = rectangles_[at->rectangle];
+    const auto first = std::lower_bound(covers_.begin(), covers_.end(), Cover{pixel, 0});
+    auto last = first;
+    while (last != covers_.end() && last->pixel == pixel) ++last;
+    return {static_cast<size_t>(first - covers_.begin()), static_cast<size_t>(last - covers_.begin())};
+}
+
+Color SmallGlobes::light_in_pixel(InPixel globes, const PathContext& context, const Camera& camera, int x, int y,
+                                  uint64_t pixel_key, uint32_t index, uint64_t& rays) const {
+    Color sum{0, 0, 0};
+    for (size_t at = globes.first; at < globes.last; ++at) {
+        const Rectangle& r = rectangles_[covers_[at].rectangle];
         // The part of the pixel inside the rectangle: a uniform point of it, and its area (the
         // pixel's is 1).
         const double x0 = std::max<double>(r.x0, x), x1 = std::min<double>(r.x1, x + 1);

@@ -31,10 +31,16 @@ public:
 
     // Whether a camera ray's hit on this globe is left to light_in_pixel.
     bool counts_on_film(const Hit& hit) const;
-    // The light of the small globes in pixel (x, y) for sample `index` of the pixel whose
-    // samples are keyed by `pixel_key` (pixel_jitter.h); `rays` counts the rays traced.
-    Color light_in_pixel(const PathContext& context, const Camera& camera, int x, int y, uint64_t pixel_key,
-                         uint32_t index, uint64_t& rays) const;
+    // The globes that may show in pixel (x, y), looked up once for all of its samples.
+    struct InPixel {
+        size_t first = 0, last = 0;  // into the covers
+        bool empty() const { return first == last; }
+    };
+    InPixel in_pixel(int x, int y) const;
+    // The light of those globes in pixel (x, y) for sample `index` of the pixel whose samples
+    // are keyed by `pixel_key` (pixel_jitter.h); `rays` counts the rays traced.
+    Color light_in_pixel(InPixel globes, const PathContext& context, const Camera& camera, int x, int y,
+                         uint64_t pixel_key, uint32_t index, uint64_t& rays) const;
 
     size_t size() const { return rectangles_.size(); }
     static constexpr double kMaxPixels = 4;

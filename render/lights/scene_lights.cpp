@@ -104,7 +104,6 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
     strips_.shrink_to_fit();
     split_ = options.sampler == LightSamplerKind::Tree && !lamps_.empty() && !strips_.empty();
     if (split_) {
-        lamp_share_ = kLampShare;
         strip_sampler_ = LightSampler(std::vector<LightBounds>(bounds.begin() + lamps_.size(), bounds.end()), options.sampler);
         bounds.resize(lamps_.size());
     }
@@ -114,22 +113,22 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
 bool SceneLights::choose_light(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {
     if (!split_) return sampler_.sample(p, n, u, light, pmf);
     // One uniform number for both steps, rescaled after the first (as the tree's descent does).
-    if (u < lamp_share_) {
-        if (!sampler_.sample(p, n, std::min(u / lamp_share_, 0x1.fffffffffffffp-1), light, pmf)) return false;
-        *pmf *= lamp_share_;
+    if (u < kLampShare) {
+        if (!sampler_.sample(p, n, std::min(u / kLampShare, 0x1.fffffffffffffp-1), light, pmf)) return false;
+        *pmf *= kLampShare;
         return true;
     }
-    if (!strip_sampler_.sample(p, n, std::min((u - lamp_share_) / (1 - lamp_share_), 0x1.fffffffffffffp-1), light, pmf))
+    if (!strip_sampler_.sample(p, n, std::min((u - kLampShare) / (1 - kLampShare), 0x1.fffffffffffffp-1), light, pmf))
         return false;
-    *pmf *= 1 - lamp_share_;
+    *pmf *= 1 - kLampShare;
     *light += static_cast<uint32_t>(lamps_.size());
     return true;
 }
 
 double SceneLights::light_pmf(Vec3 p, Vec3 n, uint32_t light) const {
     if (!split_) return sampler_.pmf(p, n, light);
-    if (light < lamps_.size()) return lamp_share_ * sampler_.pmf(p, n, light);
-    return (1 - lamp_share_) * strip_sampler_.pmf(p, n, light - static_cast<uint32_t>(lamps_.size()));
+    if (light < lamps_.size()) return kLampShare * sampler_.pmf(p, n, light);
+    return (1 - kLampShare) * strip_sampler_.pmf(p, n, light - static_cast<uint32_t>(lamps_.size()));
 }
 
 size_t SceneLights::bytes() const {

@@ -173,7 +173,6 @@ private:
     // root importance instead (the rule of a node above both roots) gave 0.041 on the street:
     // the lamps' box lies metres above the road, the strips' box holds every shading point.
     static constexpr double kLampShare = 0.9;
-    double lamp_share_ = 1;
     bool split_ = false;
 };
 

@@ -82,7 +82,8 @@ TEST(SmallGlobes, PixelLightIsWhatCameraRaysSeeOfTheGlobes) {
                 seen /= kGrid * kGrid;
                 double gathered = 0;
                 for (uint32_t i = 0; i < kSamples; ++i)
-                    gathered += luminance_of(globes.light_in_pixel(context, camera, x, y, 1000 + x * 31 + y, i, rays));
+                    gathered += luminance_of(
+                        globes.light_in_pixel(globes.in_pixel(x, y), context, camera, x, y, 1000 + x * 31 + y, i, rays));
                 gathered /= kSamples;
                 // A globe seen in a pixel its rectangle misses would be lost.
                 if (seen > 0) {
