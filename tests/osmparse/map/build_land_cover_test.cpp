@@ -13,6 +13,7 @@
 #include "osmparse/pipeline.h"
 #include "osmparse/polygons/clean_footprint.h"
 #include "osmparse/polygons/ring_is_simple.h"
+#include "osmparse/read/land_cover_tags.h"
 #include "tests/osmparse/parse_quietly.h"
 
 using namespace citygen;
