@@ -1,11 +1,11 @@
-#include "output_target.h"
+#include "common/output_target.h"
 
 #include <cerrno>
 #include <cstring>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace citygen {
 

@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "geometry.h"
+#include "common/geometry.h"
 
 namespace citygen {
 

@@ -1,4 +1,4 @@
-#include "scene_info.h"
+#include "common/scene_info.h"
 
 #include <algorithm>
 #include <cmath>

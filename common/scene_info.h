@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace citygen {
 

@@ -1,4 +1,4 @@
-#include "scene_io.h"
+#include "common/scene_io.h"
 
 #include <cerrno>
 #include <cmath>
@@ -12,9 +12,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "output_target.h"
-#include "scene_limits.h"
+#include "common/error.h"
+#include "common/output_target.h"
+#include "common/scene_limits.h"
 #include "scene_generated.h"
 
 namespace citygen {

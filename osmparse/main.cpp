@@ -9,13 +9,13 @@
 #include <malloc.h>
 #endif
 
-#include "error.h"
-#include "output_target.h"
-#include "diff_scenes.h"
-#include "pipeline.h"
-#include "scene_info.h"
-#include "scene_io.h"
-#include "write_geojson.h"
+#include "common/error.h"
+#include "common/output_target.h"
+#include "common/scene_info.h"
+#include "common/scene_io.h"
+#include "osmparse/output/diff_scenes.h"
+#include "osmparse/output/write_geojson.h"
+#include "osmparse/pipeline.h"
 
 using namespace citygen;
 

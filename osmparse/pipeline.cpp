@@ -4,7 +4,7 @@
 // blocks (optional), 13 street lamps, 14 land cover and sea, 15 trees, 16 crossings. One
 // exception, for peak memory (see run_pipeline): roofs and colours (4, 5), which no other
 // stage reads, run last (or just before the empty blocks, 12, when those are filled).
-#include "pipeline.h"
+#include "osmparse/pipeline.h"
 
 #include <algorithm>
 #include <chrono>
@@ -19,26 +19,26 @@
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
-#include "assemble_sea.h"
-#include "build_buildings.h"
-#include "build_land_cover.h"
-#include "build_paths.h"
-#include "lay_out_lanes.h"
-#include "build_road_graph.h"
-#include "build_road_polygons.h"
-#include "build_roofs.h"
-#include "building_colours.h"
-#include "building_tags.h"
-#include "fill_empty_blocks.h"
-#include "infer_heights.h"
-#include "build_sidewalks.h"
-#include "narrow_roads.h"
-#include "place_lamps.h"
-#include "place_trees.h"
-#include "projection.h"
-#include "read_osm.h"
-#include "rng.h"
-#include "scene_io.h"
+#include "common/rng.h"
+#include "common/scene_io.h"
+#include "osmparse/buildings/build_buildings.h"
+#include "osmparse/buildings/building_colours.h"
+#include "osmparse/buildings/building_tags.h"
+#include "osmparse/buildings/infer_heights.h"
+#include "osmparse/core/projection.h"
+#include "osmparse/map/assemble_sea.h"
+#include "osmparse/map/build_land_cover.h"
+#include "osmparse/map/fill_empty_blocks.h"
+#include "osmparse/map/place_lamps.h"
+#include "osmparse/map/place_trees.h"
+#include "osmparse/read/read_osm.h"
+#include "osmparse/roads/build_paths.h"
+#include "osmparse/roads/build_road_graph.h"
+#include "osmparse/roads/build_road_polygons.h"
+#include "osmparse/roads/build_sidewalks.h"
+#include "osmparse/roads/lay_out_lanes.h"
+#include "osmparse/roads/narrow_roads.h"
+#include "osmparse/roofs/build_roofs.h"
 
 namespace citygen {
 

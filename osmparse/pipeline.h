@@ -3,9 +3,9 @@
 
 #include <string>
 
-#include "params.h"
-#include "report.h"
-#include "scene.h"
+#include "common/scene.h"
+#include "osmparse/core/params.h"
+#include "osmparse/core/report.h"
 
 namespace citygen {
 

@@ -1,10 +1,10 @@
-#include "cli_values.h"
+#include "render/cli_values.h"
 
 #include <cmath>
 #include <sstream>
 
-#include "error.h"
-#include "scene_limits.h"
+#include "common/error.h"
+#include "common/scene_limits.h"
 
 namespace citygen {
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "geometry.h"
-#include "render_image.h"
+#include "common/geometry.h"
+#include "render/film/render_image.h"
 
 namespace citygen {
 

@@ -1,7 +1,7 @@
 // Small scenes built in code for tests of all three libraries.
 #pragma once
 
-#include "scene.h"
+#include "common/scene.h"
 
 namespace citygen::test {
 

@@ -1,4 +1,4 @@
-#include "build_road_graph.h"
+#include "osmparse/roads/build_road_graph.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <set>
 #include <unordered_map>
 
-#include "lay_out_lanes.h"
-#include "osm_units.h"
-#include "scene_limits.h"
+#include "common/scene_limits.h"
+#include "osmparse/core/osm_units.h"
+#include "osmparse/roads/lay_out_lanes.h"
 
 namespace citygen {
 

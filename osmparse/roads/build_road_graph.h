@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "osm_data.h"
-#include "params.h"
-#include "projection.h"
-#include "report.h"
-#include "scene.h"
+#include "common/scene.h"
+#include "osmparse/core/osm_data.h"
+#include "osmparse/core/params.h"
+#include "osmparse/core/projection.h"
+#include "osmparse/core/report.h"
 
 namespace citygen {
 

@@ -1,9 +1,9 @@
-#include "build_road_polygons.h"
+#include "osmparse/roads/build_road_polygons.h"
 
 #include <algorithm>
 
-#include "polygon_overlap.h"
-#include "road_geometry.h"
+#include "osmparse/polygons/polygon_overlap.h"
+#include "osmparse/roads/road_geometry.h"
 
 namespace citygen {
 

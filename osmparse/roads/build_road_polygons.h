@@ -4,10 +4,10 @@
 
 #include <vector>
 
-#include "build_road_graph.h"
-#include "report.h"
-#include "road_layout.h"
-#include "scene.h"
+#include "common/scene.h"
+#include "osmparse/core/report.h"
+#include "osmparse/roads/build_road_graph.h"
+#include "osmparse/roads/road_layout.h"
 
 namespace citygen {
 

@@ -1,4 +1,4 @@
-#include "build_sidewalks.h"
+#include "osmparse/roads/build_sidewalks.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,11 +7,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "narrow_roads.h"
-#include "polygon_overlap.h"
-#include "ring_is_simple.h"
-#include "road_geometry.h"
-#include "road_layout.h"
+#include "osmparse/polygons/polygon_overlap.h"
+#include "osmparse/polygons/ring_is_simple.h"
+#include "osmparse/roads/narrow_roads.h"
+#include "osmparse/roads/road_geometry.h"
+#include "osmparse/roads/road_layout.h"
 
 namespace citygen {
 

@@ -1,6 +1,6 @@
 // Dead end: a node with one edge (osm2streets' terminus). The quad ends square at the
 // node: the cut stays at zero on both sides, and there is no joint.
-#include "layout_state.h"
+#include "osmparse/roads/layout_state.h"
 
 namespace citygen {
 

@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "layout_state.h"
-#include "polygon_overlap.h"
-#include "ring_is_simple.h"
+#include "osmparse/polygons/polygon_overlap.h"
+#include "osmparse/polygons/ring_is_simple.h"
+#include "osmparse/roads/layout_state.h"
 
 namespace citygen {
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "layout_state.h"
+#include "osmparse/roads/layout_state.h"
 
 namespace citygen {
 

@@ -6,8 +6,8 @@
 #include <set>
 #include <vector>
 
-#include "road_geometry.h"
-#include "road_layout.h"
+#include "osmparse/roads/road_geometry.h"
+#include "osmparse/roads/road_layout.h"
 
 namespace citygen {
 

@@ -4,7 +4,7 @@
 // their centre, and it is then shaped like any junction (junction.cpp).
 #include <algorithm>
 
-#include "layout_state.h"
+#include "osmparse/roads/layout_state.h"
 
 namespace citygen {
 

@@ -1,4 +1,4 @@
-#include "narrow_roads.h"
+#include "osmparse/roads/narrow_roads.h"
 
 #include <algorithm>
 #include <set>
@@ -6,9 +6,9 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "build_road_polygons.h"
-#include "layout_state.h"
-#include "polygon_overlap.h"
+#include "osmparse/polygons/polygon_overlap.h"
+#include "osmparse/roads/build_road_polygons.h"
+#include "osmparse/roads/layout_state.h"
 
 namespace citygen {
 

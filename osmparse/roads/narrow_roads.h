@@ -5,11 +5,11 @@
 
 #include <vector>
 
-#include "build_road_graph.h"
-#include "road_layout.h"
-#include "params.h"
-#include "report.h"
-#include "scene.h"
+#include "common/scene.h"
+#include "osmparse/core/params.h"
+#include "osmparse/core/report.h"
+#include "osmparse/roads/build_road_graph.h"
+#include "osmparse/roads/road_layout.h"
 
 namespace citygen {
 

@@ -1,4 +1,4 @@
-#include "road_geometry.h"
+#include "osmparse/roads/road_geometry.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <map>
 #include <vector>
 
-#include "geometry.h"
+#include "common/geometry.h"
 
 namespace citygen {
 

@@ -2,12 +2,12 @@
 // miter.cpp, junction.cpp, merged_junction.cpp, finish_joint.cpp), and the two ways to
 // lay out again without starting over: an outline around a finished layout (sidewalks)
 // and an update after narrowing changed some edges.
-#include "road_layout.h"
+#include "osmparse/roads/road_layout.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "layout_state.h"
+#include "osmparse/roads/layout_state.h"
 
 namespace citygen {
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "build_road_graph.h"
-#include "geometry.h"
+#include "common/geometry.h"
+#include "osmparse/roads/build_road_graph.h"
 
 namespace citygen {
 

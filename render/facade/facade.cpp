@@ -1,9 +1,9 @@
-#include "facade.h"
+#include "render/facade/facade.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "rng.h"
+#include "common/rng.h"
 
 namespace citygen {
 

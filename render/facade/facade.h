@@ -15,8 +15,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "geometry.h"
-#include "scene.h"
+#include "common/geometry.h"
+#include "common/scene.h"
 
 namespace citygen {
 

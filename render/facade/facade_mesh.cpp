@@ -1,4 +1,4 @@
-#include "facade_mesh.h"
+#include "render/facade/facade_mesh.h"
 
 namespace citygen {
 

@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "facade.h"
+#include "render/facade/facade.h"
 
 namespace citygen {
 

@@ -1,4 +1,4 @@
-#include "wall_intersect.h"
+#include "render/facade/wall_intersect.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 // No allocation; safe to call from Embree callbacks on any thread.
 #pragma once
 
-#include "facade.h"
+#include "render/facade/facade.h"
 
 namespace citygen {
 

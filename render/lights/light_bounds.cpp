@@ -1,4 +1,4 @@
-#include "light_bounds.h"
+#include "render/lights/light_bounds.h"
 
 #include <algorithm>
 #include <cmath>

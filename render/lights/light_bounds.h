@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "geometry.h"
+#include "common/geometry.h"
 
 namespace citygen {
 

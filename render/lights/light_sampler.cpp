@@ -1,9 +1,9 @@
-#include "light_sampler.h"
+#include "render/lights/light_sampler.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "error.h"
+#include "common/error.h"
 
 namespace citygen {
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "light_bounds.h"
+#include "render/lights/light_bounds.h"
 
 namespace citygen {
 

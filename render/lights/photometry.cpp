@@ -1,9 +1,9 @@
-#include "photometry.h"
+#include "render/lights/photometry.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "bsdf.h"
+#include "render/materials/bsdf.h"
 
 namespace citygen {
 

@@ -6,7 +6,7 @@
 // cd/m^2 are converted with it, so sun, sky, lamps and windows keep their real proportions.
 #pragma once
 
-#include "materials.h"
+#include "render/materials/materials.h"
 
 namespace citygen {
 

@@ -1,14 +1,14 @@
-#include "scene_lights.h"
+#include "render/lights/scene_lights.h"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <tuple>
 
-#include "bsdf.h"
-#include "lamp_shape.h"
-#include "photometry.h"
-#include "window_glow.h"
+#include "render/geometry/lamp_shape.h"
+#include "render/lights/photometry.h"
+#include "render/lights/window_glow.h"
+#include "render/materials/bsdf.h"
 
 namespace citygen {
 

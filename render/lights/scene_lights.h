@@ -15,11 +15,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "facade.h"
-#include "hit.h"
-#include "light_sampler.h"
-#include "materials.h"
-#include "scene.h"
+#include "common/scene.h"
+#include "render/facade/facade.h"
+#include "render/lights/light_sampler.h"
+#include "render/materials/materials.h"
+#include "render/scene/hit.h"
 
 namespace citygen {
 

@@ -1,10 +1,10 @@
-#include "window_glow.h"
+#include "render/lights/window_glow.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "photometry.h"
-#include "rng.h"
+#include "common/rng.h"
+#include "render/lights/photometry.h"
 
 namespace citygen {
 

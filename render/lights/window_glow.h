@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "facade.h"
-#include "materials.h"
+#include "render/facade/facade.h"
+#include "render/materials/materials.h"
 
 namespace citygen {
 

@@ -1,6 +1,6 @@
 // Footprint benchmark, run by hand (never from ctest): for every building footprint of the
 // given extracts, each footprint operation as osmparse does it (hand-written float code where
-// it stays) beside CGAL's variant (osmparse/cgal_footprint.h), medians of 5 runs, and how often
+// it stays) beside CGAL's variant (osmparse/polygons/cgal_footprint.h), medians of 5 runs, and how often
 // the two disagree.
 //
 //   build/bin/footprint_bench [FILE.osm ...]   (default: Monaco and Kaiserslautern)
@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "cgal_footprint.h"
-#include "clean_footprint.h"
-#include "polygon_overlap.h"
-#include "projection.h"
-#include "read_osm.h"
-#include "ring_is_simple.h"
+#include "osmparse/core/projection.h"
+#include "osmparse/polygons/cgal_footprint.h"
+#include "osmparse/polygons/clean_footprint.h"
+#include "osmparse/polygons/polygon_overlap.h"
+#include "osmparse/polygons/ring_is_simple.h"
+#include "osmparse/read/read_osm.h"
 
 using namespace citygen;
 

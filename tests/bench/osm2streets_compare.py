@@ -25,7 +25,7 @@ def local_metres(lat0, lon0):
     return lambda x, y, z=None: ((x - lon0) * kx, (y - lat0) * 111320.0)
 
 
-# Our default carriageway rule (osmparse/params.h RoadParams::classes, build_road_graph.cpp):
+# Our default carriageway rule (osmparse/core/params.h RoadParams::classes, build_road_graph.cpp):
 # used to restrict osm2streets' answer to the same ways for a like-for-like figure.
 CLASSES = {'motorway', 'motorway_link', 'trunk', 'trunk_link', 'primary', 'primary_link', 'secondary',
            'secondary_link', 'tertiary', 'tertiary_link', 'unclassified', 'residential', 'living_street', 'service'}

@@ -6,8 +6,8 @@
 #include <fstream>
 #include <iterator>
 
-#include "error.h"
-#include "scene_io.h"
+#include "common/error.h"
+#include "common/scene_io.h"
 #include "scene_generated.h"
 
 using namespace citygen;

@@ -5,13 +5,13 @@
 #include <cstdlib>
 #include <string>
 
-#include "camera_path.h"
-#include "cli_values.h"
-#include "error.h"
-#include "geometry_mode.h"
-#include "osm_units.h"
-#include "scene_limits.h"
-#include "sky.h"
+#include "common/error.h"
+#include "common/scene_limits.h"
+#include "osmparse/core/osm_units.h"
+#include "render/camera/camera_path.h"
+#include "render/cli_values.h"
+#include "render/lights/sky.h"
+#include "render/scene/geometry_mode.h"
 
 using namespace citygen;
 

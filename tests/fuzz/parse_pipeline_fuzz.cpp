@@ -7,9 +7,9 @@
 #include <cstdlib>
 #include <string>
 
-#include "error.h"
-#include "pipeline.h"
-#include "scene_io.h"
+#include "common/error.h"
+#include "common/scene_io.h"
+#include "osmparse/pipeline.h"
 
 using namespace citygen;
 

@@ -3,13 +3,13 @@
 // get facades, a memory estimate, stored meshes (when small) and an automatic camera.
 #include <cstdint>
 
-#include "camera.h"
-#include "error.h"
-#include "facade.h"
-#include "memory_estimate.h"
-#include "scene_io.h"
-#include "stored_geometry.h"
-#include "triangulate_polygon.h"
+#include "common/error.h"
+#include "common/scene_io.h"
+#include "render/camera/camera.h"
+#include "render/facade/facade.h"
+#include "render/geometry/stored_geometry.h"
+#include "render/geometry/triangulate_polygon.h"
+#include "render/production/memory_estimate.h"
 
 using namespace citygen;
 

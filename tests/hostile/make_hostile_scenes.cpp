@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "scene_io.h"
+#include "common/scene_io.h"
 
 using namespace citygen;
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "pipeline.h"
+#include "osmparse/pipeline.h"
 
 namespace citygen::test {
 

@@ -1,6 +1,6 @@
 // The defects of issue 8 (sanitizers, fuzzing, hostile inputs) in the renderer, one test each
-// that failed before its fix; the scene model's are in tests/common/scene_hardening_test.cpp,
-// the parser's in tests/osmparse/parse_hardening_test.cpp. Whole-program cases (time and
+// that failed before its fix; the scene model's are in tests/common/scene_io_hardening_test.cpp,
+// the parser's in tests/osmparse/pipeline_hardening_test.cpp. Whole-program cases (time and
 // memory limits, exit codes, nothing overwritten) are in tests/hostile/run_hostile.sh.
 #include <gtest/gtest.h>
 
@@ -13,15 +13,15 @@
 #include <filesystem>
 #include <random>
 
-#include "cli_values.h"
-#include "error.h"
-#include "facade.h"
-#include "facade_mesh.h"
-#include "image_output.h"
-#include "memory_estimate.h"
-#include "test_scenes.h"
-#include "test_support.h"
-#include "triangulate_polygon.h"
+#include "common/error.h"
+#include "render/cli_values.h"
+#include "render/facade/facade.h"
+#include "render/facade/facade_mesh.h"
+#include "render/film/image_output.h"
+#include "render/geometry/triangulate_polygon.h"
+#include "render/production/memory_estimate.h"
+#include "tests/test_scenes.h"
+#include "tests/test_support.h"
 
 using namespace citygen;
 using namespace citygen::test;

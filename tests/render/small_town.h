@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "camera.h"
-#include "materials.h"
-#include "render_image.h"
-#include "scene.h"
+#include "common/scene.h"
+#include "render/camera/camera.h"
+#include "render/film/render_image.h"
+#include "render/materials/materials.h"
 
 namespace citygen::test {
 

@@ -2,7 +2,7 @@
 // left out and counted.
 #include <gtest/gtest.h>
 
-#include "build_road_graph.h"
+#include "osmparse/roads/build_road_graph.h"
 
 using namespace citygen;
 

@@ -1,5 +1,5 @@
 // Dead ends (osmparse/roads/dead_end.cpp): the quad ends square at the node.
-#include "road_cases.h"
+#include "tests/osmparse/roads/road_cases.h"
 
 namespace citygen {
 namespace {

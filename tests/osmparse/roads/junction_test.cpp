@@ -1,6 +1,6 @@
 // Junctions (osmparse/roads/junction.cpp, finished in finish_joint.cpp): T, cross and
 // near-parallel neighbours.
-#include "road_cases.h"
+#include "tests/osmparse/roads/road_cases.h"
 
 namespace citygen {
 namespace {

@@ -1,6 +1,6 @@
 // Merged junctions (osmparse/roads/merged_junction.cpp): junctions closer together than
 // their roads are wide become one joint; the short edge between them is absorbed.
-#include "road_cases.h"
+#include "tests/osmparse/roads/road_cases.h"
 
 namespace citygen {
 namespace {

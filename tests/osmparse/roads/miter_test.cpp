@@ -1,5 +1,5 @@
 // Miters (osmparse/roads/miter.cpp): at a degree-2 node the two quads meet on one line.
-#include "road_cases.h"
+#include "tests/osmparse/roads/road_cases.h"
 
 namespace citygen {
 namespace {

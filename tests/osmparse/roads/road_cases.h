@@ -6,11 +6,11 @@
 
 #include <cmath>
 
-#include "build_road_polygons.h"
-#include "polygon_overlap.h"
-#include "ring_is_simple.h"
-#include "road_geometry.h"
-#include "road_layout.h"
+#include "osmparse/polygons/polygon_overlap.h"
+#include "osmparse/polygons/ring_is_simple.h"
+#include "osmparse/roads/build_road_polygons.h"
+#include "osmparse/roads/road_geometry.h"
+#include "osmparse/roads/road_layout.h"
 
 namespace citygen::road_cases {
 

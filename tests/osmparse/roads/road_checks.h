@@ -6,11 +6,11 @@
 #include <cstdio>
 #include <string>
 
-#include "narrow_roads.h"
-#include "polygon_overlap.h"
-#include "ring_is_simple.h"
-#include "road_geometry.h"
-#include "scene.h"
+#include "common/scene.h"
+#include "osmparse/polygons/polygon_overlap.h"
+#include "osmparse/polygons/ring_is_simple.h"
+#include "osmparse/roads/narrow_roads.h"
+#include "osmparse/roads/road_geometry.h"
 
 namespace citygen {
 

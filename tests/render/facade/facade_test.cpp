@@ -1,7 +1,7 @@
 // Facade styles from a building's type, material and height, and the wall layouts they give.
 #include <gtest/gtest.h>
 
-#include "facade.h"
+#include "render/facade/facade.h"
 
 using namespace citygen;
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "facade.h"
-#include "facade_mesh.h"
-#include "rng.h"
-#include "wall_intersect.h"
+#include "common/rng.h"
+#include "render/facade/facade.h"
+#include "render/facade/facade_mesh.h"
+#include "render/facade/wall_intersect.h"
 
 using namespace citygen;
 

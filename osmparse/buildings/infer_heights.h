@@ -1,0 +1,121 @@
+// Stage 3: heights where the map has none. Runs after build_buildings, over all buildings at
+// once, because the tagged heights of neighbours are one of the rules.
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "common/scene.h"
+#include "osmparse/core/osm_data.h"
+#include "osmparse/core/params.h"
+#include "osmparse/core/projection.h"
+#include "osmparse/core/report.h"
+
+namespace citygen {
+
+inline constexpr char kBuildingHeights[] = "building heights";
+
+// What the land around a building is used for (OSM landuse=*), as far as heights care.
+enum class LandUse : uint8_t { None, Residential, Commercial, Retail, Industrial };
+
+struct LandUseArea {
+    Ring outer;               // counter-clockwise or not: only point-in-polygon is asked
+    std::vector<Ring> holes;
+    LandUse use = LandUse::None;
+};
+
+inline constexpr char kLandUseTooLarge[] = "land use area over 10 km across: not used";
+inline constexpr char kFromSurroundings[] = "from type, footprint area and surroundings";
+inline constexpr char kPointBlock[] = "point block: a home with a deep plan in a town of blocks";
+inline constexpr char kTwin[] = "twin: a tagged building of the same type and footprint next door";
+inline constexpr char kLandmarkHome[] = "landmark home: a named home of a block's footprint";
+
+// The landuse=residential|commercial|retail|industrial areas of the map, projected (the same
+// OSM areas build_land_cover paints as built-up ground). Areas over kMaxObjectExtent across
+// (a stray node) are left out and noted as kLandUseTooLarge under kBuildingHeights.
+std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection, ParseReport& report);
+
+// Replaces the random height of every ground-standing building with nothing tagged
+// (height_source Random, min_height 0) by the first rule that applies; height_rule records it.
+// Every rule reads one type: `building`'s, but `apartments` for the buildings in `homes`
+// (homes_by_use) and `residential` for a house type over 1,000 m2 (a block, not a house):
+//  1. TypeAndArea for sure things: a footprint under 30 m2, or a garage/shed/carport/kiosk-like
+//     type, is a one-storey shed; a house-like type under 1,000 m2 is a two-storey house (a
+//     larger one is a block: the rules of `residential`) (both rules first
+//     because a neighbour's height says little about a garage beside a tower);
+//  1b. TypeAndArea for residential towers, of tower_height: a home (apartments, residential,
+//     dormitory) whose plan is deep in every direction in a town of blocks (is_point_block), or
+//     a named one of a block's footprint (is_landmark_home; `named`, from named_buildings);
+//     before the neighbours: a tower among blocks is not their height;
+//  1c. Neighbours, a twin (kTwin): the nearest tagged building within 60 m of the same type
+//     (not `yes`) and a footprint within 10% of its own: an estate built in series from one
+//     design; before the towers, whose rule only guesses what a twin knows;
+//  2. Neighbours: the distance-weighted median height of the nearest (up to 8) tagged buildings
+//     (height or building:levels) within 150 m that are most like it: the same type and a
+//     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
+//     (at least 2), else such a footprint (at least 3), else any (at least 3: the street's scale);
+//     when the chosen group disagrees (its upper quartile over twice its lower: houses beside
+//     towers) it says nothing and the later rules decide (it comes back as rule 7);
+//  3. Neighbours, extract-wide: the median height of the tagged buildings of the same type and
+//     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3).
+//     The scene format has one value for rules 2 and 3 (a new one would change its schema);
+//     the report's notes under kBuildingHeights tell them apart;
+//  4. TypeAndArea: an untyped building of hall size on industrial or retail land is an
+//     industrial or retail hall (the land use of `land_use`, at the footprint's centroid);
+//  5. TypeAndArea from the surroundings, for untyped buildings and workplaces (`office`,
+//     `commercial`, `civic`, `public`, `government`): levels_from_surroundings of its footprint,
+//     the grain of the town around it and whether it shares a wall;
+//  6. TypeAndArea: a height by building type (height_by_type_and_area); for homes (apartments,
+//     residential, dormitory) times fabric_factor of the grain around it;
+//  7. Neighbours that disagree (rule 2's group): their weighted median;
+//  8. Random: the seeded random height in [random_min_height, random_max_height] stays (only
+//     reached for types the table does not know, with nothing tagged like it).
+// Only buildings whose height comes from their own tags are ever used, so a building whose tags
+// are hidden (--hide-height-tags) cannot see its own truth (rule 5 reads footprints only). Each
+// guess is jittered by up to +-10% (seeded per building) so a street is not one height. The
+// pieces of one OSM building (a repaired bow-tie, a multipolygon's outers) get one guess from
+// their joint footprint (its area, its area-weighted centroid, a wall shared by any). Levels
+// are recomputed from the new height. Counts go to kBuildingHeights in the report. The result
+// does not depend on the order of `buildings` beyond ties in distance.
+void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
+                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named = {},
+                   const std::set<OsmRef>& homes = {});
+
+// Rule 5 alone (exposed for tests): storeys of an untyped building or a workplace with a
+// footprint of `area` m2 among buildings whose median footprint within 400 m is `grain` m2;
+// `attached` when it shares a wall with another building. The constants and their reasons are
+// in infer_heights.cpp.
+double levels_from_surroundings(double area, double grain, bool attached);
+
+// Rule 1b alone (exposed for tests): whether a building of `type` whose plan (courtyards left
+// out) has `area` m2 and `perimeter` m (holes included) among buildings of median footprint
+// `grain` m2 is a point block: a home whose plan depth 2 * area / perimeter is at least 13 m
+// (26 m across both ways: flats around a core) where the grain is at least 200 m2.
+bool is_point_block(const std::string& type, double area, double perimeter, double grain);
+// Rule 1b alone: whether a building of `type` and `area` m2, `named` or not, is a landmark
+// home: a home with a name (named_buildings) and a footprint of at least 500 m2.
+bool is_landmark_home(const std::string& type, double area, bool named);
+// How much higher than in a town of blocks (a grain of 200 m2 or finer: 1) homes stand among
+// buildings of median footprint `grain` m2: (grain / 200)^0.65, as levels_from_surroundings grows
+// with the grain; 1 again over 500 m2 (an estate of halls, no denser city). Towers (tower_height)
+// and flats of the type table (rule 6) share it.
+double fabric_factor(double grain);
+// The height rule 1b gives a residential tower among buildings of median footprint `grain` m2:
+// 15 storeys, more in a fabric of 200-500 m2 (as levels_from_surroundings grows with it; a
+// coarser grain is an estate of halls).
+double tower_height(double grain, const BuildingParams& params);
+// The buildings (not parts) whose name has at least 3 characters: a block's letter is no name.
+std::set<OsmRef> named_buildings(const OsmData& osm);
+// The buildings (not parts) whose use tags say they hold flats while their form
+// (building=yes, commercial, office, retail, civic, public, government) says nothing of homes:
+// building:use=residential|apartments, tourism=apartment (holiday flats). OSM's building=* is the
+// form, these keys the use; infer_heights reads them as `apartments` (`homes`).
+std::set<OsmRef> homes_by_use(const OsmData& osm);
+
+// Rule 1, 4 and 6 alone (exposed for tests): the height of a building of `type` with a footprint of
+// `area` m2 on land used as `use`, or 0 when the type says nothing; `sure` tells whether the rule
+// beats neighbours.
+double height_by_type_and_area(const std::string& type, double area, bool* sure, LandUse use = LandUse::None);
+
+}  // namespace citygen

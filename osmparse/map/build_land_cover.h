@@ -1,0 +1,31 @@
+// Stage 14: land cover (with the sea, assemble_sea.h). OSM areas (closed ways and
+// multipolygons, assembled by libosmium as buildings are) -> cleaned polygons with holes and
+// one class each (DESIGN 6b).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "common/scene.h"
+#include "osmparse/core/osm_data.h"
+#include "osmparse/core/params.h"
+#include "osmparse/core/projection.h"
+#include "osmparse/core/report.h"
+
+namespace citygen {
+
+// Report rows and reasons of this stage (areas are counted under read_osm.h's kLandCoverAreas).
+inline constexpr char kLandCoverClassPrefix[] = "land cover: ";
+inline constexpr char kBeyondSceneLimits[] = "beyond the scene limits (points or extent)";
+
+// Projects and cleans every land cover area (the footprint clean-up: repeated and collinear
+// points, self-intersections, orientation, holes; slivers below params.min_area dropped),
+// sorted by (class, OSM identity). Counted under "land cover areas".
+std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& projection,
+                                        const BuildingParams& params, ParseReport& report);
+
+// Drops (and counts) polygons beyond the land cover limits of scene_limits.h, which the
+// scene loader would refuse: a ring with too many points or wider than a region.
+std::vector<LandCover> drop_land_cover_beyond_limits(std::vector<LandCover> cover, ParseReport& report);
+
+}  // namespace citygen

@@ -1,0 +1,172 @@
+#include "osmparse/map/place_trees.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "common/rng.h"
+#include "osmparse/core/osm_units.h"
+#include "osmparse/map/place_lamps.h"
+#include "osmparse/map/point_placement.h"
+#include "osmparse/polygons/clean_footprint.h"
+#include "osmparse/polygons/polygon_overlap.h"
+#include "osmparse/read/read_osm.h"
+
+namespace citygen {
+
+namespace {
+
+constexpr double kMinHeight = 1, kMaxHeight = 80, kMinCrown = 0.5, kMaxCrown = 40;
+constexpr double kTrunkClearance = 0.75;  // metres a trunk keeps from roads and buildings
+
+}  // namespace
+
+Tree tree_from_tags(const OsmTags& tags, ParseReport& report, const char* kind) {
+    Tree t;
+    const char* leaf = tags.get("leaf_type");
+    t.leaf_type = leaf && !std::strcmp(leaf, "needleleaved") ? LeafType::Needleleaved : LeafType::Broadleaved;
+    const bool needle = t.leaf_type == LeafType::Needleleaved;
+    t.height = needle ? 14 : 10;
+    t.crown_diameter = needle ? 5 : 7;
+    for (const char* key : {"height", "est_height"}) {
+        const char* text = tags.get(key);
+        if (!text) continue;
+        const std::optional<double> h = parse_osm_length(text);
+        if (h && *h >= kMinHeight && *h <= kMaxHeight) {
+            t.height = *h;
+            break;
+        }
+        report.note(kind, std::string(key) + kUnusableSuffix);
+    }
+    if (const char* text = tags.get("diameter_crown")) {
+        const std::optional<double> d = parse_osm_length(text);
+        if (d && *d >= kMinCrown && *d <= kMaxCrown) t.crown_diameter = *d;
+        else report.note(kind, std::string("diameter_crown") + kUnusableSuffix);
+    }
+    // A crown wider than the tree is tall reads as a bush: keep it in proportion.
+    t.crown_diameter = std::min(t.crown_diameter, 1.2 * t.height);
+    return t;
+}
+
+std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, const Scene& scene,
+                              const TreeParams& params, uint64_t seed, ParseReport& report) {
+    std::vector<Tree> trees;
+    if (params.mode == TreeMode::None) return trees;
+
+    const BuildingIndex buildings(scene.buildings);
+    const BuildingIndex surface(surface_polygons(scene.roads, scene.joints));
+    const BuildingIndex paths(surface_polygons(scene.paths, scene.path_joints));  // paths, rails, joints
+    std::vector<PolygonRef> water_pieces;
+    for (const LandCover& c : scene.land_cover)
+        if (c.cover == LandCoverClass::Water || c.cover == LandCoverClass::Sea)
+            water_pieces.push_back({&c.outer, &c.holes});
+    const BuildingIndex water(std::move(water_pieces), 200);
+
+    auto surface_containing = [&](Vec2 p) -> const Ring* {
+        Box2 box;
+        box.extend(p);
+        for (uint32_t i : surface.near(box))
+            if (point_in_ring(p, *surface.polygon(i).outer)) return surface.polygon(i).outer;
+        return nullptr;
+    };
+    // Free ground for a trunk: off roads and buildings by kTrunkClearance, off paths, out of water.
+    auto free_ground = [&](Vec2 p) {
+        if (water.contains(p) || paths.contains(p)) return false;
+        for (Vec2 d : {Vec2{0, 0}, Vec2{kTrunkClearance, 0}, Vec2{-kTrunkClearance, 0}, Vec2{0, kTrunkClearance},
+                       Vec2{0, -kTrunkClearance}})
+            if (buildings.contains(p + d) || surface_containing(p + d)) return false;
+        return true;
+    };
+
+    // 1. Mapped trees.
+    for (const OsmNode& node : osm.trees) {
+        Tree t = tree_from_tags(node.tags, report, kMappedTrees);
+        t.osm = {OsmType::Node, node.id};
+        t.source = TreeSource::Mapped;
+        Vec2 p = round_to_stored_precision(projection.to_local(node.location.lat, node.location.lon));
+        if (const Ring* ring = surface_containing(p)) {
+            p = push_out_of(*ring, p, kTrunkClearance + 0.05);
+            report.note(kMappedTrees, kMovedOffRoad);
+        }
+        if (buildings.contains(p) || surface_containing(p) || water.contains(p)) {
+            report.dropped(kMappedTrees, kInBuildingRoadOrWater);
+            continue;
+        }
+        t.position = p;
+        trees.push_back(t);
+    }
+    report.kept(kMappedTrees, static_cast<int64_t>(trees.size()));
+
+    // 2. Tree rows: one tree every row_spacing metres along the way, half a step in from its ends.
+    size_t row_trees = 0;
+    for (const OsmWay& way : osm.tree_rows) {
+        Tree proto = tree_from_tags(way.tags, report, kTreeRowTrees);
+        proto.osm = {OsmType::Way, way.id};
+        proto.source = TreeSource::Row;
+        std::vector<Vec2> pts;
+        for (const LatLon& l : way.locations) pts.push_back(projection.to_local(l.lat, l.lon));
+        double carried = 0.5 * params.row_spacing;  // distance to the next tree
+        for (size_t i = 0; i + 1 < pts.size(); ++i) {
+            const Vec2 a = pts[i], b = pts[i + 1];
+            const double len = length(b - a);
+            double s = carried;
+            for (; s <= len; s += params.row_spacing) {
+                const Vec2 p = round_to_stored_precision(a + (b - a) * (s / len));
+                report.read(kTreeRowTrees);
+                if (!free_ground(p)) {
+                    report.dropped(kTreeRowTrees, kOnRoadBuildingOrWater);
+                    continue;
+                }
+                Tree t = proto;
+                t.position = p;
+                trees.push_back(t);
+                ++row_trees;
+            }
+            carried = s - len;
+        }
+    }
+    report.kept(kTreeRowTrees, static_cast<int64_t>(row_trees));
+    if (params.mode == TreeMode::Mapped) return trees;
+
+    // 3. Forests: dart throwing with a least distance (Poisson-disk), seeded per polygon.
+    PointGrid placed(std::max(params.forest_spacing, 0.5));
+    for (const Tree& t : trees) placed.add(t.position);
+    size_t scattered = 0;
+    for (size_t index = 0; index < scene.land_cover.size(); ++index) {
+        const LandCover& forest = scene.land_cover[index];
+        if (forest.cover != LandCoverClass::Forest) continue;
+        double area = std::fabs(signed_area(forest.outer));
+        for (const Ring& h : forest.holes) area -= std::fabs(signed_area(h));
+        const Box2 box = bounds_of(forest.outer);
+        const double r = params.forest_spacing;
+        const size_t attempts = static_cast<size_t>(std::ceil(3 * area / (r * r)));
+        Rng rng(hash_keys(seed, static_cast<uint64_t>(forest.osm.id), static_cast<uint64_t>(forest.osm.type), index));
+        for (size_t k = 0; k < attempts && scattered < params.max_scattered; ++k) {
+            const Vec2 p = round_to_stored_precision({box.min.x + rng.next_double() * (box.max.x - box.min.x),
+                                                      box.min.y + rng.next_double() * (box.max.y - box.min.y)});
+            const double u = rng.next_double(), v = rng.next_double(), w = rng.next_double();
+            if (!point_in_ring(p, forest.outer)) continue;
+            bool in_hole = false;
+            for (const Ring& h : forest.holes) in_hole = in_hole || point_in_ring(p, h);
+            if (in_hole || placed.any_within(p, r) || !free_ground(p)) continue;
+            Tree t;
+            t.osm = forest.osm;
+            t.source = TreeSource::Scattered;
+            t.position = p;
+            t.leaf_type = u < 0.5 ? LeafType::Needleleaved : LeafType::Broadleaved;
+            t.height = 12 + 10 * v;
+            t.crown_diameter = (t.leaf_type == LeafType::Needleleaved ? 4 : 6) + 3 * w;
+            trees.push_back(t);
+            placed.add(p);
+            ++scattered;
+        }
+        if (scattered >= params.max_scattered) {
+            report.note(kForestTrees, kForestCapReached);
+            break;
+        }
+    }
+    report.kept(kForestTrees, static_cast<int64_t>(scattered));
+    return trees;
+}
+
+}  // namespace citygen

@@ -1,0 +1,155 @@
+#include "osmparse/output/write_geojson.h"
+
+#include <cstdio>
+
+#include "common/scene_io.h"
+#include "osmparse/core/projection.h"
+
+namespace citygen {
+
+namespace {
+
+class GeoJsonWriter {
+public:
+    explicit GeoJsonWriter(const Projection& p) : projection_(p) { text_ = "{\"type\":\"FeatureCollection\",\"features\":[\n"; }
+
+    void polygon(const std::vector<const Ring*>& rings, const std::string& properties) {
+        begin("Polygon");
+        for (size_t r = 0; r < rings.size(); ++r) {
+            text_ += r ? ",[" : "[";
+            const Ring& ring = *rings[r];
+            for (size_t i = 0; i <= ring.size(); ++i) {  // GeoJSON rings repeat the first point
+                if (i) text_ += ",";
+                point(ring[i % ring.size()]);
+            }
+            text_ += "]";
+        }
+        end(properties);
+    }
+    void point_feature(Vec2 p, const std::string& properties) {
+        begin("Point");
+        text_ += lon_lat(p);
+        end(properties);
+    }
+    std::string finish() { return text_ + "\n]}\n"; }
+
+private:
+    void begin(const char* type) {
+        if (count_++) text_ += ",\n";
+        text_ += "{\"type\":\"Feature\",\"geometry\":{\"type\":\"";
+        text_ += type;
+        text_ += "\",\"coordinates\":[";
+    }
+    void end(const std::string& properties) { text_ += "]},\"properties\":{" + properties + "}}"; }
+    std::string lon_lat(Vec2 p) const {
+        double lat, lon;
+        projection_.to_wgs84(p, lat, lon);
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.8f,%.8f", lon, lat);
+        return buf;
+    }
+    void point(Vec2 p) { text_ += "[" + lon_lat(p) + "]"; }
+    const Projection& projection_;
+    std::string text_;
+    size_t count_ = 0;
+};
+
+std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3f", v);
+    return buf;
+}
+std::string str(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\') out += '\\';
+        if (static_cast<unsigned char>(c) >= 0x20) out += c;
+    }
+    return out + "\"";
+}
+
+// Format 1.1 properties: the height rule, the roof and the colours and materials.
+std::string building_look_properties(const Building& b) {
+    char wall[16], roof[16];
+    std::snprintf(wall, sizeof wall, "#%06x", b.wall_colour & 0xffffffu);
+    std::snprintf(roof, sizeof roof, "#%06x", b.roof_colour & 0xffffffu);
+    return std::string(",\"type\":") + str(b.type) + ",\"height_rule\":" + str(to_string(b.height_rule)) + ",\"roof_shape\":" +
+           str(to_string(b.roof_shape)) + ",\"roof_height\":" + num(b.roof_height) +
+           ",\"roof_inferred\":" + (b.roof_inferred ? "true" : "false") +
+           ",\"wall_colour\":" + (b.wall_colour ? str(wall) : "null") +
+           ",\"roof_colour\":" + (b.roof_colour ? str(roof) : "null") +
+           ",\"wall_material\":" + str(to_string(b.wall_material)) +
+           ",\"roof_material\":" + str(to_string(b.roof_material)) +
+           ",\"generated\":" + (b.generated ? "true" : "false");
+}
+
+}  // namespace
+
+std::string scene_to_geojson(const Scene& scene) {
+    const Projection projection(scene.header.origin_lat, scene.header.origin_lon);
+    GeoJsonWriter w(projection);
+    static const char* height_sources[] = {"tagged", "levels", "random"};
+    for (const Building& b : scene.buildings) {
+        std::vector<const Ring*> rings{&b.outer};
+        for (const Ring& h : b.holes) rings.push_back(&h);
+        w.polygon(rings, "\"kind\":\"building\",\"osm\":" + str(to_string(b.osm)) + ",\"height\":" + num(b.height) +
+                             ",\"min_height\":" + num(b.min_height) + ",\"levels\":" + std::to_string(b.levels) +
+                             ",\"height_source\":\"" + height_sources[static_cast<int>(b.height_source)] +
+                             "\",\"part\":" + (b.is_part ? "true" : "false") + building_look_properties(b));
+    }
+    for (const RoadEdge& r : scene.roads)
+        w.polygon({&r.quad}, "\"kind\":\"road\",\"osm\":" + str(to_string(r.osm)) + ",\"from_node\":" +
+                                 std::to_string(r.from_node) + ",\"to_node\":" + std::to_string(r.to_node) +
+                                 ",\"width\":" + num(r.width) + ",\"class\":\"" + to_string(r.road_class) +
+                                 "\",\"lanes\":" + std::to_string(r.lanes) + ",\"oneway\":" + (r.oneway ? "true" : "false") +
+                                 ",\"bridge\":" + (r.bridge ? "true" : "false") +
+                                 ",\"lanes_forward\":" + std::to_string(r.lanes_forward) +
+                                 ",\"lanes_backward\":" + std::to_string(r.lanes_backward) +
+                                 ",\"centre_line\":" + std::to_string(static_cast<int>(r.centre_line)) +
+                                 ",\"edge_lines\":" + (r.edge_lines ? "true" : "false") +
+                                 ",\"cycle_lanes\":" + std::to_string(r.cycle_lane_left + r.cycle_lane_right));
+    for (const Joint& j : scene.joints)
+        w.polygon({&j.polygon}, "\"kind\":\"joint\",\"osm\":" + str(to_string(j.osm)) + ",\"edges\":" +
+                                    std::to_string(j.edges.size()));
+    for (const Sidewalk& s : scene.sidewalks)
+        w.polygon({&s.polygon}, std::string("\"kind\":\"sidewalk\",\"piece\":\"") +
+                                    (s.kind == SidewalkKind::Strip ? "strip" : "corner") +
+                                    "\",\"height\":" + num(s.curb_height) +
+                                    (s.road >= 0 ? ",\"osm\":" + str(to_string(scene.roads[s.road].osm)) : "") +
+                                    (s.joint >= 0 ? ",\"joint\":" + str(to_string(scene.joints[s.joint].osm)) : ""));
+    for (const Lamp& l : scene.lamps)
+        w.point_feature({l.position.x, l.position.y},
+                        "\"kind\":\"lamp\",\"osm\":" + str(to_string(l.osm)) + ",\"height\":" + num(l.height) +
+                            ",\"source\":\"" + (l.source == LampSource::Tagged ? "tagged" : "generated") + "\"");
+    for (const LandCover& c : scene.land_cover) {
+        std::vector<const Ring*> rings{&c.outer};
+        for (const Ring& h : c.holes) rings.push_back(&h);
+        w.polygon(rings, "\"kind\":\"land_cover\",\"class\":\"" + std::string(to_string(c.cover)) +
+                             "\",\"osm\":" + str(to_string(c.osm)));
+    }
+    for (const PathEdge& p : scene.paths)
+        w.polygon({&p.quad}, "\"kind\":\"path\",\"class\":\"" + std::string(to_string(p.path_class)) +
+                                 "\",\"osm\":" + str(to_string(p.osm)) + ",\"width\":" + num(p.width) +
+                                 ",\"sidewalk\":" + (p.sidewalk ? "true" : "false"));
+    for (const Joint& j : scene.path_joints)
+        w.polygon({&j.polygon}, "\"kind\":\"path_joint\",\"osm\":" + str(to_string(j.osm)));
+    for (const Crossing& c : scene.crossings)
+        w.point_feature(c.position, std::string("\"kind\":\"") +
+                                        (c.kind == CrossingKind::Zebra ? "zebra_crossing" : "stop_line") +
+                                        "\",\"osm\":" + str(to_string(c.osm)) + ",\"road\":" +
+                                        str(to_string(scene.roads[c.road].osm)));
+    for (const Tree& t : scene.trees)
+        w.point_feature(t.position, "\"kind\":\"tree\",\"osm\":" + str(to_string(t.osm)) + ",\"height\":" +
+                                        num(t.height) + ",\"crown_diameter\":" + num(t.crown_diameter) +
+                                        ",\"leaf_type\":\"" +
+                                        (t.leaf_type == LeafType::Needleleaved ? "needleleaved" : "broadleaved") +
+                                        "\",\"source\":\"" + to_string(t.source) + "\"");
+    return w.finish();
+}
+
+void write_geojson(const Scene& scene, const std::string& path) {
+    const std::string text = scene_to_geojson(scene);
+    write_file_atomically(path, text.data(), text.size());
+}
+
+}  // namespace citygen

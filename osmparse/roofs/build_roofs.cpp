@@ -1,0 +1,251 @@
+#include "osmparse/roofs/build_roofs.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "common/rng.h"
+#include "osmparse/core/osm_units.h"
+#include "osmparse/roofs/roof_geometry.h"
+
+namespace citygen {
+
+namespace {
+
+const char* const kRoofs = "roofs";
+constexpr double kMinRoofHeight = 0.3;  // lower than this, a roof is drawn flat
+
+enum Salt : uint64_t { kPitchedOrFlat = 101, kWhichPitched, kPitch };
+
+bool is_one_of(const std::string& value, std::initializer_list<const char*> list) {
+    for (const char* s : list)
+        if (value == s) return true;
+    return false;
+}
+
+// Pitch (degrees) a shape gets when neither roof:height, roof:levels nor roof:angle is tagged.
+double default_pitch(RoofShape shape) {
+    switch (shape) {
+        case RoofShape::Skillion: return 15;
+        case RoofShape::Hipped: return 30;
+        case RoofShape::Gambrel:
+        case RoofShape::Mansard: return 50;
+        default: return 35;
+    }
+}
+
+// A roof height from the pitch and the footprint: the rise over half the width for a ridge
+// roof, over the whole width for a skillion; domes and onions scale with the radius.
+double height_from_pitch(RoofShape shape, double pitch_deg, const RoofFrame& frame) {
+    const double half = 0.5 * frame.width(), rise = std::tan(pitch_deg * kPi / 180);
+    switch (shape) {
+        case RoofShape::Skillion: return rise * frame.width();
+        case RoofShape::Dome: return half;
+        case RoofShape::Onion: return 1.5 * half;
+        case RoofShape::Round: return half;
+        default: return rise * half;
+    }
+}
+
+}  // namespace
+
+bool parse_roof_shape(const char* text, RoofShape* shape) {
+    static const std::pair<const char*, RoofShape> names[] = {
+        {"flat", RoofShape::Flat},           {"skillion", RoofShape::Skillion},
+        {"lean_to", RoofShape::Skillion},    {"gabled", RoofShape::Gabled},
+        {"pitched", RoofShape::Gabled},      {"saltbox", RoofShape::Gabled},
+        {"hipped", RoofShape::Hipped},       {"side_hipped", RoofShape::Hipped},
+        {"crosspitched", RoofShape::Hipped}, {"half-hipped", RoofShape::HalfHipped},
+        {"half_hipped", RoofShape::HalfHipped}, {"pyramidal", RoofShape::Pyramidal},
+        {"cone", RoofShape::Pyramidal},      {"gambrel", RoofShape::Gambrel},
+        {"mansard", RoofShape::Mansard},     {"dome", RoofShape::Dome},
+        {"onion", RoofShape::Onion},         {"round", RoofShape::Round},
+    };
+    for (const auto& [name, value] : names)
+        if (std::strcmp(text, name) == 0) {
+            *shape = value;
+            return true;
+        }
+    return false;
+}
+
+bool parse_compass_direction(const char* text, double* degrees) {
+    static const char* const points[] = {"N", "NNE", "NE", "ENE", "E", "ESE", "SE", "SSE",
+                                         "S", "SSW", "SW", "WSW", "W", "WNW", "NW", "NNW"};
+    for (int i = 0; i < 16; ++i)
+        if (std::strcmp(text, points[i]) == 0) {
+            *degrees = 22.5 * i;
+            return true;
+        }
+    char* end = nullptr;
+    const double v = std::strtod(text, &end);
+    if (end == text || *end != '\0' || !std::isfinite(v)) return false;
+    *degrees = std::fmod(std::fmod(v, 360.0) + 360.0, 360.0);
+    return true;
+}
+
+RoofShape default_roof(const Building& b, double area, uint64_t seed, double* pitch_deg) {
+    const uint64_t key = hash_keys(seed, static_cast<uint64_t>(b.osm.type), static_cast<uint64_t>(b.osm.id));
+    const double u = hash_to_unit(hash_keys(key, kPitchedOrFlat));
+    const double which = hash_to_unit(hash_keys(key, kWhichPitched));
+    *pitch_deg = 25 + 20 * hash_to_unit(hash_keys(key, kPitch));
+    auto pitched = [&] {
+        return which < 0.65 ? RoofShape::Gabled : which < 0.9 ? RoofShape::Hipped : RoofShape::HalfHipped;
+    };
+    if (b.is_part || b.min_height > 0) return RoofShape::Flat;
+    const std::string& t = b.type;
+    const double h = b.height;
+    if (is_one_of(t, {"church", "chapel", "cathedral", "barn", "farm_auxiliary", "stable", "cowshed"}))
+        return RoofShape::Gabled;
+    if (is_one_of(t, {"house", "detached", "semidetached_house", "terrace", "bungalow", "farm", "villa",
+                      "cabin", "hut", "static_caravan", "dormitory"}))
+        return pitched();
+    if (is_one_of(t, {"garage", "garages", "shed", "carport"}))
+        return u < 0.5 ? RoofShape::Flat : u < 0.8 ? RoofShape::Gabled : RoofShape::Skillion;
+    if (is_one_of(t, {"yes", "residential"}) && area < 250 && h <= 13) return u < 0.6 ? pitched() : RoofShape::Flat;
+    if (t == "apartments" && area < 600 && h <= 20) return u < 0.3 ? pitched() : RoofShape::Flat;
+    return RoofShape::Flat;
+}
+
+bool roof_face_is_valid(const RoofFace& face, const Building& b, double z_min, double z_max) {
+    const double tol = 1e-2;
+    if (!face_is_planar(face, tol)) return false;
+    for (Vec3 p : face.points) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return false;
+        if (p.z < z_min - tol || p.z > z_max + tol) return false;
+        const Vec2 q{p.x, p.y};
+        if (!point_in_ring(q, b.outer) && distance_to_boundary(q, b.outer) > tol) return false;
+        for (const Ring& hole : b.holes)
+            if (point_in_ring(q, hole) && distance_to_boundary(q, hole) > tol) return false;
+    }
+    return true;
+}
+
+namespace {
+
+// One building's roof; what the report should count goes to `notes`.
+void build_roof(Building& b, const BuildingTagIndex& index, const BuildingParams& params,
+                std::vector<std::string>& notes) {
+    b.roof_faces.clear();
+    b.roof_height = 0;
+    b.roof_shape = RoofShape::Flat;
+    if (!has_volume(b)) return;
+    const OsmTags& tags = index.find(b.osm);
+    const double area = std::fabs(signed_area(b.outer));
+
+    // Shape.
+    RoofShape shape = RoofShape::Flat;
+    double pitch = 0;
+    b.roof_inferred = false;
+    if (const char* text = tags.get("roof:shape")) {
+        if (!parse_roof_shape(text, &shape)) {
+            notes.push_back("unknown roof:shape: flat");
+            shape = RoofShape::Flat;
+        }
+        pitch = default_pitch(shape);
+    } else {
+        shape = default_roof(b, area, params.seed, &pitch);
+        b.roof_inferred = true;
+    }
+    if (const char* text = tags.get("roof:angle")) {
+        char* end = nullptr;
+        const double angle = std::strtod(text, &end);
+        if (end != text && *end == '\0' && angle > 0 && angle <= 85) pitch = angle;
+        else notes.push_back("bad roof:angle ignored");
+    }
+    if (shape == RoofShape::Flat) {
+        notes.push_back(b.roof_inferred ? "flat (default)" : "flat (tagged)");
+        return;
+    }
+
+    RoofSpec spec;
+    spec.shape = shape;
+    if (const char* text = tags.get("roof:direction")) {
+        double degrees = 0;
+        if (parse_compass_direction(text, &degrees)) {
+            spec.has_direction = true;
+            spec.direction = {std::sin(degrees * kPi / 180), std::cos(degrees * kPi / 180)};
+        } else {
+            notes.push_back("bad roof:direction ignored");
+        }
+    }
+    spec.across = tags.has("roof:orientation", "across");
+
+    // Height.
+    const double budget = b.height - b.min_height;
+    double height = 0;
+    bool derived = false;
+    const char* height_text = tags.get("roof:height");
+    std::optional<double> tagged = height_text ? parse_osm_length(height_text) : std::nullopt;
+    if (height_text && (!tagged || *tagged < 0)) {
+        notes.push_back("bad roof:height ignored");
+        tagged.reset();
+    }
+    const char* levels_text = tags.get("roof:levels");
+    std::optional<double> levels = levels_text ? parse_osm_count(levels_text) : std::nullopt;
+    if (tagged) {
+        height = *tagged;
+    } else if (levels && *levels > 0 && *levels < 100) {
+        height = *levels * params.level_height;
+    } else {
+        height = height_from_pitch(shape, pitch, roof_frame(b.outer, spec));
+        derived = true;
+    }
+    if (b.height_source == HeightSource::Levels) {
+        b.height += height;  // building:levels counts the storeys under the roof
+    } else if (derived) {
+        height = std::min(height, 0.75 * budget);
+    } else if (height > budget) {
+        notes.push_back("roof:height above the building: clamped");
+        height = budget;
+    }
+    if (height < kMinRoofHeight) {
+        notes.push_back("roof too low: flat");
+        return;
+    }
+
+    spec.eaves_z = b.height - height;
+    spec.height = height;
+    std::vector<RoofFace> faces;
+    RoofShape built = shape;
+    std::string why;
+    if (!make_roof_faces(b.outer, b.holes, spec, &faces, &built, &why)) {
+        notes.push_back("could not build (" + why + "): flat");
+        if (b.height_source == HeightSource::Levels) b.height -= height;
+        return;
+    }
+    for (RoofFace& wall : gable_walls(b.outer, b.holes, faces, spec.eaves_z)) faces.push_back(std::move(wall));
+    bool valid = true;
+    for (const RoofFace& face : faces) valid = valid && roof_face_is_valid(face, b, spec.eaves_z, b.height);
+    if (!valid) {
+        notes.push_back(std::string("faces failed the checks (") + to_string(shape) + "): flat");
+        if (b.height_source == HeightSource::Levels) b.height -= height;
+        return;
+    }
+    if (built != shape)
+        notes.push_back(std::string(to_string(shape)) + " on a bent or holed footprint: built hipped");
+    b.roof_shape = built;
+    b.roof_height = height;
+    b.roof_faces = std::move(faces);
+    notes.push_back(std::string(to_string(built)) + (b.roof_inferred ? " (default)" : " (tagged)"));
+}
+
+}  // namespace
+
+void build_roofs(std::vector<Building>& buildings, const BuildingTagIndex& index, const BuildingParams& params,
+                 ParseReport& report) {
+    // Buildings are independent (the straight skeleton is most of the stage's time): in parallel,
+    // with the notes counted afterwards in building order, so the report does not depend on threads.
+    std::vector<std::vector<std::string>> notes(buildings.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, buildings.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) build_roof(buildings[i], index, params, notes[i]);
+    });
+    for (const auto& list : notes)
+        for (const std::string& note : list) report.note(kRoofs, note);
+}
+
+}  // namespace citygen

@@ -1,0 +1,142 @@
+#include "render/camera/camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace citygen {
+
+Camera Camera::look_at(Vec3 position, Vec3 target, double vertical_fov_deg, int width, int height) {
+    Camera c;
+    c.position_ = position;
+    c.forward_ = normalize(target - position);
+    Vec3 world_up{0, 0, 1};
+    if (std::fabs(dot(c.forward_, world_up)) > 0.999) world_up = {0, 1, 0};  // looking straight down
+    c.right_ = normalize(cross(c.forward_, world_up));
+    c.up_ = cross(c.right_, c.forward_);
+    c.tan_half_fov_ = std::tan(0.5 * vertical_fov_deg * kPi / 180);
+    c.width_ = width;
+    c.height_ = height;
+    c.aspect_ = static_cast<double>(width) / height;
+    return c;
+}
+
+Camera Camera::resized(int width, int height) const {
+    Camera c = *this;
+    c.width_ = width;
+    c.height_ = height;
+    c.aspect_ = static_cast<double>(width) / height;
+    return c;
+}
+
+Ray Camera::generate_ray(double px, double py) const {
+    const double sx = (2 * px / width_ - 1) * tan_half_fov_ * aspect_;
+    const double sy = (1 - 2 * py / height_) * tan_half_fov_;
+    Ray ray;
+    ray.origin = position_;
+    ray.direction = normalize(forward_ + right_ * sx + up_ * sy);
+    return ray;
+}
+
+bool Camera::project(Vec3 p, double* px, double* py) const {
+    const Vec3 d = p - position_;
+    const double z = dot(d, forward_);
+    if (!(z > 0)) return false;
+    *px = (dot(d, right_) / (z * tan_half_fov_ * aspect_) + 1) * 0.5 * width_;
+    *py = (1 - dot(d, up_) / (z * tan_half_fov_)) * 0.5 * height_;
+    return true;
+}
+
+Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, int height) {
+    // Frame the buildings (roads may run far out of town); failing that the roads, then the
+    // header bounds.
+    Box2 box;
+    double top = 0;
+    for (const Building& b : scene.buildings) {
+        for (Vec2 p : b.outer) box.extend(p);
+        top = std::max(top, b.height);
+    }
+    if (box.empty())
+        for (const RoadEdge& r : scene.roads)
+            for (Vec2 p : r.quad) box.extend(p);
+    if (box.empty()) {
+        box.extend(scene.header.bounds_min);
+        box.extend(scene.header.bounds_max);
+    }
+    const Vec2 centre = (box.min + box.max) * 0.5;
+    const double radius = std::max(20.0, 0.5 * std::hypot(box.max.x - box.min.x, box.max.y - box.min.y));
+    // Look down 20 degrees, less when the field of view is narrow, so the top of the image
+    // always shows some sky above the horizon.
+    const double half_fov = 0.5 * vertical_fov_deg * kPi / 180;
+    const double pitch = std::clamp(half_fov - 5 * kPi / 180, 3 * kPi / 180, 20 * kPi / 180);
+    Vec3 target{centre.x, centre.y, scene.ground.z + 0.15 * std::min(top, radius)};
+    const Vec2 from_south_west = normalize(Vec2{-1, -1.6});
+    const Vec3 back{from_south_west.x * std::cos(pitch), from_south_west.y * std::cos(pitch), std::sin(pitch)};
+    // The nearest distance at which every building corner (foot and top; road corners when
+    // there are no buildings) falls inside 90% of the frame; found by bisection (fitting gets
+    // easier with distance). Corners, not the bounding box: a diagonal town leaves the box's
+    // corners empty.
+    std::vector<Vec3> corners;
+    for (const Building& b : scene.buildings)
+        for (Vec2 p : b.outer) {
+            corners.push_back({p.x, p.y, scene.ground.z});
+            corners.push_back({p.x, p.y, scene.ground.z + std::min(b.height, 2 * radius)});
+        }
+    if (corners.empty())
+        for (double x : {box.min.x, box.max.x})
+            for (double y : {box.min.y, box.max.y}) corners.push_back({x, y, scene.ground.z});
+    const double tan_v = 0.9 * std::tan(half_fov), tan_h = tan_v * width / height;
+    const Vec3 forward = -back;
+    const Vec3 right = normalize(cross(forward, Vec3{0, 0, 1}));
+    const Vec3 up = cross(right, forward);
+    // A lone building far out of town may fall outside: 0.3% of the corners are allowed to.
+    const size_t allowed_outside = corners.size() * 3 / 1000;
+    auto fits = [&](double distance) {
+        const Vec3 eye = target + back * distance;
+        size_t outside = 0;
+        for (const Vec3& c : corners) {
+            const Vec3 d = c - eye;
+            const double z = dot(d, forward);
+            if (z <= 0 || std::fabs(dot(d, right)) > tan_h * z || std::fabs(dot(d, up)) > tan_v * z)
+                if (++outside > allowed_outside) return false;
+        }
+        return true;
+    };
+    auto quantile = [](std::vector<double>& values, double q) {
+        const size_t k = std::min(values.size() - 1, static_cast<size_t>(q * values.size()));
+        std::nth_element(values.begin(), values.begin() + k, values.end());
+        return values[k];
+    };
+    double distance = 100 * radius;
+    // A few rounds of: fit the distance, then re-aim at the middle of what the town covers in
+    // the image (a town seen from above fills the lower half otherwise). The direction, and so
+    // the strip of sky at the top, stays the same.
+    for (int round = 0; round < 8; ++round) {
+        double near = 0.01 * radius, far = 100 * radius;
+        for (int i = 0; i < 60; ++i) {
+            const double mid = 0.5 * (near + far);
+            (fits(mid) ? far : near) = mid;
+        }
+        distance = far;
+        const Vec3 eye = target + back * distance;
+        std::vector<double> u, v;
+        for (const Vec3& c : corners) {
+            const Vec3 d = c - eye;
+            const double z = std::max(dot(d, forward), 1e-9);
+            u.push_back(dot(d, right) / z);
+            v.push_back(dot(d, up) / z);
+        }
+        const double u_mid = 0.5 * (quantile(u, 0.0015) + quantile(u, 0.9985));
+        const double v_mid = 0.5 * (quantile(v, 0.0015) + quantile(v, 0.9985));
+        target = target + (right * u_mid + up * v_mid) * (0.5 * distance);  // damped: perspective shifts too
+    }
+    double near = 0.01 * radius, far = 100 * radius;
+    for (int i = 0; i < 60; ++i) {
+        const double mid = 0.5 * (near + far);
+        (fits(mid) ? far : near) = mid;
+    }
+    const Vec3 position = target + back * far;
+    return Camera::look_at(position, target, vertical_fov_deg, width, height);
+}
+
+}  // namespace citygen

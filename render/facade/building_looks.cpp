@@ -1,0 +1,185 @@
+#include "render/facade/building_looks.h"
+
+#include <cmath>
+
+#include "common/rng.h"
+
+namespace citygen {
+
+namespace {
+
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+// A number in [0, 1) per integer cell.
+double cell_unit(int64_t a, int64_t b, uint64_t salt) {
+    return hash_to_unit(hash_keys(salt, static_cast<uint64_t>(a), static_cast<uint64_t>(b)));
+}
+
+// Smooth value noise in [0, 1): bilinear between cell corners.
+double value_noise(double u, double v, uint64_t salt) {
+    const double fu = std::floor(u), fv = std::floor(v);
+    const int64_t iu = static_cast<int64_t>(fu), iv = static_cast<int64_t>(fv);
+    double su = u - fu, sv = v - fv;
+    su = su * su * (3 - 2 * su);
+    sv = sv * sv * (3 - 2 * sv);
+    const double a = cell_unit(iu, iv, salt), b = cell_unit(iu + 1, iv, salt);
+    const double c = cell_unit(iu, iv + 1, salt), d = cell_unit(iu + 1, iv + 1, salt);
+    return (a * (1 - su) + b * su) * (1 - sv) + (c * (1 - su) + d * su) * sv;
+}
+
+// Running bond (bricks, stones, tiles): units of size w x h, every other row shifted by half;
+// `joint` wide joints get `joint_factor`, each unit its own shade within +-variation.
+double bond(double u, double v, double w, double h, double joint, double joint_factor, double variation,
+            uint64_t salt) {
+    const double row = std::floor(v / h);
+    const double shifted = u / w + 0.5 * (static_cast<int64_t>(row) & 1);
+    const double col = std::floor(shifted);
+    const double du = (shifted - col) * w, dv = v - row * h;
+    if (du < joint || dv < joint) return joint_factor;
+    return 1 + variation * (2 * cell_unit(static_cast<int64_t>(col), static_cast<int64_t>(row), salt) - 1);
+}
+
+}  // namespace
+
+Color albedo_from_srgb(uint32_t rgb) {
+    const double r = ((rgb >> 16) & 0xff) / 255.0, g = ((rgb >> 8) & 0xff) / 255.0, b = (rgb & 0xff) / 255.0;
+    return Color{srgb_to_linear(r), srgb_to_linear(g), srgb_to_linear(b)} * 0.8;
+}
+
+double wall_pattern(WallMaterial material, double u, double v) {
+    switch (material) {
+        case WallMaterial::Plaster:
+            return 0.96 + 0.05 * value_noise(u / 0.9, v / 0.9, 11) + 0.03 * value_noise(u / 0.12, v / 0.12, 12);
+        case WallMaterial::Brick: return bond(u, v, 0.25, 0.075, 0.012, 1.45, 0.12, 13);
+        case WallMaterial::Concrete:
+            return bond(u, v, 3.0, 1.5, 0.02, 0.7, 0.05, 14) * (0.97 + 0.05 * value_noise(u / 0.4, v / 0.4, 15));
+        case WallMaterial::Stone: return bond(u, v, 0.6, 0.35, 0.015, 1.25, 0.1, 16);
+        case WallMaterial::Wood: {
+            const double board = u / 0.15;
+            const double f = board - std::floor(board);
+            if (f < 0.06) return 0.55;
+            return 1 + 0.1 * (2 * cell_unit(static_cast<int64_t>(std::floor(board)), 0, 17) - 1);
+        }
+        case WallMaterial::Metal: return 0.9 + 0.1 * std::sin(2 * kPi * u / 0.1);
+        case WallMaterial::Glass: return 1;
+    }
+    return 1;
+}
+
+double roof_pattern(RoofMaterial material, double u, double v) {
+    switch (material) {
+        case RoofMaterial::RoofTiles: {
+            // Rows up the slope; the lower edge of each row throws a thin shadow on the next one.
+            const double row = v / 0.32;
+            const double f = row - std::floor(row);
+            const double shade = f < 0.1 ? 0.65 : 1.0;
+            return shade * bond(u, v, 0.22, 0.32, 0.01, 0.8, 0.1, 21);
+        }
+        case RoofMaterial::Slate: return bond(u, v, 0.3, 0.2, 0.008, 0.7, 0.08, 22);
+        case RoofMaterial::Metal:
+        case RoofMaterial::Copper: {
+            const double f = u / 0.5 - std::floor(u / 0.5);
+            return f < 0.05 ? 0.75 : 1.0;
+        }
+        case RoofMaterial::TarPaper:
+        case RoofMaterial::Concrete:
+        case RoofMaterial::Grass:
+        case RoofMaterial::Thatch:
+            return 0.92 + 0.12 * value_noise(u / 1.5, v / 1.5, 23) + 0.05 * value_noise(u / 0.2, v / 0.2, 24);
+        case RoofMaterial::Glass: return 1;
+    }
+    return 1;
+}
+
+BuildingLooks::BuildingLooks(const Scene& scene) {
+    looks_.reserve(scene.buildings.size());
+    for (const Building& b : scene.buildings) {
+        Look look;
+        look.has_wall = b.wall_colour != 0;
+        look.has_roof = b.roof_colour != 0;
+        look.wall = albedo_from_srgb(b.wall_colour);
+        look.roof = albedo_from_srgb(b.roof_colour);
+        look.wall_material = b.wall_material;
+        look.roof_material = b.roof_material;
+        looks_.push_back(look);
+    }
+}
+
+namespace {
+
+// Wall or roof coordinates at a hit: u, v in metres and the world directions they grow along.
+struct SurfaceFrame {
+    double u, v;
+    Vec3 du, dv;
+};
+SurfaceFrame surface_frame(const Hit& hit, bool wall) {
+    const Vec3 n = hit.geometric_normal, p = hit.position;
+    SurfaceFrame f;
+    if (wall) {
+        const Vec2 along = std::fabs(n.z) < 0.9 ? normalize(Vec2{-n.y, n.x}) : Vec2{1, 0};
+        f.du = {along.x, along.y, 0};
+        f.dv = std::fabs(n.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{0, 1, 0};
+    } else {
+        Vec3 eaves = cross(Vec3{0, 0, 1}, n);
+        if (length(eaves) < 1e-6) eaves = {1, 0, 0};
+        f.du = normalize(eaves);
+        f.dv = normalize(cross(n, f.du));
+    }
+    f.u = dot(p, f.du);
+    f.v = dot(p, f.dv);
+    return f;
+}
+
+// How deep the relief of a pattern is per unit of pattern factor (mortar and joints are recessed
+// whether they are lighter or darker than the face).
+double relief(WallMaterial m) { return m == WallMaterial::Brick || m == WallMaterial::Stone ? -0.004 : 0.004; }
+constexpr double kRoofRelief = 0.006;
+
+}  // namespace
+
+void BuildingLooks::bump(Hit& hit) const {
+    if (hit.kind != ObjectKind::Building || hit.object >= looks_.size()) return;
+    const Look& look = looks_[hit.object];
+    const bool wall = hit.material == kFacade && look.has_wall && look.wall_material != WallMaterial::Glass &&
+                      !(textures_ && textures_->has(look.wall_material));
+    const bool roof = hit.material == kRoof && look.has_roof && !(textures_ && textures_->has(look.roof_material));
+    if (!wall && !roof) return;
+    const SurfaceFrame f = surface_frame(hit, wall);
+    // Height field h = relief x pattern; its slope by central differences over 3 mm.
+    const double e = 0.003;
+    auto h = [&](double u, double v) {
+        return wall ? relief(look.wall_material) * wall_pattern(look.wall_material, u, v)
+                    : kRoofRelief * roof_pattern(look.roof_material, u, v);
+    };
+    const double dhdu = (h(f.u + e, f.v) - h(f.u - e, f.v)) / (2 * e);
+    const double dhdv = (h(f.u, f.v + e) - h(f.u, f.v - e)) / (2 * e);
+    hit.shading_normal = normalize(hit.geometric_normal - f.du * dhdu - f.dv * dhdv);
+}
+
+Material BuildingLooks::material_for(const MaterialTable& table, const Hit& hit) const {
+    Material m = table[hit.material];
+    if (hit.kind != ObjectKind::Building || hit.object >= looks_.size()) return m;
+    const Look& look = looks_[hit.object];
+    if (hit.material == kFacade && look.has_wall) {
+        const SurfaceFrame f = surface_frame(hit, true);
+        m.albedo = textures_ && textures_->has(look.wall_material)
+                       ? look.wall * textures_->factor(look.wall_material, f.u, f.v, hit.t)
+                       : look.wall * wall_pattern(look.wall_material, f.u, f.v);
+        if (look.wall_material == WallMaterial::Glass) {
+            m.type = MaterialType::Glossy;
+            m.specular = {0.25, 0.25, 0.25};
+            m.exponent = 400;
+        }
+    } else if (hit.material == kRoof && look.has_roof) {
+        const SurfaceFrame f = surface_frame(hit, false);
+        m.albedo = textures_ && textures_->has(look.roof_material)
+                       ? look.roof * textures_->factor(look.roof_material, f.u, f.v, hit.t)
+                       : look.roof * roof_pattern(look.roof_material, f.u, f.v);
+        if (look.roof_material == RoofMaterial::Metal || look.roof_material == RoofMaterial::Copper ||
+            look.roof_material == RoofMaterial::Glass)
+            m.specular = {0.08, 0.08, 0.08};
+    }
+    return m;
+}
+
+}  // namespace citygen

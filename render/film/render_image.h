@@ -1,0 +1,74 @@
+// Rendering a whole image: tiles in parallel (TBB), one random stream per pixel so the result
+// does not depend on the thread count (and per pixel scrambled Sobol pairs placing its samples
+// and drawing their first surface's numbers, pixel_jitter.h), the light of lamp globes a few
+// pixels wide gathered per pixel (small_globes.h), optional AOVs from the ray through each pixel
+// centre.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/camera/camera.h"
+#include "render/integrator/integrator.h"
+
+namespace citygen {
+
+// A rectangle of pixels [x0, x1) x [y0, y1) of the full frame; empty means the whole frame.
+struct PixelRegion {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+    bool empty() const { return x1 <= x0 || y1 <= y0; }
+    int width() const { return x1 - x0; }
+    int height() const { return y1 - y0; }
+};
+
+struct RenderSettings {
+    int width = 1280, height = 720;  // the full frame, also when only a region is rendered
+    int spp = 16;                    // samples per pixel; with a time limit, the most passes
+    // Only these pixels (the film is the crop); each pixel equals the same pixel of the full render.
+    PixelRegion region;
+    // When > 0: whole passes of one sample per pixel until the next pass would not end within
+    // this many seconds (at least one pass). The film equals a fixed render of that many spp.
+    double time_limit_seconds = 0;
+    uint64_t seed = 1;
+    IntegratorSettings integrator;
+    bool aovs = false;   // fill depth, normal, albedo and id
+    bool denoise_guides = false;  // fill the guide_* buffers (for --denoise)
+    bool quiet = false;  // no progress bar
+};
+
+// Linear float images, row-major from the top-left pixel.
+struct Film {
+    int width = 0, height = 0;       // of the rendered region
+    int x0 = 0, y0 = 0;              // where the film's top-left pixel lies in the full frame
+    std::vector<float> rgb;          // 3 per pixel, radiance (before exposure)
+    std::vector<float> raw_rgb;      // 3 per pixel, rgb before --denoise (empty unless denoised)
+    // AOVs, present when RenderSettings::aovs: from the primary ray through the pixel centre.
+    std::vector<float> depth;        // metres along the ray; 0 where the ray escapes
+    std::vector<float> normal;       // 3 per pixel, facing the camera
+    std::vector<float> albedo;       // 3 per pixel
+    std::vector<float> object_kind;  // ObjectKind as a number (0: sky)
+    std::vector<float> object_index; // index of the object in the scene file's list of its kind
+    // Denoiser guides, present when RenderSettings::denoise_guides: albedo, normal and depth
+    // averaged over 6x6 positions in the pixel, so a window narrower than a pixel still shows.
+    std::vector<float> guide_albedo, guide_normal, guide_depth;
+    std::vector<float> guide_direct;    // 3 per pixel, emission and haze seen directly and the
+                                        // small globes' gathered light (noise-free)
+    std::vector<float> guide_variance;  // of each pixel's mean luminance, from its samples
+    std::vector<float> guide_sample_direct;  // 3 per pixel, guide_direct's light along the sample rays (mean)
+};
+
+struct RenderStats {
+    double seconds = 0;
+    uint64_t rays = 0;
+    int spp = 0;  // samples per pixel rendered (the passes reached under a time limit)
+    double denoise_seconds = 0;  // the --denoise filter alone
+};
+
+// The region actually rendered: settings.region, or the whole frame when it is empty.
+// Throws citygen::Error when the region does not lie inside the frame.
+PixelRegion render_region(const RenderSettings& settings);
+
+Film render_image(const PathContext& context, const Camera& camera, const RenderSettings& settings,
+                  RenderStats* stats = nullptr);
+
+}  // namespace citygen

@@ -1,0 +1,110 @@
+#include "render/geometry/path_geometry.h"
+
+#include <cmath>
+
+#include "render/geometry/road_markings.h"
+#include "render/geometry/stored_geometry.h"
+#include "render/geometry/surface_detail.h"
+#include "render/materials/materials.h"
+
+namespace citygen {
+
+namespace {
+
+uint16_t joint_material(const Scene& scene, const Joint& j) {
+    return j.edges.empty() ? kPathPaving : path_material(scene.paths[j.edges.front()].path_class);
+}
+
+ProceduralGeometry::SurfaceMaterials walls() {
+    ProceduralGeometry::SurfaceMaterials m;
+    m.fill(kPathPaving);
+    return m;
+}
+
+}  // namespace
+
+uint16_t path_material(PathClass c) {
+    switch (c) {
+        case PathClass::Footway:
+        case PathClass::Pedestrian:
+        case PathClass::Steps: return kPathPaving;
+        case PathClass::Cycleway: return kCyclewaySurface;
+        case PathClass::Path:
+        case PathClass::Track:
+        case PathClass::Bridleway: return kGravel;
+        case PathClass::Tram: return kAsphalt;  // street track: paved between the rails
+        case PathClass::Rail:
+        case PathClass::LightRail:
+        case PathClass::Subway: return kBallast;
+    }
+    return kPathPaving;
+}
+
+double path_z(const Scene& scene, const PathEdge& path) {
+    return scene.ground.z + (path.path_class == PathClass::Tram ? kTramLift : kPathLift);
+}
+
+TriangleMesh build_stored_paths(const Scene& scene) {
+    TriangleMesh mesh;
+    mesh.kind = ObjectKind::Path;
+    for (uint32_t i = 0; i < scene.paths.size(); ++i)
+        add_flat_polygon(scene.paths[i].quad, path_z(scene, scene.paths[i]), i, path_material(scene.paths[i].path_class),
+                         mesh);
+    return mesh;
+}
+
+TriangleMesh build_stored_path_joints(const Scene& scene) {
+    TriangleMesh mesh;
+    mesh.kind = ObjectKind::PathJoint;
+    const double z = scene.ground.z + kPathLift;
+    for (uint32_t i = 0; i < scene.path_joints.size(); ++i)
+        add_flat_polygon(scene.path_joints[i].polygon, z, i, joint_material(scene, scene.path_joints[i]), mesh);
+    return mesh;
+}
+
+std::unique_ptr<ProceduralGeometry> build_procedural_paths(const Scene& scene) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Path, walls());
+    for (uint32_t i = 0; i < scene.paths.size(); ++i)
+        if (scene.paths[i].quad.size() >= 3)
+            geometry->add_polygon(i, scene.paths[i].quad, {}, path_z(scene, scene.paths[i]),
+                                  path_material(scene.paths[i].path_class));
+    return geometry;
+}
+
+std::unique_ptr<ProceduralGeometry> build_procedural_path_joints(const Scene& scene) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::PathJoint, walls());
+    const double z = scene.ground.z + kPathLift;
+    for (uint32_t i = 0; i < scene.path_joints.size(); ++i)
+        if (scene.path_joints[i].polygon.size() >= 3)
+            geometry->add_polygon(i, scene.path_joints[i].polygon, {}, z, joint_material(scene, scene.path_joints[i]));
+    return geometry;
+}
+
+uint16_t path_surface_material(const PathEdge& path, Vec2 p) {
+    const uint16_t base = path_material(path.path_class);
+    if (!is_rail(path.path_class) || path.centreline.size() < 2) return base;
+    const Vec2 a = path.centreline.front(), d = normalize(path.centreline.back() - a);
+    const double along = dot(p - a, d), across = std::fabs(cross(d, p - a));
+    constexpr double kHalfGauge = 0.7175 + 0.035, kRailHead = 0.035;
+    if (std::fabs(across - kHalfGauge) < kRailHead) return kRailSteel;
+    const double phase = along / 0.6 - std::floor(along / 0.6);
+    if (path.path_class != PathClass::Tram && across < 1.3 && phase < 0.4) return kSleeper;
+    return base == kAsphalt ? asphalt_grain(p) : base;
+}
+
+std::unique_ptr<RenderGeometry> with_rail_tracks(std::unique_ptr<RenderGeometry> geometry, const Scene& scene) {
+    // Its own copy of the centrelines and classes: the scene may go first.
+    auto paths = std::make_shared<std::vector<PathEdge>>();
+    for (const PathEdge& p : scene.paths) {
+        PathEdge copy;
+        copy.centreline = p.centreline;
+        copy.path_class = p.path_class;
+        paths->push_back(std::move(copy));
+    }
+    return std::make_unique<SurfaceDetailGeometry>(std::move(geometry), [paths](Hit& hit) {
+        if (hit.kind != ObjectKind::Path || hit.object >= paths->size()) return;
+        hit.material = path_surface_material((*paths)[hit.object], {hit.position.x, hit.position.y});
+    });
+}
+
+}  // namespace citygen

@@ -1,0 +1,87 @@
+// The procedural builders: the same surfaces as the stored builders (stored_buildings.cpp,
+// stored_flat_polygons.cpp), as user-geometry primitives instead of triangles.
+#include <algorithm>
+
+#include "render/facade/facade_materials.h"
+#include "render/geometry/procedural_geometry.h"
+#include "render/geometry/stored_geometry.h"
+#include "render/materials/materials.h"
+
+namespace citygen {
+
+namespace {
+
+ProceduralGeometry::SurfaceMaterials all_surfaces(uint16_t material) {
+    ProceduralGeometry::SurfaceMaterials m;
+    m.fill(material);
+    return m;
+}
+
+}  // namespace
+
+std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades,
+                                                               Progress* progress) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Building, facade_surface_materials());
+    const double ground = scene.ground.z;
+    for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
+        if (progress) progress->advance();
+        const Building& b = scene.buildings[index];
+        if (!has_volume(b)) continue;
+        const double bottom = ground + b.min_height, top = ground + b.height;
+        const BuildingWalls walls(b);
+        for (size_t w = 0, n = walls.count(); w < n; ++w) {
+            Vec2 p, q;
+            walls.wall(w, &p, &q);
+            const WallInput input = walls.input(w);
+            if (p == q || !(input.height > 0)) continue;  // no wall under a roof that starts at the bottom
+            geometry->add_wall(index, make_wall_layout(facades, input), wall_frame(p, q, bottom),
+                               static_cast<uint32_t>(w));
+        }
+        if (b.roof_faces.empty()) geometry->add_polygon(index, b.outer, b.holes, top, kRoof, +1);
+        for (const RoofFace& face : b.roof_faces)
+            geometry->add_face(index, lifted_face(face, ground), roof_face_material(face));
+        if (b.min_height > 0) geometry->add_polygon(index, b.outer, b.holes, bottom, kFacade, -1);
+    }
+    return geometry;
+}
+
+std::unique_ptr<ProceduralGeometry> build_procedural_roads(const Scene& scene) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Road, all_surfaces(kAsphalt));
+    const double z = scene.ground.z + kRoadLift;
+    for (uint32_t i = 0; i < scene.roads.size(); ++i) geometry->add_polygon(i, scene.roads[i].quad, {}, z, kAsphalt);
+    return geometry;
+}
+
+std::unique_ptr<ProceduralGeometry> build_procedural_joints(const Scene& scene) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Joint, all_surfaces(kAsphalt));
+    const double z = scene.ground.z + kRoadLift;
+    for (uint32_t i = 0; i < scene.joints.size(); ++i)
+        geometry->add_polygon(i, scene.joints[i].polygon, {}, z, kAsphalt);
+    return geometry;
+}
+
+std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scene) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Sidewalk, all_surfaces(kCurb));
+    SidewalkShape shape;
+    for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
+        if (!sidewalk_shape(scene, i, &shape)) continue;
+        geometry->add_polygon(i, shape.ring, {}, shape.top_z, kSidewalk);
+        if (!shape.has_curb()) continue;
+        const Ring& ring = shape.ring;
+        for (size_t k = 0, n = ring.size(); k < n; ++k) {
+            const Vec2 a = ring[k], b = ring[(k + 1) % n];
+            if (a == b) continue;
+            geometry->add_plain_wall(i, a, b, shape.road_z, shape.top_z - shape.road_z);
+        }
+    }
+    return geometry;
+}
+
+std::unique_ptr<ProceduralGeometry> build_procedural_terrain(const Scene& scene) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Terrain, all_surfaces(kGround));
+    const Box2 e = terrain_extent(scene);
+    geometry->add_polygon(0, Ring{e.min, {e.max.x, e.min.y}, e.max, {e.min.x, e.max.y}}, {}, scene.ground.z, kGround);
+    return geometry;
+}
+
+}  // namespace citygen

@@ -1,0 +1,220 @@
+#include "render/geometry/procedural_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/facade/wall_intersect.h"
+#include "render/geometry/face_plane.h"
+
+namespace citygen {
+
+void ProceduralGeometry::add_wall(uint32_t object, const WallLayout& layout, const WallFrame& frame,
+                                  uint32_t wall_index) {
+    walls_.push_back({layout, frame, object, wall_index});
+}
+
+void ProceduralGeometry::add_plain_wall(uint32_t object, Vec2 a, Vec2 b, double bottom, double height) {
+    plain_walls_.push_back({{a.x, a.y, bottom}, normalize(b - a), length(b - a), height, object});
+}
+
+void ProceduralGeometry::add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z,
+                                     uint16_t material, int normal_z) {
+    Polygon polygon;
+    polygon.first_ring = static_cast<uint32_t>(ring_ends_.size());
+    polygon.ring_count = static_cast<uint32_t>(1 + holes.size());
+    polygon.z = z;
+    polygon.bounds = bounds_of(outer);
+    polygon.object = object;
+    polygon.material = material;
+    polygon.normal_z = static_cast<int8_t>(normal_z < 0 ? -1 : 1);
+    points_.insert(points_.end(), outer.begin(), outer.end());
+    ring_ends_.push_back(static_cast<uint32_t>(points_.size()));
+    for (const Ring& hole : holes) {
+        points_.insert(points_.end(), hole.begin(), hole.end());
+        ring_ends_.push_back(static_cast<uint32_t>(points_.size()));
+    }
+    polygons_.push_back(polygon);
+}
+
+void ProceduralGeometry::add_face(uint32_t object, const std::vector<Vec3>& points, uint16_t material) {
+    FacePlane plane;
+    if (!face_plane(points, &plane)) return;
+    Face face;
+    face.normal = plane.normal;
+    face.axis_u = static_cast<uint8_t>(plane.axis_u);
+    face.axis_v = static_cast<uint8_t>(plane.axis_v);
+    face.offset = plane.offset;
+    face.lo = {1e300, 1e300, 1e300};
+    face.hi = {-1e300, -1e300, -1e300};
+    face.first_point = static_cast<uint32_t>(face_points_.size());
+    face.point_count = static_cast<uint32_t>(points.size());
+    for (Vec3 p : points) {
+        face.lo = {std::min(face.lo.x, p.x), std::min(face.lo.y, p.y), std::min(face.lo.z, p.z)};
+        face.hi = {std::max(face.hi.x, p.x), std::max(face.hi.y, p.y), std::max(face.hi.z, p.z)};
+        face_points_.push_back({p[face.axis_u], p[face.axis_v]});
+    }
+    face.object = object;
+    face.material = material;
+    faces_.push_back(face);
+}
+
+size_t ProceduralGeometry::buffer_bytes() const {
+    return walls_.capacity() * sizeof(Wall) + plain_walls_.capacity() * sizeof(PlainWall) +
+           faces_.capacity() * sizeof(Face) + face_points_.capacity() * sizeof(Vec2) +
+           polygons_.capacity() * sizeof(Polygon) +
+           points_.capacity() * sizeof(Vec2) + ring_ends_.capacity() * sizeof(uint32_t);
+}
+
+bool ProceduralGeometry::inside_polygon(const Polygon& polygon, Vec2 p) const {
+    const Box2& b = polygon.bounds;
+    if (p.x < b.min.x || p.x > b.max.x || p.y < b.min.y || p.y > b.max.y) return false;
+    for (uint32_t r = 0; r < polygon.ring_count; ++r) {
+        const uint32_t ring = polygon.first_ring + r;
+        const uint32_t begin = ring == 0 ? 0 : ring_ends_[ring - 1];
+        const bool inside = point_in_ring(p, points_.data() + begin, ring_ends_[ring] - begin);
+        if (inside != (r == 0)) return false;  // outside the outer ring, or inside a hole
+    }
+    return true;
+}
+
+bool ProceduralGeometry::intersect_face(const Face& face, Vec3 origin, Vec3 direction, double tmin, double tmax,
+                                        double* t) const {
+    const double denom = dot(face.normal, direction);
+    if (denom == 0) return false;
+    const double hit_t = (face.offset - dot(face.normal, origin)) / denom;
+    if (!(hit_t >= tmin && hit_t <= tmax)) return false;
+    const Vec3 p = origin + direction * hit_t;
+    if (!point_in_ring({p[face.axis_u], p[face.axis_v]}, face_points_.data() + face.first_point, face.point_count))
+        return false;
+    *t = hit_t;
+    return true;
+}
+
+bool ProceduralGeometry::wall_of(unsigned prim_id, WallLayout* layout, WallFrame* frame) const {
+    if (prim_id < walls_.size()) {
+        *layout = walls_[prim_id].layout;
+        *frame = walls_[prim_id].frame;
+        return true;
+    }
+    prim_id -= static_cast<unsigned>(walls_.size());
+    if (prim_id >= plain_walls_.size()) return false;
+    const PlainWall& plain = plain_walls_[prim_id];
+    layout->length = plain.length;
+    layout->height = plain.height;
+    frame->origin = plain.origin;
+    frame->u_axis = {plain.along.x, plain.along.y, 0};
+    frame->v_axis = {0, 0, 1};
+    frame->w_axis = {-plain.along.y, plain.along.x, 0};
+    return true;
+}
+
+bool ProceduralGeometry::intersect(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax,
+                                   PrimitiveHit* hit) const {
+    if (prim_id < walls_.size()) {  // the common case: no copy of the layout
+        const Wall& wall = walls_[prim_id];
+        WallHit wall_hit;
+        if (!intersect_wall(wall.layout, wall.frame, origin, direction, tmin, tmax, &wall_hit)) return false;
+        hit->t = wall_hit.t;
+        hit->normal = wall_hit.normal;
+        hit->material = wall_materials_[static_cast<int>(wall_hit.surface)];
+        hit->cell = wall_hit.floor < 0 ? 0 : static_cast<uint32_t>(wall_hit.floor) * 65536u + wall_hit.slot + 1;
+        return true;
+    }
+    WallLayout layout;
+    WallFrame frame;
+    if (wall_of(prim_id, &layout, &frame)) {
+        WallHit wall_hit;
+        if (!intersect_wall(layout, frame, origin, direction, tmin, tmax, &wall_hit)) return false;
+        hit->t = wall_hit.t;
+        hit->normal = wall_hit.normal;
+        hit->material = wall_materials_[static_cast<int>(wall_hit.surface)];
+        hit->cell = 0;
+        return true;
+    }
+    const size_t polygon_index = prim_id - walls_.size() - plain_walls_.size();
+    if (polygon_index >= polygons_.size()) {
+        const Face& face = faces_[polygon_index - polygons_.size()];
+        double t;
+        if (!intersect_face(face, origin, direction, tmin, tmax, &t)) return false;
+        hit->t = t;
+        hit->normal = face.normal;
+        hit->material = face.material;
+        hit->cell = 0;
+        return true;
+    }
+    const Polygon& polygon = polygons_[polygon_index];
+    if (direction.z == 0) return false;
+    const double t = (polygon.z - origin.z) / direction.z;
+    if (!(t >= tmin && t <= tmax)) return false;
+    if (!inside_polygon(polygon, {origin.x + direction.x * t, origin.y + direction.y * t})) return false;
+    hit->t = t;
+    hit->normal = {0, 0, double(polygon.normal_z)};
+    hit->material = polygon.material;
+    hit->cell = 0;
+    return true;
+}
+
+bool ProceduralGeometry::occluded(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax) const {
+    if (prim_id < walls_.size()) {
+        const Wall& wall = walls_[prim_id];
+        return wall_occluded(wall.layout, wall.frame, origin, direction, tmin, tmax);
+    }
+    WallLayout layout;
+    WallFrame frame;
+    if (wall_of(prim_id, &layout, &frame)) return wall_occluded(layout, frame, origin, direction, tmin, tmax);
+    PrimitiveHit hit;
+    return intersect(prim_id, origin, direction, tmin, tmax, &hit);
+}
+
+void ProceduralGeometry::bounds(unsigned prim_id, RTCBounds* out) const {
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    auto extend = [&](Vec3 p) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    };
+    WallLayout layout;
+    WallFrame frame;
+    if (wall_of(prim_id, &layout, &frame)) {
+        for (double u : {0.0, layout.length})
+            for (double v : {0.0, layout.height})
+                for (double w : {layout.w_min(), layout.w_max()}) extend(frame.to_world(u, v, w));
+    } else if (prim_id >= walls_.size() + plain_walls_.size() + polygons_.size()) {
+        const Face& face = faces_[prim_id - walls_.size() - plain_walls_.size() - polygons_.size()];
+        extend(face.lo);
+        extend(face.hi);
+    } else {
+        const Polygon& polygon = polygons_[prim_id - walls_.size() - plain_walls_.size()];
+        extend({polygon.bounds.min.x, polygon.bounds.min.y, polygon.z});
+        extend({polygon.bounds.max.x, polygon.bounds.max.y, polygon.z});
+    }
+    // Pad so that float rounding of the bounds never cuts off a surface on their faces.
+    const double pad = 1e-3;
+    out->lower_x = static_cast<float>(lo.x - pad);
+    out->lower_y = static_cast<float>(lo.y - pad);
+    out->lower_z = static_cast<float>(lo.z - pad);
+    out->upper_x = static_cast<float>(hi.x + pad);
+    out->upper_y = static_cast<float>(hi.y + pad);
+    out->upper_z = static_cast<float>(hi.z + pad);
+}
+
+RTCGeometry ProceduralGeometry::create_embree_geometry(RTCDevice device) {
+    // Building is over: give back what the vectors grew into (up to half their bytes).
+    walls_.shrink_to_fit();
+    plain_walls_.shrink_to_fit();
+    polygons_.shrink_to_fit();
+    faces_.shrink_to_fit();
+    face_points_.shrink_to_fit();
+    points_.shrink_to_fit();
+    ring_ends_.shrink_to_fit();
+    return new_user_geometry(device, this, primitive_count());
+}
+
+void ProceduralGeometry::complete_hit(const RTCHit& embree_hit, Hit& hit) const {
+    complete_user_hit(embree_hit, kind_, object(embree_hit.primID), hit);
+    if (embree_hit.primID < walls_.size()) {
+        hit.wall = walls_[embree_hit.primID].wall_index;
+        hit.cell = static_cast<uint32_t>(embree_hit.v);
+    }
+}
+
+}  // namespace citygen

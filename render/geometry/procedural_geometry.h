@@ -1,0 +1,137 @@
+// Procedural geometry mode: Embree user geometry whose surfaces are computed inside the
+// intersect and occluded callbacks instead of being stored as triangles.
+//
+// Two kinds of primitive, both tiny:
+//   - a wall: a WallLayout + WallFrame (render/facade/facade.h); the callback runs the cell-walking
+//     intersector (render/facade/wall_intersect.h), so windows, balconies and shop fronts exist only
+//     for the rays that reach them. Bounds = the wall's slab including recess and balcony depth.
+//   - a plain wall: a bare vertical rectangle over an edge (curb faces), a few numbers.
+//   - a flat polygon (roof, building underside, road, joint, sidewalk, ground): plane hit +
+//     point-in-polygon, holes included.
+// The builders mirror the stored builders (stored_geometry.h) surface for surface, so both
+// modes give the same Hit (kind, object index, material, normal) for the same ray.
+// A hit stores the surface's material id in RTCHit::u (an integer, exact in a float) and the
+// facade cell in RTCHit::v (floor * 65536 + slot + 1, 0 off the grid). No allocation happens
+// inside the callbacks.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "common/progress.h"
+#include "common/scene.h"
+#include "render/facade/facade.h"
+#include "render/scene/render_scene.h"
+#include "render/scene/user_geometry.h"
+
+namespace citygen {
+
+class ProceduralGeometry : public RenderGeometry {
+public:
+    // Material id for each facade surface kind (index = FacadeSurface value).
+    using SurfaceMaterials = std::array<uint16_t, kFacadeSurfaceCount>;
+
+    ProceduralGeometry(ObjectKind kind, const SurfaceMaterials& wall_materials)
+        : kind_(kind), wall_materials_(wall_materials) {}
+
+    // `object` is the index of the scene object the primitive belongs to (reported for hits).
+    // `wall_index` is the wall's number within its building (reported for pane hits).
+    void add_wall(uint32_t object, const WallLayout& layout, const WallFrame& frame, uint32_t wall_index = 0);
+    // A bare vertical rectangle over the edge a->b from z = bottom up by `height`, facing right
+    // of a->b; drawn with the Wall surface's material.
+    void add_plain_wall(uint32_t object, Vec2 a, Vec2 b, double bottom, double height);
+    // A horizontal polygon at height z facing up (normal_z = +1) or down (-1); any orientation.
+    void add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z, uint16_t material,
+                     int normal_z = +1);
+    // A planar polygon in any orientation (roof faces, gable walls), front side counter-clockwise:
+    // plane hit plus point-in-polygon in the plane's projection along its dominant axis.
+    void add_face(uint32_t object, const std::vector<Vec3>& points, uint16_t material);
+
+    ObjectKind kind() const override { return kind_; }
+    GeometryMode mode() const override { return GeometryMode::Procedural; }
+    RTCGeometry create_embree_geometry(RTCDevice device) override;
+    void complete_hit(const RTCHit& embree_hit, Hit& hit) const override;
+    uint64_t primitive_count() const override {
+        return walls_.size() + plain_walls_.size() + polygons_.size() + faces_.size();
+    }
+    uint64_t triangle_count() const override { return 0; }
+    size_t buffer_bytes() const override;
+
+    size_t wall_count() const { return walls_.size(); }
+    size_t plain_wall_count() const { return plain_walls_.size(); }
+    size_t polygon_count() const { return polygons_.size(); }
+    size_t face_count() const { return faces_.size(); }
+    // Primitive ids: facade walls, then plain walls, then polygons, then faces.
+    uint32_t object(unsigned prim_id) const {
+        if (prim_id < walls_.size()) return walls_[prim_id].object;
+        prim_id -= static_cast<unsigned>(walls_.size());
+        if (prim_id < plain_walls_.size()) return plain_walls_[prim_id].object;
+        prim_id -= static_cast<unsigned>(plain_walls_.size());
+        if (prim_id < polygons_.size()) return polygons_[prim_id].object;
+        return faces_[prim_id - polygons_.size()].object;
+    }
+
+    // What the Embree callbacks (user_geometry.h) compute, in double precision.
+    using PrimitiveHit = UserHit;
+    void bounds(unsigned prim_id, RTCBounds* out) const;
+    bool intersect(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax, PrimitiveHit* hit) const;
+    bool occluded(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax) const;
+
+private:
+    struct Wall {
+        WallLayout layout;
+        WallFrame frame;
+        uint32_t object;
+        uint32_t wall_index;
+    };
+    struct PlainWall {
+        Vec3 origin;  // lower end of a
+        Vec2 along;   // unit direction a->b
+        double length, height;
+        uint32_t object;
+    };
+    struct Polygon {
+        uint32_t first_ring, ring_count;  // into ring_ends_; the first ring is the outer one
+        double z;
+        Box2 bounds;
+        uint32_t object;
+        uint16_t material;
+        int8_t normal_z;
+    };
+    struct Face {
+        uint32_t first_point, point_count;  // into face_points_ (projected on axes u, v)
+        Vec3 normal;                        // unit, front side
+        double offset;                      // plane: dot(normal, p) = offset
+        uint8_t axis_u, axis_v;             // the two world axes the polygon is projected on
+        Vec3 lo, hi;                        // bounds
+        uint32_t object;
+        uint16_t material;
+    };
+    bool intersect_face(const Face& face, Vec3 origin, Vec3 direction, double tmin, double tmax, double* t) const;
+    bool inside_polygon(const Polygon& polygon, Vec2 p) const;
+    // The wall primitive prim_id as a layout and frame (plain walls are built on the fly).
+    bool wall_of(unsigned prim_id, WallLayout* layout, WallFrame* frame) const;
+
+    ObjectKind kind_;
+    SurfaceMaterials wall_materials_;
+    std::vector<Wall> walls_;
+    std::vector<PlainWall> plain_walls_;
+    std::vector<Polygon> polygons_;
+    std::vector<Face> faces_;
+    std::vector<Vec2> face_points_;    // all faces' projected points, back to back
+    std::vector<Vec2> points_;         // all polygon rings, back to back
+    std::vector<uint32_t> ring_ends_;  // end (exclusive) of each ring in points_
+};
+
+// Procedural builders, one per object class, producing the same surfaces as build_stored_*.
+// `progress` (optional) advances once per building.
+std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades,
+                                                               Progress* progress = nullptr);
+std::unique_ptr<ProceduralGeometry> build_procedural_roads(const Scene& scene);
+std::unique_ptr<ProceduralGeometry> build_procedural_joints(const Scene& scene);
+std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scene);
+std::unique_ptr<ProceduralGeometry> build_procedural_terrain(const Scene& scene);
+
+}  // namespace citygen

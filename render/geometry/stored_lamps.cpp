@@ -1,0 +1,85 @@
+// Stored mode for street lamps: the lamp shape (lamp_shape.h) as triangles, fine enough that
+// the facets stay within about a millimetre of the analytic surfaces the procedural mode hits.
+#include <cmath>
+
+#include "render/geometry/lamp_shape.h"
+#include "render/geometry/stored_geometry.h"
+#include "render/materials/materials.h"
+
+namespace citygen {
+
+namespace {
+
+constexpr int kPoleSides = 20, kCapSides = 40, kGlobeSides = 40, kGlobeRings = 20;
+
+// Radius for the vertices of an n-sided polygon around a circle of radius r such that the
+// facets straddle the circle (vertices outside by as much as edge midpoints are inside):
+// halves the depth error against the analytic surface.
+double straddling_radius(double r, double cos_half_step) { return 2 * r / (1 + cos_half_step); }
+
+Vec3 on_circle(Vec3 center, double r, int i, int n, double z) {
+    const double a = 2 * kPi * i / n;
+    return {center.x + r * std::cos(a), center.y + r * std::sin(a), z};
+}
+
+// Side of a vertical cylinder, normals outward (counter-clockwise seen from outside).
+void add_cylinder(Vec3 axis, double r, double z0, double z1, int sides, uint32_t object, uint16_t material,
+                  TriangleMesh& mesh) {
+    r = straddling_radius(r, std::cos(kPi / sides));
+    for (int i = 0; i < sides; ++i)
+        mesh.add_quad(on_circle(axis, r, i, sides, z0), on_circle(axis, r, i + 1, sides, z0),
+                      on_circle(axis, r, i + 1, sides, z1), on_circle(axis, r, i, sides, z1), object, material);
+}
+
+void add_disk(Vec3 axis, double r, double z, int sides, bool up, uint32_t object, uint16_t material,
+              TriangleMesh& mesh) {
+    r = straddling_radius(r, std::cos(kPi / sides));  // meets the cylinder rim exactly
+    const uint32_t centre = mesh.add_vertex({axis.x, axis.y, z});
+    const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
+    for (int i = 0; i < sides; ++i) mesh.add_vertex(on_circle(axis, r, i, sides, z));
+    for (int i = 0; i < sides; ++i) {
+        const uint32_t a = first + i, b = first + (i + 1) % sides;
+        if (up) mesh.add_triangle(centre, a, b, object, material);
+        else mesh.add_triangle(centre, b, a, object, material);
+    }
+}
+
+void add_sphere(Vec3 center, double r, uint32_t object, uint16_t material, TriangleMesh& mesh) {
+    // A facet's centre lies deepest: half a step in both directions.
+    r = straddling_radius(r, std::cos(kPi / kGlobeSides) * std::cos(kPi / (2 * kGlobeRings)));
+    auto point = [&](int ring, int side) {
+        const double polar = kPi * ring / kGlobeRings, a = 2 * kPi * side / kGlobeSides;
+        return center + Vec3{std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a), std::cos(polar)} * r;
+    };
+    const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
+    for (int ring = 0; ring <= kGlobeRings; ++ring)
+        for (int side = 0; side < kGlobeSides; ++side) mesh.add_vertex(point(ring, side));
+    auto index = [&](int ring, int side) { return first + ring * kGlobeSides + side % kGlobeSides; };
+    for (int ring = 0; ring < kGlobeRings; ++ring) {
+        for (int side = 0; side < kGlobeSides; ++side) {
+            // Rings go from the top down, sides counter-clockwise: (ring+1, side) is below.
+            const uint32_t a = index(ring, side), b = index(ring + 1, side), c = index(ring + 1, side + 1),
+                           d = index(ring, side + 1);
+            if (ring > 0) mesh.add_triangle(a, b, d, object, material);
+            if (ring + 1 < kGlobeRings) mesh.add_triangle(b, c, d, object, material);
+        }
+    }
+}
+
+}  // namespace
+
+TriangleMesh build_stored_lamps(const Scene& scene) {
+    TriangleMesh mesh;
+    mesh.kind = ObjectKind::Lamp;
+    for (uint32_t i = 0; i < scene.lamps.size(); ++i) {
+        const LampShape s = lamp_shape(scene.lamps[i], scene.ground.z);
+        add_cylinder(s.base, s.pole_radius, s.base.z, s.pole_top, kPoleSides, i, kLampPole, mesh);
+        add_sphere(s.globe_center, s.globe_radius, i, kLampGlobe, mesh);
+        add_cylinder(s.base, s.cap_radius, s.cap_bottom, s.cap_top, kCapSides, i, kLampCap, mesh);
+        add_disk(s.base, s.cap_radius, s.cap_top, kCapSides, true, i, kLampCap, mesh);
+        add_disk(s.base, s.cap_radius, s.cap_bottom, kCapSides, false, i, kLampCap, mesh);
+    }
+    return mesh;
+}
+
+}  // namespace citygen
