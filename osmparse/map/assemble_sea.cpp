@@ -143,45 +143,37 @@ std::vector<Piece> clip_chain(const CoastlineChain& chain, const Boundary& bound
     return pieces;
 }
 
-}  // namespace
+using TaggedRings = std::vector<std::pair<Ring, int64_t>>;  // rings with their coastline way
 
-Box2 extract_box(const OsmData& osm, const Projection& projection) {
-    Box2 box;
-    const LatLon lo = osm.has_extract_bounds ? osm.extract_min : osm.min;
-    const LatLon hi = osm.has_extract_bounds ? osm.extract_max : osm.max;
-    if (lo.lat > hi.lat || lo.lon > hi.lon) return box;
-    for (double lat : {lo.lat, hi.lat})
-        for (double lon : {lo.lon, hi.lon}) box.extend(round_to_stored_precision(projection.to_local(lat, lon)));
-    return box;
-}
-
-std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains, const Box2& box,
-                                       ParseReport& report) {
-    if (chains.empty() || box.empty()) return {};
-    const Boundary boundary(box);
-    std::vector<Piece> open_pieces;                // from edge to edge
-    std::vector<std::pair<Ring, int64_t>> islands, enclosed;  // closed rings inside the box
+// The chains clipped to the box: pieces from edge to edge, and closed rings inside the box
+// (islands, counter-clockwise as land is on the left; enclosed seas). False when a chain ends
+// inside the box (counted).
+bool clip_chains(const std::vector<CoastlineChain>& chains, const Boundary& boundary, std::vector<Piece>& open_pieces,
+                 TaggedRings& islands, TaggedRings& enclosed, ParseReport& report) {
     for (const CoastlineChain& chain : chains) {
         for (Piece& piece : clip_chain(chain, boundary)) {
             const bool closed_ring = !piece.start_on_edge && !piece.end_on_edge && piece.points.size() > 3 &&
                                      piece.points.front() == piece.points.back();
             if (closed_ring) {
                 Ring ring(piece.points.begin(), piece.points.end() - 1);
-                // Land on the left: a counter-clockwise ring is an island.
                 (signed_area(ring) > 0 ? islands : enclosed).push_back({std::move(ring), piece.way_id});
                 continue;
             }
             if (!piece.start_on_edge || !piece.end_on_edge) {
                 report.dropped(kSeaPolygons, kCoastlineEndsInside);
-                return {};
+                return false;
             }
             if (piece.points.size() >= 2) open_pieces.push_back(std::move(piece));
         }
     }
+    return true;
+}
 
-    // Water rings: every piece walked backwards (water on the left), then along the box edge
-    // counter-clockwise to the end of the next piece, and so on until the ring closes.
-    std::vector<std::pair<Ring, int64_t>> water;
+// Water rings: every piece walked backwards (water on the left), then along the box edge
+// counter-clockwise to the end of the next piece, and so on until the ring closes. False when
+// the pieces do not close into rings (counted).
+bool walk_water_rings(const std::vector<Piece>& open_pieces, const Boundary& boundary, TaggedRings& water,
+                      ParseReport& report) {
     struct Event {
         double position;
         bool is_start;  // a piece's start (where a backwards walk ends) or its end
@@ -211,27 +203,23 @@ std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains
             const Event& next = events[(event_of_start[k] + 1) % events.size()];
             if (next.is_start) {
                 report.dropped(kSeaPolygons, kCoastlineDirectionsDisagree);
-                return {};
+                return false;
             }
             for (Vec2 c : boundary.corners_between(here.position, next.position)) ring.push_back(c);
             k = next.piece;
             if (k == first) break;
             if (used[k]) {
                 report.dropped(kSeaPolygons, kCoastlineDoesNotClose);
-                return {};
+                return false;
             }
         }
         water.push_back({std::move(ring), open_pieces[first].way_id});
     }
-    // Closed rings only: islands in a box of sea (unless enclosed seas say otherwise).
-    if (open_pieces.empty() && enclosed.empty() && !islands.empty())
-        water.push_back({Ring{box.min, {box.max.x, box.min.y}, box.max, {box.min.x, box.max.y}}, islands.front().second});
-    for (auto& [ring, id] : enclosed) {
-        std::reverse(ring.begin(), ring.end());
-        water.push_back({std::move(ring), id});
-    }
+    return true;
+}
 
-    // Clean every ring, then put each island into the sea polygon around it.
+// Cleans every water ring, then puts each island into the sea polygon around it.
+std::vector<LandCover> sea_with_islands(TaggedRings& water, TaggedRings& islands, ParseReport& report) {
     BuildingParams clean;
     clean.simplify_angle_deg = 0;
     clean.min_area = 1;
@@ -269,8 +257,39 @@ std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains
         for (Footprint& f : clean_footprint(c.outer, c.holes, clean, report, kSeaPolygons))
             final.push_back({c.osm, LandCoverClass::Sea, std::move(f.outer), std::move(f.holes)});
     }
-    std::stable_sort(final.begin(), final.end(), [](const LandCover& a, const LandCover& b) { return a.osm < b.osm; });
     return final;
+}
+
+}  // namespace
+
+Box2 extract_box(const OsmData& osm, const Projection& projection) {
+    Box2 box;
+    const LatLon lo = osm.has_extract_bounds ? osm.extract_min : osm.min;
+    const LatLon hi = osm.has_extract_bounds ? osm.extract_max : osm.max;
+    if (lo.lat > hi.lat || lo.lon > hi.lon) return box;
+    for (double lat : {lo.lat, hi.lat})
+        for (double lon : {lo.lon, hi.lon}) box.extend(round_to_stored_precision(projection.to_local(lat, lon)));
+    return box;
+}
+
+std::vector<LandCover> sea_from_chains(const std::vector<CoastlineChain>& chains, const Box2& box,
+                                       ParseReport& report) {
+    if (chains.empty() || box.empty()) return {};
+    const Boundary boundary(box);
+    std::vector<Piece> open_pieces;
+    TaggedRings islands, enclosed, water;
+    if (!clip_chains(chains, boundary, open_pieces, islands, enclosed, report)) return {};
+    if (!walk_water_rings(open_pieces, boundary, water, report)) return {};
+    // Closed rings only: islands in a box of sea (unless enclosed seas say otherwise).
+    if (open_pieces.empty() && enclosed.empty() && !islands.empty())
+        water.push_back({Ring{box.min, {box.max.x, box.min.y}, box.max, {box.min.x, box.max.y}}, islands.front().second});
+    for (auto& [ring, id] : enclosed) {
+        std::reverse(ring.begin(), ring.end());
+        water.push_back({std::move(ring), id});
+    }
+    std::vector<LandCover> sea = sea_with_islands(water, islands, report);
+    std::stable_sort(sea.begin(), sea.end(), [](const LandCover& a, const LandCover& b) { return a.osm < b.osm; });
+    return sea;
 }
 
 std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projection, const Box2& box,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "common/rng.h"
 #include "osmparse/buildings/building_colours.h"
@@ -124,14 +125,8 @@ bool has_street_access(const Ring& lot, const Ring& block) {
     return false;
 }
 
-}  // namespace
-
-std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams& buildings,
-                                        const BlockParams& params, double sidewalk_width, ParseReport& report) {
-    std::vector<Building> generated;
-    if (!params.enabled) return generated;
-    const BuildingIndex index(scene.buildings);
-    // Roads, joints and sidewalks indexed like footprints, to keep generated buildings off them.
+// Roads, joints and sidewalks as footprints (counter-clockwise), to keep generated buildings off them.
+std::vector<Building> surface_pieces(const Scene& scene) {
     std::vector<Building> surfaces;
     auto add_surface = [&](const Ring& ring) {
         Building piece;
@@ -142,22 +137,98 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
     for (const RoadEdge& r : scene.roads) add_surface(r.quad);
     for (const Joint& j : scene.joints) add_surface(j.polygon);
     for (const Sidewalk& w : scene.sidewalks) add_surface(w.polygon);
-    const BuildingIndex surface_index(surfaces);
+    return surfaces;
+}
+
+// What a generated building must keep clear of: the mapped buildings and the street surfaces.
+struct Occupied {
+    const Scene& scene;
+    BuildingIndex buildings;
+    std::vector<Building> surfaces;
+    BuildingIndex surface_index;
+
+    explicit Occupied(const Scene& s)
+        : scene(s), buildings(s.buildings), surfaces(surface_pieces(s)), surface_index(surfaces) {}
+    double overlap(const Ring& footprint) const {
+        double area = 0;
+        for (uint32_t i : surface_index.near(bounds_of(footprint))) area += overlap_area(footprint, surfaces[i]);
+        for (uint32_t i : buildings.near(bounds_of(footprint))) area += overlap_area(footprint, scene.buildings[i]);
+        return area;
+    }
+};
+
+// A block is filled when no mapped building stands in it but enough stand near it.
+bool block_wants_buildings(const Block& block, const Occupied& occupied, const BlockParams& params,
+                           ParseReport& report) {
+    Box2 box = bounds_of(block.ring);
+    for (uint32_t i : occupied.buildings.near(box))
+        if (point_in_ring(interior_point(occupied.scene.buildings[i].outer), block.ring)) return false;
+    box.extend(box.min - Vec2{params.near_distance, params.near_distance});
+    box.extend(box.max + Vec2{params.near_distance, params.near_distance});
+    if (static_cast<int>(occupied.buildings.near(box).size()) < params.min_buildings_near) {
+        report.note(kGeneratedBuildings, kBlockNotBuiltUp);
+        return false;
+    }
+    return true;
+}
+
+// The footprint of a lot's building: the lot set back, if it reaches the street, is large enough
+// and overlaps nothing (counted when not).
+std::optional<Ring> lot_footprint(const Ring& lot, const Ring& inside, const Occupied& occupied,
+                                  const BlockParams& params, ParseReport& report) {
+    report.read(kGeneratedBuildings);
+    if (!has_street_access(lot, inside)) {
+        report.dropped(kGeneratedBuildings, kLotWithoutAccess);
+        return std::nullopt;
+    }
+    std::vector<Ring> shrunk;
+    if (!inset_polygon(lot, params.setback, &shrunk) || shrunk.empty()) {
+        report.dropped(kGeneratedBuildings, kLotTooSmall);
+        return std::nullopt;
+    }
+    const Ring footprint = *std::max_element(shrunk.begin(), shrunk.end(), [](const Ring& a, const Ring& b) {
+        return signed_area(a) < signed_area(b);
+    });
+    if (signed_area(footprint) < params.min_footprint_area || !ring_is_simple(footprint)) {
+        report.dropped(kGeneratedBuildings, kLotTooSmall);
+        return std::nullopt;
+    }
+    // Never on a road, joint, sidewalk or mapped building (the setbacks should see to it).
+    if (occupied.overlap(footprint) > 1e-3) {
+        report.dropped(kGeneratedBuildings, kLotOverlaps);
+        return std::nullopt;
+    }
+    return footprint;
+}
+
+// A generated building's height: the type-and-area rule for `building=yes`, jittered by its id.
+Building generated_building(Ring footprint, size_t index, const BuildingParams& buildings) {
+    Building b;
+    b.osm = {OsmType::Way, -static_cast<int64_t>(index + 1)};
+    b.outer = std::move(footprint);
+    b.type = "yes";
+    b.generated = true;
+    bool sure = false;
+    const double by_type = height_by_type_and_area(b.type, signed_area(b.outer), &sure);
+    const double u = hash_to_unit(hash_keys(buildings.seed, static_cast<uint64_t>(b.osm.type),
+                                            static_cast<uint64_t>(b.osm.id), kJitter));
+    b.height = by_type * (0.9 + 0.2 * u);
+    b.height_source = HeightSource::Random;
+    b.height_rule = HeightRule::TypeAndArea;
+    b.levels = std::max(1, static_cast<int>(std::lround(b.height / buildings.level_height)));
+    return b;
+}
+
+}  // namespace
+
+std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams& buildings,
+                                        const BlockParams& params, double sidewalk_width, ParseReport& report) {
+    std::vector<Building> generated;
+    if (!params.enabled) return generated;
+    const Occupied occupied(scene);
     for (const Block& block : road_blocks(scene)) {
         report.read(kGeneratedBuildings, 0);
-        Box2 box = bounds_of(block.ring);
-        bool empty = true;
-        for (uint32_t i : index.near(box)) {
-            const Building& b = scene.buildings[i];
-            if (point_in_ring(interior_point(b.outer), block.ring)) empty = false;
-        }
-        if (!empty) continue;
-        box.extend(box.min - Vec2{params.near_distance, params.near_distance});
-        box.extend(box.max + Vec2{params.near_distance, params.near_distance});
-        if (static_cast<int>(index.near(box).size()) < params.min_buildings_near) {
-            report.note(kGeneratedBuildings, kBlockNotBuiltUp);
-            continue;
-        }
+        if (!block_wants_buildings(block, occupied, params, report)) continue;
         std::vector<Ring> insides;
         if (!inset_polygon(block.ring, 0.5 * block.widest + sidewalk_width + params.setback, &insides)) continue;
         for (const Ring& inside : insides) {
@@ -169,47 +240,9 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
             report.note(kGeneratedBuildings, kBlockFilled);
             std::vector<Ring> lots;
             split_into_lots(inside, params.max_lot_area, 0, lots);
-            for (const Ring& lot : lots) {
-                report.read(kGeneratedBuildings);
-                if (!has_street_access(lot, inside)) {
-                    report.dropped(kGeneratedBuildings, kLotWithoutAccess);
-                    continue;
-                }
-                std::vector<Ring> shrunk;
-                if (!inset_polygon(lot, params.setback, &shrunk) || shrunk.empty()) {
-                    report.dropped(kGeneratedBuildings, kLotTooSmall);
-                    continue;
-                }
-                const Ring footprint = *std::max_element(shrunk.begin(), shrunk.end(), [](const Ring& a, const Ring& b) {
-                    return signed_area(a) < signed_area(b);
-                });
-                if (signed_area(footprint) < params.min_footprint_area || !ring_is_simple(footprint)) {
-                    report.dropped(kGeneratedBuildings, kLotTooSmall);
-                    continue;
-                }
-                // Never on a road, joint, sidewalk or mapped building (the setbacks should see to it).
-                double overlap = 0;
-                for (uint32_t i : surface_index.near(bounds_of(footprint))) overlap += overlap_area(footprint, surfaces[i]);
-                for (uint32_t i : index.near(bounds_of(footprint))) overlap += overlap_area(footprint, scene.buildings[i]);
-                if (overlap > 1e-3) {
-                    report.dropped(kGeneratedBuildings, kLotOverlaps);
-                    continue;
-                }
-                Building b;
-                b.osm = {OsmType::Way, -static_cast<int64_t>(generated.size() + 1)};
-                b.outer = footprint;
-                b.type = "yes";
-                b.generated = true;
-                bool sure = false;
-                const double by_type = height_by_type_and_area(b.type, signed_area(footprint), &sure);
-                const double u = hash_to_unit(hash_keys(buildings.seed, static_cast<uint64_t>(b.osm.type),
-                                                        static_cast<uint64_t>(b.osm.id), kJitter));
-                b.height = by_type * (0.9 + 0.2 * u);
-                b.height_source = HeightSource::Random;
-                b.height_rule = HeightRule::TypeAndArea;
-                b.levels = std::max(1, static_cast<int>(std::lround(b.height / buildings.level_height)));
-                generated.push_back(std::move(b));
-            }
+            for (const Ring& lot : lots)
+                if (std::optional<Ring> footprint = lot_footprint(lot, inside, occupied, params, report))
+                    generated.push_back(generated_building(std::move(*footprint), generated.size(), buildings));
         }
     }
     // Roofs, colours and materials by the same default rules as untagged mapped buildings.

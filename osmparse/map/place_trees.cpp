@@ -48,56 +48,72 @@ Tree tree_from_tags(const OsmTags& tags, ParseReport& report, const char* kind) 
     return t;
 }
 
-std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, const Scene& scene,
-                              const TreeParams& params, uint64_t seed, ParseReport& report) {
-    std::vector<Tree> trees;
-    if (params.mode == TreeMode::None) return trees;
+namespace {
 
-    const BuildingIndex buildings(scene.buildings);
-    const BuildingIndex surface(surface_polygons(scene.roads, scene.joints));
-    const BuildingIndex paths(surface_polygons(scene.paths, scene.path_joints));  // paths, rails, joints
-    std::vector<PolygonRef> water_pieces;
-    for (const LandCover& c : scene.land_cover)
-        if (c.cover == LandCoverClass::Water || c.cover == LandCoverClass::Sea)
-            water_pieces.push_back({&c.outer, &c.holes});
-    const BuildingIndex water(std::move(water_pieces), 200);
+// Where a trunk may stand: off roads and buildings by kTrunkClearance, off paths, out of water.
+class TreeGround {
+public:
+    explicit TreeGround(const Scene& scene)
+        : buildings_(scene.buildings),
+          surface_(surface_polygons(scene.roads, scene.joints)),
+          paths_(surface_polygons(scene.paths, scene.path_joints)),  // paths, rails, joints
+          water_(water_pieces(scene), 200) {}
 
-    auto surface_containing = [&](Vec2 p) -> const Ring* {
+    const Ring* surface_containing(Vec2 p) const {
         Box2 box;
         box.extend(p);
-        for (uint32_t i : surface.near(box))
-            if (point_in_ring(p, *surface.polygon(i).outer)) return surface.polygon(i).outer;
+        for (uint32_t i : surface_.near(box))
+            if (point_in_ring(p, *surface_.polygon(i).outer)) return surface_.polygon(i).outer;
         return nullptr;
-    };
-    // Free ground for a trunk: off roads and buildings by kTrunkClearance, off paths, out of water.
-    auto free_ground = [&](Vec2 p) {
-        if (water.contains(p) || paths.contains(p)) return false;
+    }
+    // A mapped tree stands where it is mapped, unless that is inside a building, road or water.
+    bool takes_mapped(Vec2 p) const {
+        return !buildings_.contains(p) && !surface_containing(p) && !water_.contains(p);
+    }
+    bool free(Vec2 p) const {
+        if (water_.contains(p) || paths_.contains(p)) return false;
         for (Vec2 d : {Vec2{0, 0}, Vec2{kTrunkClearance, 0}, Vec2{-kTrunkClearance, 0}, Vec2{0, kTrunkClearance},
                        Vec2{0, -kTrunkClearance}})
-            if (buildings.contains(p + d) || surface_containing(p + d)) return false;
+            if (buildings_.contains(p + d) || surface_containing(p + d)) return false;
         return true;
-    };
+    }
 
-    // 1. Mapped trees.
+private:
+    static std::vector<PolygonRef> water_pieces(const Scene& scene) {
+        std::vector<PolygonRef> pieces;
+        for (const LandCover& c : scene.land_cover)
+            if (c.cover == LandCoverClass::Water || c.cover == LandCoverClass::Sea)
+                pieces.push_back({&c.outer, &c.holes});
+        return pieces;
+    }
+    const BuildingIndex buildings_, surface_, paths_, water_;
+};
+
+void place_mapped_trees(const OsmData& osm, const Projection& projection, const TreeGround& ground,
+                        std::vector<Tree>& trees, ParseReport& report) {
+    const size_t before = trees.size();
     for (const OsmNode& node : osm.trees) {
         Tree t = tree_from_tags(node.tags, report, kMappedTrees);
         t.osm = {OsmType::Node, node.id};
         t.source = TreeSource::Mapped;
         Vec2 p = round_to_stored_precision(projection.to_local(node.location.lat, node.location.lon));
-        if (const Ring* ring = surface_containing(p)) {
+        if (const Ring* ring = ground.surface_containing(p)) {
             p = push_out_of(*ring, p, kTrunkClearance + 0.05);
             report.note(kMappedTrees, kMovedOffRoad);
         }
-        if (buildings.contains(p) || surface_containing(p) || water.contains(p)) {
+        if (!ground.takes_mapped(p)) {
             report.dropped(kMappedTrees, kInBuildingRoadOrWater);
             continue;
         }
         t.position = p;
         trees.push_back(t);
     }
-    report.kept(kMappedTrees, static_cast<int64_t>(trees.size()));
+    report.kept(kMappedTrees, static_cast<int64_t>(trees.size() - before));
+}
 
-    // 2. Tree rows: one tree every row_spacing metres along the way, half a step in from its ends.
+// Tree rows: one tree every row_spacing metres along the way, half a step in from its ends.
+void place_row_trees(const OsmData& osm, const Projection& projection, const TreeGround& ground,
+                     const TreeParams& params, std::vector<Tree>& trees, ParseReport& report) {
     size_t row_trees = 0;
     for (const OsmWay& way : osm.tree_rows) {
         Tree proto = tree_from_tags(way.tags, report, kTreeRowTrees);
@@ -113,7 +129,7 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
             for (; s <= len; s += params.row_spacing) {
                 const Vec2 p = round_to_stored_precision(a + (b - a) * (s / len));
                 report.read(kTreeRowTrees);
-                if (!free_ground(p)) {
+                if (!ground.free(p)) {
                     report.dropped(kTreeRowTrees, kOnRoadBuildingOrWater);
                     continue;
                 }
@@ -126,46 +142,70 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
         }
     }
     report.kept(kTreeRowTrees, static_cast<int64_t>(row_trees));
-    if (params.mode == TreeMode::Mapped) return trees;
+}
 
-    // 3. Forests: dart throwing with a least distance (Poisson-disk), seeded per polygon.
+// Trees scattered in one forest polygon by dart throwing with a least distance (Poisson-disk),
+// seeded per polygon, until `budget` trees are placed; returns how many were.
+size_t scatter_in_forest(const LandCover& forest, size_t index, const TreeGround& ground, const TreeParams& params,
+                         uint64_t seed, size_t budget, PointGrid& placed, std::vector<Tree>& trees) {
+    double area = std::fabs(signed_area(forest.outer));
+    for (const Ring& h : forest.holes) area -= std::fabs(signed_area(h));
+    const Box2 box = bounds_of(forest.outer);
+    const double r = params.forest_spacing;
+    const size_t attempts = static_cast<size_t>(std::ceil(3 * area / (r * r)));
+    Rng rng(hash_keys(seed, static_cast<uint64_t>(forest.osm.id), static_cast<uint64_t>(forest.osm.type), index));
+    size_t scattered = 0;
+    for (size_t k = 0; k < attempts && scattered < budget; ++k) {
+        const Vec2 p = round_to_stored_precision({box.min.x + rng.next_double() * (box.max.x - box.min.x),
+                                                  box.min.y + rng.next_double() * (box.max.y - box.min.y)});
+        const double u = rng.next_double(), v = rng.next_double(), w = rng.next_double();
+        if (!point_in_ring(p, forest.outer)) continue;
+        bool in_hole = false;
+        for (const Ring& h : forest.holes) in_hole = in_hole || point_in_ring(p, h);
+        if (in_hole || placed.any_within(p, r) || !ground.free(p)) continue;
+        Tree t;
+        t.osm = forest.osm;
+        t.source = TreeSource::Scattered;
+        t.position = p;
+        t.leaf_type = u < 0.5 ? LeafType::Needleleaved : LeafType::Broadleaved;
+        t.height = 12 + 10 * v;
+        t.crown_diameter = (t.leaf_type == LeafType::Needleleaved ? 4 : 6) + 3 * w;
+        trees.push_back(t);
+        placed.add(p);
+        ++scattered;
+    }
+    return scattered;
+}
+
+void place_forest_trees(const Scene& scene, const TreeGround& ground, const TreeParams& params, uint64_t seed,
+                        std::vector<Tree>& trees, ParseReport& report) {
     PointGrid placed(std::max(params.forest_spacing, 0.5));
     for (const Tree& t : trees) placed.add(t.position);
     size_t scattered = 0;
     for (size_t index = 0; index < scene.land_cover.size(); ++index) {
         const LandCover& forest = scene.land_cover[index];
         if (forest.cover != LandCoverClass::Forest) continue;
-        double area = std::fabs(signed_area(forest.outer));
-        for (const Ring& h : forest.holes) area -= std::fabs(signed_area(h));
-        const Box2 box = bounds_of(forest.outer);
-        const double r = params.forest_spacing;
-        const size_t attempts = static_cast<size_t>(std::ceil(3 * area / (r * r)));
-        Rng rng(hash_keys(seed, static_cast<uint64_t>(forest.osm.id), static_cast<uint64_t>(forest.osm.type), index));
-        for (size_t k = 0; k < attempts && scattered < params.max_scattered; ++k) {
-            const Vec2 p = round_to_stored_precision({box.min.x + rng.next_double() * (box.max.x - box.min.x),
-                                                      box.min.y + rng.next_double() * (box.max.y - box.min.y)});
-            const double u = rng.next_double(), v = rng.next_double(), w = rng.next_double();
-            if (!point_in_ring(p, forest.outer)) continue;
-            bool in_hole = false;
-            for (const Ring& h : forest.holes) in_hole = in_hole || point_in_ring(p, h);
-            if (in_hole || placed.any_within(p, r) || !free_ground(p)) continue;
-            Tree t;
-            t.osm = forest.osm;
-            t.source = TreeSource::Scattered;
-            t.position = p;
-            t.leaf_type = u < 0.5 ? LeafType::Needleleaved : LeafType::Broadleaved;
-            t.height = 12 + 10 * v;
-            t.crown_diameter = (t.leaf_type == LeafType::Needleleaved ? 4 : 6) + 3 * w;
-            trees.push_back(t);
-            placed.add(p);
-            ++scattered;
-        }
+        scattered += scatter_in_forest(forest, index, ground, params, seed, params.max_scattered - scattered,
+                                       placed, trees);
         if (scattered >= params.max_scattered) {
             report.note(kForestTrees, kForestCapReached);
             break;
         }
     }
     report.kept(kForestTrees, static_cast<int64_t>(scattered));
+}
+
+}  // namespace
+
+std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, const Scene& scene,
+                              const TreeParams& params, uint64_t seed, ParseReport& report) {
+    std::vector<Tree> trees;
+    if (params.mode == TreeMode::None) return trees;
+    const TreeGround ground(scene);
+    place_mapped_trees(osm, projection, ground, trees, report);
+    place_row_trees(osm, projection, ground, params, trees, report);
+    if (params.mode == TreeMode::Mapped) return trees;
+    place_forest_trees(scene, ground, params, seed, trees, report);
     return trees;
 }
 

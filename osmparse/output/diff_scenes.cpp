@@ -53,6 +53,126 @@ void diff_kind(const char* kind, const std::map<std::string, const T*>& a,
         if (!a.count(k)) out.push_back({"added", std::string(kind) + " " + k, ""});
 }
 
+std::string building_key(const Building& x) { return to_string(x.osm) + (x.is_part ? "/part" : ""); }
+
+std::string road_key(const RoadEdge& x) {
+    return to_string(x.osm) + ":" + std::to_string(x.from_node) + "-" + std::to_string(x.to_node);
+}
+
+std::string joint_key(const Joint& x) { return to_string(x.osm); }
+
+std::string lamp_key(const Lamp& x) {
+    return std::string(x.source == LampSource::Tagged ? "tagged " : "generated ") + to_string(x.osm);
+}
+
+std::string path_key(const PathEdge& x) {
+    return to_string(x.osm) + ":" + std::to_string(x.from_node) + "-" + std::to_string(x.to_node);
+}
+
+std::string crossing_key(const Crossing& x) {
+    return std::string(x.kind == CrossingKind::Zebra ? "zebra " : "stop line ") + to_string(x.osm);
+}
+
+std::string cover_key(const LandCover& x) { return std::string(to_string(x.cover)) + " " + to_string(x.osm); }
+
+std::string tree_key(const Tree& x) { return std::string(to_string(x.source)) + " " + to_string(x.osm); }
+
+// Sidewalks are keyed by the OSM identity of the road or joint they belong to.
+std::string sidewalk_key(const Scene& s, const Sidewalk& x) {
+    if (x.kind == SidewalkKind::Strip && x.road >= 0) {
+        const RoadEdge& r = s.roads[x.road];
+        return "strip " + to_string(r.osm) + ":" + std::to_string(r.from_node) + "-" + std::to_string(r.to_node);
+    }
+    if (x.kind == SidewalkKind::Corner && x.joint >= 0) return "corner " + to_string(s.joints[x.joint].osm);
+    return std::string(x.kind == SidewalkKind::Strip ? "strip" : "corner");
+}
+
+std::string building_change(const Building& x, const Building& y, double tol) {
+    double d = max_point_distance(x.outer, y.outer);
+    if (d > tol) return "outline moved " + metres(d);
+    if (x.holes.size() != y.holes.size()) return "number of holes differs";
+    for (size_t i = 0; i < x.holes.size(); ++i)
+        if ((d = max_point_distance(x.holes[i], y.holes[i])) > tol) return "hole moved " + metres(d);
+    if (std::fabs(x.height - y.height) > tol || std::fabs(x.min_height - y.min_height) > tol)
+        return "height changed by " + metres(std::max(std::fabs(x.height - y.height),
+                                                      std::fabs(x.min_height - y.min_height)));
+    if (x.roof_shape != y.roof_shape)
+        return std::string("roof ") + to_string(x.roof_shape) + " -> " + to_string(y.roof_shape);
+    if (std::fabs(x.roof_height - y.roof_height) > tol)
+        return "roof height changed by " + metres(std::fabs(x.roof_height - y.roof_height));
+    if (x.roof_faces.size() != y.roof_faces.size()) return "number of roof faces differs";
+    for (size_t i = 0; i < x.roof_faces.size(); ++i) {
+        const auto& p = x.roof_faces[i].points;
+        const auto& q = y.roof_faces[i].points;
+        if (p.size() != q.size() || x.roof_faces[i].kind != y.roof_faces[i].kind) return "roof face differs";
+        for (size_t j = 0; j < p.size(); ++j)
+            if ((d = length(p[j] - q[j])) > tol) return "roof face moved " + metres(d);
+    }
+    if (x.wall_colour != y.wall_colour || x.roof_colour != y.roof_colour) return "colour differs";
+    if (x.wall_material != y.wall_material || x.roof_material != y.roof_material)
+        return "material differs";
+    if (x.height_rule != y.height_rule) return "height rule differs";
+    if (x.generated != y.generated) return "generated differs";
+    return "";
+}
+
+std::string road_change(const RoadEdge& x, const RoadEdge& y, double tol) {
+    double d = max_point_distance(x.quad, y.quad);
+    if (d > tol) return "quadrangle moved " + metres(d);
+    if ((d = max_point_distance(x.centreline, y.centreline)) > tol) return "centreline moved " + metres(d);
+    if (std::fabs(x.width - y.width) > tol) return "width changed by " + metres(std::fabs(x.width - y.width));
+    if (x.sidewalk_left != y.sidewalk_left || x.sidewalk_right != y.sidewalk_right) return "sidewalks differ";
+    if (x.lanes_forward != y.lanes_forward || x.lanes_backward != y.lanes_backward ||
+        x.centre_line != y.centre_line || x.edge_lines != y.edge_lines ||
+        x.cycle_lane_left != y.cycle_lane_left || x.cycle_lane_right != y.cycle_lane_right)
+        return "lanes or markings differ";
+    return "";
+}
+
+std::string joint_change(const Joint& x, const Joint& y, double tol) {
+    double d = max_point_distance(x.polygon, y.polygon);
+    return d > tol ? "polygon moved " + metres(d) : "";
+}
+
+std::string sidewalk_change(const Sidewalk& x, const Sidewalk& y, double tol) {
+    double d = max_point_distance(x.polygon, y.polygon);
+    return d > tol ? "polygon moved " + metres(d) : "";
+}
+
+std::string lamp_change(const Lamp& x, const Lamp& y, double tol) {
+    double d = length(x.position - y.position);
+    return d > tol ? "moved " + metres(d) : "";
+}
+
+std::string path_change(const PathEdge& x, const PathEdge& y, double tol) {
+    double d = max_point_distance(x.quad, y.quad);
+    if (d > tol) return "quadrangle moved " + metres(d);
+    if (x.path_class != y.path_class) return "class differs";
+    return "";
+}
+
+std::string crossing_change(const Crossing& x, const Crossing& y, double tol) {
+    const double d = length(x.position - y.position);
+    return d > tol ? "moved " + metres(d) : "";
+}
+
+std::string land_cover_change(const LandCover& x, const LandCover& y, double tol) {
+    double d = max_point_distance(x.outer, y.outer);
+    if (d > tol) return "outline moved " + metres(d);
+    if (x.holes.size() != y.holes.size()) return "number of holes differs";
+    for (size_t i = 0; i < x.holes.size(); ++i)
+        if ((d = max_point_distance(x.holes[i], y.holes[i])) > tol) return "hole moved " + metres(d);
+    return "";
+}
+
+std::string tree_change(const Tree& x, const Tree& y, double tol) {
+    const double d = length(x.position - y.position);
+    if (d > tol) return "moved " + metres(d);
+    if (std::fabs(x.height - y.height) > tol || std::fabs(x.crown_diameter - y.crown_diameter) > tol)
+        return "size changed";
+    return "";
+}
+
 }  // namespace
 
 std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol) {
@@ -60,144 +180,22 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
     if (a.header.format_major != b.header.format_major || a.header.format_minor != b.header.format_minor)
         out.push_back({"changed", "header", "format version differs"});
     if (a.header.options != b.header.options) out.push_back({"changed", "header", "parse options differ"});
-
-    auto building_key = [](const Building& x) { return to_string(x.osm) + (x.is_part ? "/part" : ""); };
-    diff_kind("building", keyed(a.buildings, building_key), keyed(b.buildings, building_key),
-              [tol](const Building& x, const Building& y) -> std::string {
-                  double d = max_point_distance(x.outer, y.outer);
-                  if (d > tol) return "outline moved " + metres(d);
-                  if (x.holes.size() != y.holes.size()) return "number of holes differs";
-                  for (size_t i = 0; i < x.holes.size(); ++i)
-                      if ((d = max_point_distance(x.holes[i], y.holes[i])) > tol) return "hole moved " + metres(d);
-                  if (std::fabs(x.height - y.height) > tol || std::fabs(x.min_height - y.min_height) > tol)
-                      return "height changed by " + metres(std::max(std::fabs(x.height - y.height),
-                                                                    std::fabs(x.min_height - y.min_height)));
-                  if (x.roof_shape != y.roof_shape)
-                      return std::string("roof ") + to_string(x.roof_shape) + " -> " + to_string(y.roof_shape);
-                  if (std::fabs(x.roof_height - y.roof_height) > tol)
-                      return "roof height changed by " + metres(std::fabs(x.roof_height - y.roof_height));
-                  if (x.roof_faces.size() != y.roof_faces.size()) return "number of roof faces differs";
-                  for (size_t i = 0; i < x.roof_faces.size(); ++i) {
-                      const auto& p = x.roof_faces[i].points;
-                      const auto& q = y.roof_faces[i].points;
-                      if (p.size() != q.size() || x.roof_faces[i].kind != y.roof_faces[i].kind) return "roof face differs";
-                      for (size_t j = 0; j < p.size(); ++j)
-                          if ((d = length(p[j] - q[j])) > tol) return "roof face moved " + metres(d);
-                  }
-                  if (x.wall_colour != y.wall_colour || x.roof_colour != y.roof_colour) return "colour differs";
-                  if (x.wall_material != y.wall_material || x.roof_material != y.roof_material)
-                      return "material differs";
-                  if (x.height_rule != y.height_rule) return "height rule differs";
-                  if (x.generated != y.generated) return "generated differs";
-                  return "";
-              },
-              out);
-
-    auto road_key = [](const RoadEdge& x) {
-        return to_string(x.osm) + ":" + std::to_string(x.from_node) + "-" + std::to_string(x.to_node);
+    auto diff = [&](const char* kind, const auto& items_a, const auto& items_b, auto key, auto change) {
+        diff_kind(kind, keyed(items_a, key), keyed(items_b, key),
+                  [&](const auto& x, const auto& y) { return change(x, y, tol); }, out);
     };
-    diff_kind("road", keyed(a.roads, road_key), keyed(b.roads, road_key),
-              [tol](const RoadEdge& x, const RoadEdge& y) -> std::string {
-                  double d = max_point_distance(x.quad, y.quad);
-                  if (d > tol) return "quadrangle moved " + metres(d);
-                  if ((d = max_point_distance(x.centreline, y.centreline)) > tol) return "centreline moved " + metres(d);
-                  if (std::fabs(x.width - y.width) > tol) return "width changed by " + metres(std::fabs(x.width - y.width));
-                  if (x.sidewalk_left != y.sidewalk_left || x.sidewalk_right != y.sidewalk_right) return "sidewalks differ";
-                  if (x.lanes_forward != y.lanes_forward || x.lanes_backward != y.lanes_backward ||
-                      x.centre_line != y.centre_line || x.edge_lines != y.edge_lines ||
-                      x.cycle_lane_left != y.cycle_lane_left || x.cycle_lane_right != y.cycle_lane_right)
-                      return "lanes or markings differ";
-                  return "";
-              },
-              out);
-
-    auto joint_key = [](const Joint& x) { return to_string(x.osm); };
-    diff_kind("joint", keyed(a.joints, joint_key), keyed(b.joints, joint_key),
-              [tol](const Joint& x, const Joint& y) -> std::string {
-                  double d = max_point_distance(x.polygon, y.polygon);
-                  return d > tol ? "polygon moved " + metres(d) : "";
-              },
-              out);
-
-    // Sidewalks are keyed by the OSM identity of the road or joint they belong to.
-    auto sidewalk_key = [](const Scene& s) {
-        return [&s](const Sidewalk& x) {
-            if (x.kind == SidewalkKind::Strip && x.road >= 0) {
-                const RoadEdge& r = s.roads[x.road];
-                return "strip " + to_string(r.osm) + ":" + std::to_string(r.from_node) + "-" + std::to_string(r.to_node);
-            }
-            if (x.kind == SidewalkKind::Corner && x.joint >= 0) return "corner " + to_string(s.joints[x.joint].osm);
-            return std::string(x.kind == SidewalkKind::Strip ? "strip" : "corner");
-        };
-    };
-    diff_kind("sidewalk", keyed(a.sidewalks, sidewalk_key(a)), keyed(b.sidewalks, sidewalk_key(b)),
-              [tol](const Sidewalk& x, const Sidewalk& y) -> std::string {
-                  double d = max_point_distance(x.polygon, y.polygon);
-                  return d > tol ? "polygon moved " + metres(d) : "";
-              },
-              out);
-
-    auto lamp_key = [](const Lamp& x) {
-        return std::string(x.source == LampSource::Tagged ? "tagged " : "generated ") + to_string(x.osm);
-    };
-    diff_kind("lamp", keyed(a.lamps, lamp_key), keyed(b.lamps, lamp_key),
-              [tol](const Lamp& x, const Lamp& y) -> std::string {
-                  double d = length(x.position - y.position);
-                  return d > tol ? "moved " + metres(d) : "";
-              },
-              out);
-
-    auto path_key = [](const PathEdge& x) {
-        return to_string(x.osm) + ":" + std::to_string(x.from_node) + "-" + std::to_string(x.to_node);
-    };
-    diff_kind("path", keyed(a.paths, path_key), keyed(b.paths, path_key),
-              [tol](const PathEdge& x, const PathEdge& y) -> std::string {
-                  double d = max_point_distance(x.quad, y.quad);
-                  if (d > tol) return "quadrangle moved " + metres(d);
-                  if (x.path_class != y.path_class) return "class differs";
-                  return "";
-              },
-              out);
-    auto path_joint_key = [](const Joint& x) { return to_string(x.osm); };
-    diff_kind("path_joint", keyed(a.path_joints, path_joint_key), keyed(b.path_joints, path_joint_key),
-              [tol](const Joint& x, const Joint& y) -> std::string {
-                  double d = max_point_distance(x.polygon, y.polygon);
-                  return d > tol ? "polygon moved " + metres(d) : "";
-              },
-              out);
-
-    auto crossing_key = [](const Crossing& x) {
-        return std::string(x.kind == CrossingKind::Zebra ? "zebra " : "stop line ") + to_string(x.osm);
-    };
-    diff_kind("crossing", keyed(a.crossings, crossing_key), keyed(b.crossings, crossing_key),
-              [tol](const Crossing& x, const Crossing& y) -> std::string {
-                  const double d = length(x.position - y.position);
-                  return d > tol ? "moved " + metres(d) : "";
-              },
-              out);
-
-    auto cover_key = [](const LandCover& x) { return std::string(to_string(x.cover)) + " " + to_string(x.osm); };
-    diff_kind("land_cover", keyed(a.land_cover, cover_key), keyed(b.land_cover, cover_key),
-              [tol](const LandCover& x, const LandCover& y) -> std::string {
-                  double d = max_point_distance(x.outer, y.outer);
-                  if (d > tol) return "outline moved " + metres(d);
-                  if (x.holes.size() != y.holes.size()) return "number of holes differs";
-                  for (size_t i = 0; i < x.holes.size(); ++i)
-                      if ((d = max_point_distance(x.holes[i], y.holes[i])) > tol) return "hole moved " + metres(d);
-                  return "";
-              },
-              out);
-
-    auto tree_key = [](const Tree& x) { return std::string(to_string(x.source)) + " " + to_string(x.osm); };
-    diff_kind("tree", keyed(a.trees, tree_key), keyed(b.trees, tree_key),
-              [tol](const Tree& x, const Tree& y) -> std::string {
-                  const double d = length(x.position - y.position);
-                  if (d > tol) return "moved " + metres(d);
-                  if (std::fabs(x.height - y.height) > tol || std::fabs(x.crown_diameter - y.crown_diameter) > tol)
-                      return "size changed";
-                  return "";
-              },
-              out);
+    diff("building", a.buildings, b.buildings, building_key, building_change);
+    diff("road", a.roads, b.roads, road_key, road_change);
+    diff("joint", a.joints, b.joints, joint_key, joint_change);
+    diff_kind("sidewalk", keyed(a.sidewalks, [&](const Sidewalk& x) { return sidewalk_key(a, x); }),
+              keyed(b.sidewalks, [&](const Sidewalk& x) { return sidewalk_key(b, x); }),
+              [tol](const Sidewalk& x, const Sidewalk& y) { return sidewalk_change(x, y, tol); }, out);
+    diff("lamp", a.lamps, b.lamps, lamp_key, lamp_change);
+    diff("path", a.paths, b.paths, path_key, path_change);
+    diff("path_joint", a.path_joints, b.path_joints, joint_key, joint_change);
+    diff("crossing", a.crossings, b.crossings, crossing_key, crossing_change);
+    diff("land_cover", a.land_cover, b.land_cover, cover_key, land_cover_change);
+    diff("tree", a.trees, b.trees, tree_key, tree_change);
     return out;
 }
 

@@ -124,6 +124,28 @@ void keep_extract_bounds(const osmium::io::Header& header, OsmData& data) {
     }
 }
 
+// The areas the multipolygon assembler builds: buildings, their parts and land cover (a superset
+// of the keys that land_cover_class reads; LandCoverHandler sorts the areas out).
+osmium::TagsFilter area_tags_filter() {
+    osmium::TagsFilter filter{false};
+    filter.add_rule(true, osmium::TagMatcher{"building"});
+    filter.add_rule(true, osmium::TagMatcher{"building:part"});
+    for (const char* key : land_cover_keys()) filter.add_rule(true, osmium::TagMatcher{key});
+    return filter;
+}
+
+// Multipolygons whose members the extract cut off: counted as dropped.
+void count_incomplete_relations(osmium::area::MultipolygonManager<DeferringAssembler>& multipolygons,
+                                ParseReport& report) {
+    int64_t incomplete = 0, incomplete_cover = 0;
+    multipolygons.for_each_incomplete_relation([&](const osmium::relations::RelationHandle& handle) {
+        if (is_building_tags(handle->tags())) ++incomplete;
+        else if (land_cover_class(copy_tags(handle->tags()))) ++incomplete_cover;
+    });
+    if (incomplete) report.dropped(kBuildingRelations, kMembersMissing, incomplete);
+    if (incomplete_cover) report.dropped(kLandCoverAreas, kRelationMembersMissing, incomplete_cover);
+}
+
 }  // namespace
 
 OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
@@ -132,12 +154,7 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
     try {
         const osmium::io::File file(path);
 
-        osmium::TagsFilter area_filter{false};
-        area_filter.add_rule(true, osmium::TagMatcher{"building"});
-        area_filter.add_rule(true, osmium::TagMatcher{"building:part"});
-        // Land cover goes through the same assembler (a superset of the keys that
-        // land_cover_class reads; LandCoverHandler sorts the areas out).
-        for (const char* key : land_cover_keys()) area_filter.add_rule(true, osmium::TagMatcher{key});
+        const osmium::TagsFilter area_filter = area_tags_filter();
         std::vector<AreaJob> area_jobs;
         osmium::memory::Buffer relation_areas{64 * 1024, osmium::memory::Buffer::auto_grow::yes};
         const DeferringAssembler::config_type assembler_config{{}, &area_jobs, &relation_areas};
@@ -195,13 +212,7 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
             }
         }
 
-        int64_t incomplete = 0, incomplete_cover = 0;
-        multipolygons.for_each_incomplete_relation([&](const osmium::relations::RelationHandle& handle) {
-            if (is_building_tags(handle->tags())) ++incomplete;
-            else if (land_cover_class(copy_tags(handle->tags()))) ++incomplete_cover;
-        });
-        if (incomplete) report.dropped(kBuildingRelations, kMembersMissing, incomplete);
-        if (incomplete_cover) report.dropped(kLandCoverAreas, kRelationMembersMissing, incomplete_cover);
+        count_incomplete_relations(multipolygons, report);
         report.read(kBuildingAreas, static_cast<int64_t>(data.building_areas.size()));
     } catch (const Error&) {
         throw;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "osmparse/roofs/roof_skeleton.h"
 #include "osmparse/roofs/wavefront_skeleton.h"
@@ -338,6 +339,77 @@ bool hipped(const Ring& outer, const std::vector<Ring>& holes, double eaves_z, d
     return true;
 }
 
+// The profile (radius, height), both 0..1, of a roof of revolution.
+std::vector<std::pair<double, double>> revolution_profile(RoofShape shape) {
+    std::vector<std::pair<double, double>> profile;
+    if (shape == RoofShape::Dome) {
+        for (int k = 0; k <= 6; ++k) {
+            const double a = 0.5 * kPi * k / 6;
+            profile.push_back({k == 6 ? 0.0 : std::cos(a), std::sin(a)});
+        }
+    } else {  // onion: narrow neck, widest a quarter up, then an S curve to a point
+        profile = {{1.0, 0.0},  {0.8, 0.0},  {0.92, 0.08}, {1.0, 0.2},  {0.95, 0.32}, {0.8, 0.45},
+                   {0.55, 0.6}, {0.3, 0.75}, {0.12, 0.88}, {0.04, 0.95}, {0.0, 1.0}};
+    }
+    return profile;
+}
+
+// The planes of a ridge roof over the footprint's bounding rectangle; the roof is their lower
+// envelope. Nothing for a shape that is not a ridge roof.
+std::optional<std::vector<Plane>> ridge_roof_planes(const RoofFrame& f, RoofShape shape, double h) {
+    std::vector<Plane> planes;
+    switch (shape) {
+        case RoofShape::Gabled: planes = profile_planes(f, {{0, 0}, {0.5, 1}, {1, 0}}, h); break;
+        case RoofShape::Gambrel:
+            planes = profile_planes(f, {{0, 0}, {0.18, 0.6}, {0.5, 1}, {0.82, 0.6}, {1, 0}}, h);
+            break;
+        case RoofShape::Round: {
+            std::vector<std::pair<double, double>> profile;
+            for (int k = 0; k <= 8; ++k) {
+                const double a = kPi * k / 8;
+                profile.push_back({0.5 - 0.5 * std::cos(a), std::sin(a)});
+            }
+            planes = profile_planes(f, profile, h);
+            break;
+        }
+        case RoofShape::HalfHipped: {
+            planes = profile_planes(f, {{0, 0}, {0.5, 1}, {1, 0}}, h);
+            // Small hips cut the top of each gable: from 60% of the height at the end walls,
+            // rising as steeply as the main slopes.
+            const double run = 0.4 * 0.5 * f.width();
+            planes.push_back(along_plane(f, f.s0, 0.6 * h, f.s0 + run, h));
+            planes.push_back(along_plane(f, f.s1, 0.6 * h, f.s1 - run, h));
+            break;
+        }
+        case RoofShape::Mansard: {
+            // Steep lower slopes on all four sides up to 75% of the height, then shallow ones.
+            const double half = 0.5 * f.width(), steep = 0.2 * half;
+            planes.push_back(across_plane(f, f.t0, 0, f.t0 + steep, 0.75 * h));
+            planes.push_back(across_plane(f, f.t1, 0, f.t1 - steep, 0.75 * h));
+            planes.push_back(across_plane(f, f.t0 + steep, 0.75 * h, f.t0 + half, h));
+            planes.push_back(across_plane(f, f.t1 - steep, 0.75 * h, f.t1 - half, h));
+            planes.push_back(along_plane(f, f.s0, 0, f.s0 + steep, 0.75 * h));
+            planes.push_back(along_plane(f, f.s1, 0, f.s1 - steep, 0.75 * h));
+            planes.push_back(along_plane(f, f.s0 + steep, 0.75 * h, f.s0 + half, h));
+            planes.push_back(along_plane(f, f.s1 - steep, 0.75 * h, f.s1 - half, h));
+            break;
+        }
+        default: return std::nullopt;
+    }
+    return planes;
+}
+
+// Whether the faces tile the footprint: if a clip went wrong, no roof rather than a hole in it.
+bool faces_tile(const std::vector<RoofFace>& faces, const Ring& outer) {
+    double covered = 0;
+    for (const RoofFace& face : faces) {
+        Ring flat;
+        for (Vec3 p : face.points) flat.push_back({p.x, p.y});
+        covered += signed_area(flat);
+    }
+    return std::fabs(covered - signed_area(outer)) <= 1e-3 * std::fabs(signed_area(outer));
+}
+
 }  // namespace
 
 bool split_off(const Ring& ring, Vec2 normal, double offset, std::vector<Ring>* pieces) {
@@ -437,17 +509,7 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
         case RoofShape::Dome:
         case RoofShape::Onion: {
             if (!convex) return as_hipped();
-            std::vector<std::pair<double, double>> profile;
-            if (spec.shape == RoofShape::Dome) {
-                for (int k = 0; k <= 6; ++k) {
-                    const double a = 0.5 * kPi * k / 6;
-                    profile.push_back({k == 6 ? 0.0 : std::cos(a), std::sin(a)});
-                }
-            } else {  // narrow neck, widest a quarter up, then an S curve to a point
-                profile = {{1.0, 0.0},  {0.8, 0.0},  {0.92, 0.08}, {1.0, 0.2},  {0.95, 0.32}, {0.8, 0.45},
-                           {0.55, 0.6}, {0.3, 0.75}, {0.12, 0.88}, {0.04, 0.95}, {0.0, 1.0}};
-            }
-            *faces = revolution(outer, z, h, profile);
+            *faces = revolution(outer, z, h, revolution_profile(spec.shape));
             return true;
         }
         default: break;
@@ -462,56 +524,15 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
         return true;
     }
     if (!near_rectangle) return as_hipped();
-    std::vector<Plane> planes;
-    switch (spec.shape) {
-        case RoofShape::Gabled: planes = profile_planes(f, {{0, 0}, {0.5, 1}, {1, 0}}, h); break;
-        case RoofShape::Gambrel:
-            planes = profile_planes(f, {{0, 0}, {0.18, 0.6}, {0.5, 1}, {0.82, 0.6}, {1, 0}}, h);
-            break;
-        case RoofShape::Round: {
-            std::vector<std::pair<double, double>> profile;
-            for (int k = 0; k <= 8; ++k) {
-                const double a = kPi * k / 8;
-                profile.push_back({0.5 - 0.5 * std::cos(a), std::sin(a)});
-            }
-            planes = profile_planes(f, profile, h);
-            break;
-        }
-        case RoofShape::HalfHipped: {
-            planes = profile_planes(f, {{0, 0}, {0.5, 1}, {1, 0}}, h);
-            // Small hips cut the top of each gable: from 60% of the height at the end walls,
-            // rising as steeply as the main slopes.
-            const double run = 0.4 * 0.5 * f.width();
-            planes.push_back(along_plane(f, f.s0, 0.6 * h, f.s0 + run, h));
-            planes.push_back(along_plane(f, f.s1, 0.6 * h, f.s1 - run, h));
-            break;
-        }
-        case RoofShape::Mansard: {
-            // Steep lower slopes on all four sides up to 75% of the height, then shallow ones.
-            const double half = 0.5 * f.width(), steep = 0.2 * half;
-            planes.push_back(across_plane(f, f.t0, 0, f.t0 + steep, 0.75 * h));
-            planes.push_back(across_plane(f, f.t1, 0, f.t1 - steep, 0.75 * h));
-            planes.push_back(across_plane(f, f.t0 + steep, 0.75 * h, f.t0 + half, h));
-            planes.push_back(across_plane(f, f.t1 - steep, 0.75 * h, f.t1 - half, h));
-            planes.push_back(along_plane(f, f.s0, 0, f.s0 + steep, 0.75 * h));
-            planes.push_back(along_plane(f, f.s1, 0, f.s1 - steep, 0.75 * h));
-            planes.push_back(along_plane(f, f.s0 + steep, 0.75 * h, f.s0 + half, h));
-            planes.push_back(along_plane(f, f.s1 - steep, 0.75 * h, f.s1 - half, h));
-            break;
-        }
-        default: *why = "unknown shape"; return false;
+    const std::optional<std::vector<Plane>> planes = ridge_roof_planes(f, spec.shape, h);
+    if (!planes) {
+        *why = "unknown shape";
+        return false;
     }
-    if (!lower_envelope(outer, planes, z, faces) || faces->empty()) return as_hipped();
-    // The faces must tile the footprint; if a clip went wrong, no roof rather than a hole in it.
-    double covered = 0;
-    for (const RoofFace& face : *faces) {
-        Ring flat;
-        for (Vec3 p : face.points) flat.push_back({p.x, p.y});
-        covered += signed_area(flat);
-    }
-    if (std::fabs(covered - signed_area(outer)) > 1e-3 * std::fabs(signed_area(outer))) return as_hipped();
+    if (!lower_envelope(outer, *planes, z, faces) || faces->empty() || !faces_tile(*faces, outer)) return as_hipped();
     return true;
 }
+
 
 std::vector<RoofFace> gable_walls(const Ring& outer, const std::vector<Ring>& holes,
                                   const std::vector<RoofFace>& roof, double eaves_z) {
