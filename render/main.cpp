@@ -107,16 +107,57 @@ void check_export_path(const std::string& path, const std::string& extension, co
     check_output_target(path, inputs);
 }
 
-int run(const Options& o) {
-    GeometryModes modes = GeometryModes::all(o.procedural ? GeometryMode::Procedural : GeometryMode::Stored);
+// What the options ask for, checked before the (possibly long) load and build.
+struct Job {
+    GeometryModes modes;
+    TimeOfDay time;
+    LightOptions lights;
+    RenderSettings settings;
+    bool animate = false, want_camera = false;
+    CameraPath camera_path;
+    FrameRange frames;
+};
+
+// The frames of an animation: all of the orbit or camera path, or those --frames names.
+FrameRange animation_frames(const Options& o, const CameraPath& camera_path) {
+    // An orbit's last frame is the one before it comes round to the first again.
+    const FrameRange available =
+        o.orbit ? FrameRange{0, static_cast<int>(std::ceil(o.orbit_seconds * o.fps - 1e-9)) - 1}
+                : frames_within(camera_path.keys.front().time, camera_path.keys.back().time, o.fps);
+    const FrameRange frames = o.frames.empty() ? available : parse_frame_range(o.frames);
+    if (frames.first < available.first || frames.last > available.last)
+        throw Error("--frames " + o.frames + ": the " + (o.orbit ? "orbit" : "camera path") + " has frames " +
+                    std::to_string(available.first) + "-" + std::to_string(available.last) + " at " +
+                    format_number(o.fps) + " fps");
+    return frames;
+}
+
+// The output files: each a safe target of a known format, checked before the work.
+void check_outputs(const Options& o, const Job& job) {
+    if (job.animate) check_output_path(frame_file_name(o.output, job.frames.first), o.scene_path);
+    else if (!o.output.empty()) check_output_path(o.output, o.scene_path);
+    if (!o.export_ply_path.empty()) check_output_target(o.export_ply_path, {o.scene_path, o.output});
+    if (job.settings.aovs && !o.output.empty() && image_format_for(o.output) != ImageFormat::Exr)
+        throw Error("--aovs needs an .exr output");
+    if (!o.export_gltf_path.empty())
+        check_export_path(o.export_gltf_path, ".glb", {o.scene_path, o.output, o.export_ply_path});
+    if (o.output.empty() && o.export_ply_path.empty() && o.export_gltf_path.empty() && !o.print_scene_info &&
+        !o.print_memory_info && !o.print_geometry_info)
+        throw Error("need -o OUTPUT.png|jpg|exr (see --help)");
+}
+
+Job prepare_job(const Options& o) {
+    Job job;
+    job.modes = GeometryModes::all(o.procedural ? GeometryMode::Procedural : GeometryMode::Stored);
     for (int c = 0; c < kGeometryClassCount; ++c)
         if (!o.geometry[c].empty())
-            modes.mode[c] = parse_geometry_mode(
+            job.modes.mode[c] = parse_geometry_mode(
                 o.geometry[c], std::string("--geometry-") + to_string(static_cast<GeometryClass>(c)));
-    const TimeOfDay time = parse_time_of_day(o.time);
-    LightOptions light_options = o.lights;
-    light_options.sampler = parse_light_sampler(o.light_sampler);
-    RenderSettings settings = o.render;
+    job.time = parse_time_of_day(o.time);
+    job.lights = o.lights;
+    job.lights.sampler = parse_light_sampler(o.light_sampler);
+    RenderSettings& settings = job.settings;
+    settings = o.render;
     settings.aovs = parse_aovs(o.aovs);
     if (!o.region.empty()) {
         settings.region = parse_region(o.region);
@@ -124,85 +165,123 @@ int run(const Options& o) {
     }
     settings.time_limit_seconds = o.time_limit;
     if (o.time_limit > 0 && !o.spp_given) settings.spp = 1 << 20;  // the time decides
-    const bool animate = !o.camera_path.empty() || o.orbit;
+    job.animate = !o.camera_path.empty() || o.orbit;
     if (!o.camera_path.empty() && o.orbit) throw Error("--camera-path and --orbit exclude each other");
-    if (animate && (!o.camera.empty() || !o.look_at.empty()))
+    if (job.animate && (!o.camera.empty() || !o.look_at.empty()))
         throw Error("--camera/--look-at and an animation (--camera-path, --orbit) exclude each other");
-    if (!animate && !o.frames.empty()) throw Error("--frames needs --camera-path or --orbit");
-    if (animate && o.output.empty()) throw Error("an animation needs -o PATTERN, e.g. -o out_%04d.png");
-    const CameraPath camera_path = o.camera_path.empty() ? CameraPath{} : read_camera_path(o.camera_path);
-    FrameRange frames;
-    if (animate) {
-        // An orbit's last frame is the one before it comes round to the first again.
-        const FrameRange available =
-            o.orbit ? FrameRange{0, static_cast<int>(std::ceil(o.orbit_seconds * o.fps - 1e-9)) - 1}
-                    : frames_within(camera_path.keys.front().time, camera_path.keys.back().time, o.fps);
-        frames = o.frames.empty() ? available : parse_frame_range(o.frames);
-        if (frames.first < available.first || frames.last > available.last)
-            throw Error("--frames " + o.frames + ": the " + (o.orbit ? "orbit" : "camera path") + " has frames " +
-                        std::to_string(available.first) + "-" + std::to_string(available.last) + " at " +
-                        format_number(o.fps) + " fps");
-        check_output_path(frame_file_name(o.output, frames.first), o.scene_path);
-    } else if (!o.output.empty()) check_output_path(o.output, o.scene_path);
-    if (!o.export_ply_path.empty()) check_output_target(o.export_ply_path, {o.scene_path, o.output});
-    if (settings.aovs && !o.output.empty() && image_format_for(o.output) != ImageFormat::Exr)
-        throw Error("--aovs needs an .exr output");
-    const bool want_camera = !o.camera.empty() || !o.look_at.empty();
-    if (want_camera && (o.camera.empty() || o.look_at.empty()))
+    if (!job.animate && !o.frames.empty()) throw Error("--frames needs --camera-path or --orbit");
+    if (job.animate && o.output.empty()) throw Error("an animation needs -o PATTERN, e.g. -o out_%04d.png");
+    if (!o.camera_path.empty()) job.camera_path = read_camera_path(o.camera_path);
+    if (job.animate) job.frames = animation_frames(o, job.camera_path);
+    job.want_camera = !o.camera.empty() || !o.look_at.empty();
+    if (job.want_camera && (o.camera.empty() || o.look_at.empty()))
         throw Error("--camera and --look-at go together");
-    if (want_camera) check_view(parse_point(o.camera, "--camera"), parse_point(o.look_at, "--look-at"));
-    if (!o.export_gltf_path.empty()) check_export_path(o.export_gltf_path, ".glb", {o.scene_path, o.output, o.export_ply_path});
-    if (o.output.empty() && o.export_ply_path.empty() && o.export_gltf_path.empty() && !o.print_scene_info && !o.print_memory_info &&
-        !o.print_geometry_info)
-        throw Error("need -o OUTPUT.png|jpg|exr (see --help)");
+    if (job.want_camera) check_view(parse_point(o.camera, "--camera"), parse_point(o.look_at, "--look-at"));
+    check_outputs(o, job);
+    return job;
+}
 
+void print_lights_info(const SceneLights& lights, LightSamplerKind sampler) {
+    std::printf("lights: %zu lamps, %zu window strips (%llu of %llu windows lit), %s sampler, %.1f MB\n"
+                "light_lamps: %zu\nlight_window_strips: %zu\nlit_windows: %llu\nwindows: %llu\nlight_bytes: %zu\n",
+                lights.lamp_count(), lights.strip_count(), static_cast<unsigned long long>(lights.lit_window_count()),
+                static_cast<unsigned long long>(lights.window_count()), to_string(sampler), lights.bytes() / 1e6,
+                lights.lamp_count(), lights.strip_count(), static_cast<unsigned long long>(lights.lit_window_count()),
+                static_cast<unsigned long long>(lights.window_count()), lights.bytes());
+}
+
+void print_memory(const RenderScene& render_scene, const SceneLights& lights) {
+    print_memory_info(render_scene, stdout);
+    std::printf("light_bytes: %zu\n", lights.bytes());
+}
+
+// Seconds of the phases besides the tracing: loading the file, building geometry and BVH, writing.
+struct PhaseSeconds {
+    double load = 0, build = 0, write = 0, render_cpu = 0;
+};
+
+void print_stats(const RenderStats& stats, const PhaseSeconds& phases, const Camera& camera, const Sky& sky,
+                 double exposure, const SceneLights& lights, const Options& o) {
+    std::printf("load_seconds: %.3f\nbuild_seconds: %.3f\nwrite_seconds: %.3f\n", phases.load, phases.build,
+                phases.write);
+    std::printf("spp: %d\n", stats.spp);
+    if (o.denoise) std::printf("denoise_seconds: %.3f\n", stats.denoise_seconds);
+    std::printf("render_cpu_seconds: %.3f\n", phases.render_cpu);
+    std::printf("render_seconds: %.3f\nrays: %llu\nrays_per_second: %.0f\n", stats.seconds,
+                static_cast<unsigned long long>(stats.rays), stats.rays / std::max(stats.seconds, 1e-9));
+    // The view actually used (also the automatic one), so another renderer can match it.
+    const Vec3 p = camera.position(), t = camera.position() + camera.forward() * 100;
+    std::printf("camera: %.3f,%.3f,%.3f\nlook_at: %.3f,%.3f,%.3f\nfov: %.3f\n", p.x, p.y, p.z, t.x, t.y, t.z, o.fov);
+    const Vec3 sun = sky.sun_direction();
+    std::printf("sun_direction: %.5f,%.5f,%.5f\nsun_irradiance: %.4f\n", sun.x, sun.y, sun.z,
+                sky.has_sun() ? luminance(sky.sun_radiance()) * sky.sun_solid_angle() : 0.0);
+    std::printf("sun_elevation: %.3f\nexposure_ev: %.3f\nlights: %zu\n", sky.sun_elevation(),
+                ev_from_exposure(exposure), lights.light_count());
+}
+
+// An orbit goes round the automatic view's centre: where its line of sight meets the ground.
+Animation make_animation(const Options& o, const Job& job, const Camera& camera, const Scene& scene) {
+    Animation animation;
+    animation.frames = job.frames;
+    animation.fps = o.fps;
+    animation.output_pattern = o.output;
+    if (o.orbit) {
+        const Vec3 start = camera.position(), forward = camera.forward();
+        const double along = forward.z < -1e-6 ? (scene.ground.z - start.z) / forward.z : 100.0;
+        const Vec3 centre = start + forward * along;
+        animation.view = [=, fov = o.fov, seconds = o.orbit_seconds](double t) {
+            return orbit_at(start, centre, fov, seconds, t);
+        };
+    } else {
+        const CameraPath& path = job.camera_path;
+        animation.view = [&path](double t) { return camera_path_at(path, t); };
+    }
+    return animation;
+}
+
+int run(const Options& o) {
+    Job job = prepare_job(o);
+    RenderSettings& settings = job.settings;
+    PhaseSeconds phases;
     const Clock::time_point start = Clock::now();
     const Scene scene = load_scene(o.scene_path);
-    const double load_seconds = seconds_since(start);
+    phases.load = seconds_since(start);
     if (o.print_scene_info) print_scene_info(scene, o.scene_path, stdout);
 
-    // Facades follow the scene's seed (not --seed, which drives the pixel streams), so every
-    // render of a scene shows the same buildings.
     // User textures are read before the long geometry build, so a bad --texture-dir fails fast.
     std::unique_ptr<BuildingTextures> textures;
     if (!o.texture_dir.empty()) {
         const double pixel_angle = 2 * std::tan(0.5 * o.fov * kPi / 180) / settings.height;
         textures = std::make_unique<BuildingTextures>(o.texture_dir, pixel_angle);
     }
+    // Facades follow the scene's seed (not --seed, which drives the pixel streams), so every
+    // render of a scene shows the same buildings.
     FacadeOptions facades;
     facades.seed = scene.header.seed;
     facades.shop_probability = o.shop_probability;
     const Clock::time_point build_start = Clock::now();
-    check_memory_fits(estimate_render_memory(scene, modes, facades, settings));
-    const std::unique_ptr<RenderScene> render_scene = build_render_scene(scene, modes, facades, ProgressSettings{settings.quiet});
-    const double build_seconds = seconds_since(build_start);
+    check_memory_fits(estimate_render_memory(scene, job.modes, facades, settings));
+    const std::unique_ptr<RenderScene> render_scene =
+        build_render_scene(scene, job.modes, facades, ProgressSettings{settings.quiet});
+    phases.build = seconds_since(build_start);
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
     // Lamps and lit windows glow once the sun is down (dusk, night, or --sun-elevation below 1).
-    const Sky sky = Sky::for_settings(SkySettings{time, o.sun_elevation, o.sun_azimuth, o.moon});
-    const bool lights_on = sky.sun_elevation() < kLightsOnBelowElevation;
-    if (!lights_on) light_options.lamps = false, light_options.lit_windows = 0;
-    const SceneLights lights(scene, facades, light_options);
-    if (o.print_geometry_info)
-        std::printf("lights: %zu lamps, %zu window strips (%llu of %llu windows lit), %s sampler, %.1f MB\n"
-                    "light_lamps: %zu\nlight_window_strips: %zu\nlit_windows: %llu\nwindows: %llu\nlight_bytes: %zu\n",
-                    lights.lamp_count(), lights.strip_count(), static_cast<unsigned long long>(lights.lit_window_count()),
-                    static_cast<unsigned long long>(lights.window_count()), to_string(light_options.sampler),
-                    lights.bytes() / 1e6, lights.lamp_count(), lights.strip_count(),
-                    static_cast<unsigned long long>(lights.lit_window_count()),
-                    static_cast<unsigned long long>(lights.window_count()), lights.bytes());
+    const Sky sky = Sky::for_settings(SkySettings{job.time, o.sun_elevation, o.sun_azimuth, o.moon});
+    if (!(sky.sun_elevation() < kLightsOnBelowElevation)) job.lights.lamps = false, job.lights.lit_windows = 0;
+    const SceneLights lights(scene, facades, job.lights);
+    if (o.print_geometry_info) print_lights_info(lights, job.lights.sampler);
     const MaterialTable materials = default_materials();
     if (!o.export_ply_path.empty()) export_ply(*render_scene, materials, o.export_ply_path);
     if (!o.export_gltf_path.empty()) export_gltf(scene, *render_scene, materials, o.export_gltf_path);
     if (o.output.empty()) {
-        if (o.print_memory_info) print_memory_info(*render_scene, stdout);
-        if (o.print_memory_info) std::printf("light_bytes: %zu\n", lights.bytes());
+        if (o.print_memory_info) print_memory(*render_scene, lights);
         return 0;
     }
 
     const Camera camera =
-        want_camera ? Camera::look_at(parse_point(o.camera, "--camera"), parse_point(o.look_at, "--look-at"), o.fov,
-                                      settings.width, settings.height)
-                    : framing_camera(scene, o.fov, settings.width, settings.height);
+        job.want_camera ? Camera::look_at(parse_point(o.camera, "--camera"), parse_point(o.look_at, "--look-at"),
+                                          o.fov, settings.width, settings.height)
+                        : framing_camera(scene, o.fov, settings.width, settings.height);
     settings.integrator.fog.density = o.fog;
     settings.integrator.fog.top_z = scene.ground.z + o.fog_height;
     settings.integrator.haze_extinction = o.visibility_km > 0 ? 3.912 / (o.visibility_km * 1000) : 0;
@@ -214,66 +293,30 @@ int run(const Options& o) {
     auto exposure_for = [&](const Camera& view) {
         return std::isnan(o.exposure_ev) ? metered_exposure(context, view, settings) : exposure_from_ev(o.exposure_ev);
     };
-    RenderStats stats;
-    if (animate) {
-        Animation animation;
-        animation.frames = frames;
-        animation.fps = o.fps;
-        animation.output_pattern = o.output;
-        if (o.orbit) {
-            // Round the automatic view's centre: where its line of sight meets the ground.
-            const Vec3 start = camera.position(), forward = camera.forward();
-            const double along = forward.z < -1e-6 ? (scene.ground.z - start.z) / forward.z : 100.0;
-            const Vec3 centre = start + forward * along;
-            animation.view = [=](double t) { return orbit_at(start, centre, o.fov, o.orbit_seconds, t); };
-        } else {
-            animation.view = [&](double t) { return camera_path_at(camera_path, t); };
-        }
-        render_animation(context, animation, settings, o.denoise, exposure_for);
+    if (job.animate) {
+        render_animation(context, make_animation(o, job, camera, scene), settings, o.denoise, exposure_for);
         return 0;
     }
     const double exposure = exposure_for(camera);
     // CPU time of all threads while tracing: on a shared machine a steadier measure of cost than
-    // the wall clock (tests/bench/night_bench.sh compares samplers by it).
+    // the wall clock.
+    RenderStats stats;
     const std::clock_t cpu_start = std::clock();
     const Film film = render_view(context, camera, settings, o.denoise, exposure, &stats);
-    const double render_cpu_seconds = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+    phases.render_cpu = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     if (o.time_limit > 0 && !settings.quiet)
-        std::fprintf(stderr, "render: time limit %gs: %d passes (%d spp) in %.2fs\n", o.time_limit, stats.spp, stats.spp,
-                     stats.seconds);
+        std::fprintf(stderr, "render: time limit %gs: %d passes (%d spp) in %.2fs\n", o.time_limit, stats.spp,
+                     stats.spp, stats.seconds);
     const Clock::time_point write_start = Clock::now();
     write_image(film, o.output, exposure);
-    const double write_seconds = seconds_since(write_start);
-
-    if (o.print_memory_info) print_memory_info(*render_scene, stdout);
-    if (o.print_memory_info) std::printf("light_bytes: %zu\n", lights.bytes());
-    if (o.stats) {
-        // Phases besides the tracing: loading the file, building geometry and BVH, writing.
-        std::printf("load_seconds: %.3f\nbuild_seconds: %.3f\nwrite_seconds: %.3f\n", load_seconds, build_seconds,
-                    write_seconds);
-        std::printf("spp: %d\n", stats.spp);
-        if (o.denoise) std::printf("denoise_seconds: %.3f\n", stats.denoise_seconds);
-        std::printf("render_cpu_seconds: %.3f\n", render_cpu_seconds);
-        std::printf("render_seconds: %.3f\nrays: %llu\nrays_per_second: %.0f\n", stats.seconds,
-                    static_cast<unsigned long long>(stats.rays), stats.rays / std::max(stats.seconds, 1e-9));
-        // The view actually used (also the automatic one), so another renderer can match it.
-        const Vec3 p = camera.position(), t = camera.position() + camera.forward() * 100;
-        std::printf("camera: %.3f,%.3f,%.3f\nlook_at: %.3f,%.3f,%.3f\nfov: %.3f\n", p.x, p.y, p.z, t.x, t.y, t.z, o.fov);
-        const Vec3 sun = sky.sun_direction();
-        std::printf("sun_direction: %.5f,%.5f,%.5f\nsun_irradiance: %.4f\n", sun.x, sun.y, sun.z,
-                    sky.has_sun() ? luminance(sky.sun_radiance()) * sky.sun_solid_angle() : 0.0);
-        std::printf("sun_elevation: %.3f\nexposure_ev: %.3f\nlights: %zu\n", sky.sun_elevation(),
-                    ev_from_exposure(exposure), lights.light_count());
-    }
+    phases.write = seconds_since(write_start);
+    if (o.print_memory_info) print_memory(*render_scene, lights);
+    if (o.stats) print_stats(stats, phases, camera, sky, exposure, lights, o);
     return 0;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    CLI::App app{"render: path-trace a citygen scene with Embree"};
-    app.set_version_flag("--version", std::string("citygen render ") + CITYGEN_VERSION);
-    Options o;
+// The scene, the image and the view.
+void add_image_options(CLI::App& app, Options& o) {
     RenderSettings& r = o.render;
     app.add_option("scene", o.scene_path, "scene file written by osmparse")->required();
     app.add_option("-o,--output", o.output, "image to write: .png, .jpg (tone-mapped sRGB) or .exr (linear)");
@@ -287,6 +330,10 @@ int main(int argc, char** argv) {
     app.add_option("--look-at", o.look_at, "point the camera looks at, X,Y,Z in scene metres");
     app.add_option("--fov", o.fov, "vertical field of view in degrees")->check(CLI::Range(1.0, 170.0))
         ->capture_default_str();
+}
+
+// Time of day, sun, exposure, lamps, windows and atmosphere.
+void add_sky_and_light_options(CLI::App& app, Options& o) {
     app.add_option("--time", o.time, "day, sunset, dusk or night")->capture_default_str();
     app.add_option("--sun-elevation", o.sun_elevation,
                    "sun elevation in degrees (below 1: twilight or night, lamps and windows on); default from --time")
@@ -315,6 +362,11 @@ int main(int argc, char** argv) {
     app.add_option("--light-sampler", o.light_sampler,
                    "how next-event estimation picks a lamp or window: tree (light BVH), power or uniform")
         ->capture_default_str();
+}
+
+// Path length and Russian roulette.
+void add_integrator_options(CLI::App& app, Options& o) {
+    RenderSettings& r = o.render;
     app.add_option("--max-depth", r.integrator.max_depth, "bounces after the first hit")
         ->check(CLI::Range(0, 1000))->capture_default_str();
     app.add_option("--rr-depth", r.integrator.rr_depth, "bounces always traced before Russian roulette starts")
@@ -323,6 +375,10 @@ int main(int argc, char** argv) {
                    "least survival probability of a roulette step: a path survives with its largest "
                    "throughput component, clamped to [rr-prob, 1], and is reweighted by 1/survival")
         ->check(CLI::Range(0.01, 1.0))->capture_default_str();
+}
+
+// Geometry mode per class, the buildings' looks and AOVs.
+void add_geometry_options(CLI::App& app, Options& o) {
     app.add_flag("--procedural", o.procedural, "every class in procedural geometry mode");
     for (int c = 0; c < kGeometryClassCount; ++c) {
         const std::string name = to_string(static_cast<GeometryClass>(c));
@@ -336,6 +392,11 @@ int main(int argc, char** argv) {
     app.add_option("--texture-dir", o.texture_dir,
                    "tile textures replacing the wall/roof patterns: DIR/<material>.png (brick, plaster, ...) "
                    "and DIR/roof_<material>.png (roof_tiles, slate, ...), one repeat per 2 m");
+}
+
+// Exports and what is printed.
+void add_output_options(CLI::App& app, Options& o) {
+    RenderSettings& r = o.render;
     app.add_option("--export-ply", o.export_ply_path, "write the stored triangles as binary PLY (material per face)");
     app.add_option("--export-gltf", o.export_gltf_path,
                    "write the stored geometry as binary glTF (.glb): a node per building with its OSM id, PBR "
@@ -345,6 +406,10 @@ int main(int argc, char** argv) {
     app.add_flag("--print-scene-geometry-info", o.print_geometry_info, "triangles or primitives per class");
     app.add_flag("--stats", o.stats, "print render_seconds:, rays_per_second: and the camera used");
     app.add_flag("-q,--quiet", r.quiet, "no progress bar");
+}
+
+// Tiles, animations, time budgets and denoising.
+void add_production_options(CLI::App& app, Options& o) {
     app.add_option("--region", o.region,
                    "render only pixels X0,Y0,X1,Y1 (x in [X0,X1), y in [Y0,Y1)) of the full frame; they equal the "
                    "same pixels of the full render");
@@ -362,6 +427,20 @@ int main(int argc, char** argv) {
         ->check(finite_within(0.0, 1e9));
     app.add_flag("--denoise", o.denoise,
                  "edge-avoiding a-trous filter guided by normal, depth, albedo and id (EXR keeps raw.R/G/B)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"render: path-trace a citygen scene with Embree"};
+    app.set_version_flag("--version", std::string("citygen render ") + CITYGEN_VERSION);
+    Options o;
+    add_image_options(app, o);
+    add_sky_and_light_options(app, o);
+    add_integrator_options(app, o);
+    add_geometry_options(app, o);
+    add_output_options(app, o);
+    add_production_options(app, o);
 
     try {
         app.parse(argc, argv);
