@@ -26,10 +26,17 @@ constexpr int kTileSize = 16;
 // The albedo the AOV shows and the denoiser divides by: the surface's own colour (a building's
 // colour and pattern included), the specular colour for mirrors and glass. Patterns also tilt
 // hit.shading_normal (bump), so call this before reading the normal.
-Color albedo_at(const PathContext& context, Hit& hit) {
+Color albedo_at(const PathContext& context, Hit& hit, Vec3 direction) {
     const Material m = surface_material(context.materials, context.building_looks, hit);
-    return m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy || m.type == MaterialType::Water ? m.albedo
-                                                                                                           : m.specular;
+    if (m.type == MaterialType::Water) {
+        // What the surface reflects of light from everywhere (its directional albedo): mostly the
+        // sky and the sun in the Fresnel lobe. The body's dark colour alone would have the
+        // denoiser divide the reflection by 0.01 in red and paint it magenta.
+        const Vec3 n = dot(hit.shading_normal, direction) < 0 ? hit.shading_normal : -hit.shading_normal;
+        const double fresnel = water_reflectance(m, -dot(n, direction));
+        return m.specular * fresnel + m.albedo * (1 - fresnel);
+    }
+    return m.type == MaterialType::Diffuse || m.type == MaterialType::Glossy ? m.albedo : m.specular;
 }
 
 // The part of a camera ray's radiance that needs few or no random numbers: what the hit surface
@@ -79,7 +86,7 @@ void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, s
     const Ray ray = camera.generate_ray(x + 0.5, y + 0.5);
     Hit hit;
     if (!context.scene.intersect(ray, hit)) return;  // AOVs stay zero for the sky
-    const Color albedo = albedo_at(context, hit);
+    const Color albedo = albedo_at(context, hit, ray.direction);
     const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
     film.depth[i] = static_cast<float>(hit.t);
     for (int c = 0; c < 3; ++c) {
@@ -105,7 +112,7 @@ void fill_guides(const PathContext& context, const Camera& camera, int x, int y,
             Hit hit;
             ++rays;
             if (!context.scene.intersect(ray, hit)) continue;
-            const Color a = albedo_at(context, hit);
+            const Color a = albedo_at(context, hit, ray.direction);
             const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
             const Color d = direct_light_at(context, ray, hit, rays);
             for (int c = 0; c < 3; ++c) albedo[c] += a[c], normal[c] += n[c], direct[c] += d[c];

@@ -44,14 +44,18 @@ double phong_pdf(const Material& m, Vec3 n, Vec3 wo, Vec3 wi) {
     return (m.exponent + 1) / (2 * kPi) * std::pow(c, m.exponent);
 }
 
-// Schlick's Fresnel reflectance of a water surface seen at cos_o from its normal.
-double water_fresnel(const Material& m, double cos_o) {
+// The water's reflection lobe: cos^exponent of the angle to the mirror direction, normalised
+// over the sphere (the part below the surface is lost, as light that a wave facet sends into
+// the next wave).
+double water_lobe_pdf(const Material& m, Vec3 n, Vec3 wo, Vec3 wi) { return phong_pdf(m, n, wo, wi); }
+
+}  // namespace
+
+double water_reflectance(const Material& m, double cos_o) {
     const double r0 = ((1 - m.ior) / (1 + m.ior)) * ((1 - m.ior) / (1 + m.ior));
     const double c = 1 - std::clamp(cos_o, 0.0, 1.0);
     return r0 + (1 - r0) * c * c * c * c * c;
 }
-
-}  // namespace
 
 double luminance(Color c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
@@ -64,7 +68,14 @@ Vec3 sample_cone(Vec3 axis, double cos_max, double u1, double u2) {
 Color bsdf_eval(const Material& m, Vec3 n, Vec3 wo, Vec3 wi) {
     if (dot(n, wi) <= 0 || dot(n, wo) <= 0) return {0, 0, 0};
     Color f = m.albedo * (1 / kPi);
-    if (m.type == MaterialType::Water) return f * (1 - water_fresnel(m, dot(n, wo)));  // the body; reflection is delta
+    if (m.type == MaterialType::Water) {
+        // The body, plus the reflection as a Phong lobe of total weight F around the mirror
+        // direction: f cos_i is F times the lobe's pdf, so a sample of it weighs F like the
+        // mirror it replaces (a cos_i in the lobe, as in Glossy, would darken the bright grazing
+        // reflections a mirror gives).
+        const double fresnel = water_reflectance(m, dot(n, wo));
+        return f * (1 - fresnel) + m.specular * (fresnel * water_lobe_pdf(m, n, wo, wi) / dot(n, wi));
+    }
     if (m.type == MaterialType::Glossy) {
         // Normalised modified Phong: energy conserving for any exponent.
         const double c = std::max(0.0, dot(reflect(wo, n), wi));
@@ -76,7 +87,11 @@ Color bsdf_eval(const Material& m, Vec3 n, Vec3 wo, Vec3 wi) {
 double bsdf_pdf(const Material& m, Vec3 n, Vec3 wo, Vec3 wi) {
     const double cos_i = dot(n, wi);
     if (cos_i <= 0) return 0;
-    if (m.type == MaterialType::Water) return (1 - water_fresnel(m, dot(n, wo))) * cos_i / kPi;
+    if (m.type == MaterialType::Water) {
+        if (dot(n, wo) <= 0) return 0;
+        const double fresnel = water_reflectance(m, dot(n, wo));
+        return (1 - fresnel) * cos_i / kPi + fresnel * water_lobe_pdf(m, n, wo, wi);
+    }
     if (m.type != MaterialType::Glossy) return cos_i / kPi;
     const double ps = specular_choice(m);
     return (1 - ps) * cos_i / kPi + ps * phong_pdf(m, n, wo, wi);
@@ -115,25 +130,17 @@ bool bsdf_sample(const Material& m, Vec3 n, Vec3 wo, double u1, double u2, doubl
             return true;
         }
         case MaterialType::Water: {
-            // Mirror reflection with probability F (weight 1: the tint is `specular`), else the
-            // body scatters diffusely (weight = albedo, as F cancels).
+            // The reflection lobe with probability F, else the body's cosine lobe.
             const double cos_o = dot(n, wo);
             if (cos_o <= 0) return false;
-            const double fresnel = water_fresnel(m, cos_o);
-            if (u3 < fresnel) {
-                out.wi = reflect(wo, n);
-                out.weight = m.specular;
-                out.delta = true;
-                out.pdf = 1;
-                return true;
-            }
-            out.wi = around(n, std::sqrt(u1), 2 * kPi * u2);
+            if (u3 < water_reflectance(m, cos_o)) out.wi = around(reflect(wo, n), std::pow(u1, 1 / (m.exponent + 1)), 2 * kPi * u2);
+            else out.wi = around(n, std::sqrt(u1), 2 * kPi * u2);
             const double cos_i = dot(n, out.wi);
-            if (cos_i <= 0) return false;
+            if (cos_i <= 0) return false;  // the lobe reaches below the surface at grazing angles
             out.delta = false;
-            out.pdf = (1 - fresnel) * cos_i / kPi;
+            out.pdf = bsdf_pdf(m, n, wo, out.wi);
             if (!(out.pdf > 0)) return false;
-            out.weight = m.albedo;
+            out.weight = bsdf_eval(m, n, wo, out.wi) * (cos_i / out.pdf);
             return true;
         }
         case MaterialType::Diffuse:

@@ -27,6 +27,9 @@ bool bsdf_sample(const Material& m, Vec3 n, Vec3 wo, double u1, double u2, doubl
 // A unit vector in the cone of half-angle acos(cos_max) around `axis` (uniform in solid angle).
 Vec3 sample_cone(Vec3 axis, double cos_max, double u1, double u2);
 
+// Schlick's Fresnel reflectance of a water surface seen at cos_o from its normal.
+double water_reflectance(const Material& m, double cos_o);
+
 Vec3 reflect(Vec3 wo, Vec3 n);  // mirror of wo about n
 double luminance(Color c);
 

@@ -2,6 +2,10 @@
 
 namespace citygen {
 
+namespace {
+constexpr double kSeaExponent = 200, kInlandWaterExponent = 600;
+}  // namespace
+
 MaterialTable default_materials() {
     MaterialTable t(kStockMaterialCount);
     // Albedos are rough measured values of the real surfaces (asphalt ~0.08, concrete ~0.35).
@@ -17,8 +21,10 @@ MaterialTable default_materials() {
     t[kBalcony] = {"balcony", MaterialType::Diffuse, {0.5, 0.5, 0.48}, {}, 1, 1.5, {}};
     t[kFence] = {"fence", MaterialType::Glossy, {0.05, 0.05, 0.06}, {0.2, 0.2, 0.2}, 60, 1.5, {}};
     t[kShopWindow] = {"shop_window", MaterialType::Glass, {0, 0, 0}, {0.95, 0.97, 1.0}, 1, 1.5, {}};
-    t[kWater] = {"water", MaterialType::Water, {0.025, 0.05, 0.045}, {1, 1, 1}, 1, 1.33, {}};
-    t[kSea] = {"sea", MaterialType::Water, {0.01, 0.035, 0.06}, {1, 1, 1}, 1, 1.33, {}};
+    // Water: the wave normals (land_cover_geometry.cpp) model waves of metres; the lobe is the
+    // ripples below that, wider on the open sea than on sheltered inland water.
+    t[kWater] = {"water", MaterialType::Water, {0.025, 0.05, 0.045}, {1, 1, 1}, kInlandWaterExponent, 1.33, {}};
+    t[kSea] = {"sea", MaterialType::Water, {0.01, 0.035, 0.06}, {1, 1, 1}, kSeaExponent, 1.33, {}};
     t[kGrass] = {"grass", MaterialType::Diffuse, {0.1, 0.2, 0.05}, {}, 1, 1.5, {}};
     t[kForestFloor] = {"forest_floor", MaterialType::Diffuse, {0.07, 0.1, 0.04}, {}, 1, 1.5, {}};
     t[kPaving] = {"paving", MaterialType::Diffuse, {0.32, 0.3, 0.27}, {}, 1, 1.5, {}};

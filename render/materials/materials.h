@@ -17,8 +17,9 @@ enum class MaterialType : uint8_t {
     Glossy,   // Lambertian `albedo` plus a normalised Phong lobe `specular` with `exponent`
     Mirror,   // perfect reflection scaled by `specular`
     Glass,    // smooth dielectric with index `ior`, Schlick Fresnel, tinted by `specular`
-    Water,    // a smooth surface over a dark body: mirror reflection with Schlick Fresnel
-              // (index `ior`), else Lambertian `albedo` (the water's colour seen from above)
+    Water,    // a rippled surface over a dark body: a Phong lobe of sharpness `exponent` around the
+              // mirror direction, weighted by Schlick Fresnel (index `ior`) and tinted by
+              // `specular`, else Lambertian `albedo` (the water's colour seen from above)
 };
 
 struct Material {

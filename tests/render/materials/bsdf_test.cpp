@@ -51,3 +51,35 @@ TEST(Glass, FresnelReflectsMoreAtGrazingAngles) {
     // From inside beyond the critical angle: total internal reflection.
     EXPECT_EQ(reflected_fraction(normalize(Vec3{1, 0, -0.3})), 0.0);  // wi stays inside (z < 0)
 }
+
+TEST(Water, GlossyReflectionWithFresnelThatLightSamplingCanFind) {
+    // Water reflects a lobe around the mirror direction, not a delta: next-event estimation of
+    // the sun and lamps sees it (pdf and f finite and positive there), and a sample's weight
+    // is the eval over the pdf. Over the hemisphere it returns F of the light plus the body's
+    // share, as the mirror it replaced did.
+    const Material sea = default_materials()[kSea];
+    EXPECT_FALSE(is_delta(sea));
+    const Vec3 n{0, 0, 1};
+    for (const Vec3 wo : {normalize(Vec3{0.3, 0.1, 1}), normalize(Vec3{1, 0.2, 0.35})}) {
+        const double fresnel = water_reflectance(sea, wo.z);
+        const Vec3 mirror = reflect(wo, n);
+        const double peak = fresnel * (sea.exponent + 1) / (2 * kPi);  // the lobe's share at its centre
+        EXPECT_GT(bsdf_pdf(sea, n, wo, mirror), peak);
+        EXPECT_GT(bsdf_eval(sea, n, wo, mirror).y * mirror.z, peak);
+        Color sum{0, 0, 0};
+        constexpr int kSide = 200;
+        for (int i = 0; i < kSide; ++i)
+            for (int j = 0; j < kSide; ++j) {
+                BsdfSample s;
+                if (!bsdf_sample(sea, n, wo, (i + 0.5) / kSide, (j + 0.5) / kSide, ((i * 7 + j * 13) % kSide + 0.5) / kSide, s))
+                    continue;
+                EXPECT_FALSE(s.delta);
+                const Color f = bsdf_eval(sea, n, wo, s.wi);
+                EXPECT_NEAR(s.weight.y, f.y * s.wi.z / s.pdf, 1e-9 * (1 + s.weight.y));
+                EXPECT_NEAR(s.pdf, bsdf_pdf(sea, n, wo, s.wi), 1e-9 * s.pdf);
+                sum = sum + s.weight;
+            }
+        const Color albedo = sum * (1.0 / (kSide * kSide));
+        EXPECT_NEAR(albedo.y, fresnel + (1 - fresnel) * sea.albedo.y, 0.02 * (fresnel + sea.albedo.y)) << wo.z;
+    }
+}
