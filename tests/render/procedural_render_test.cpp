@@ -243,7 +243,7 @@ TEST(ProceduralRender, SameTreesAsStored) {
     // nearly every pixel, from above a forest and from inside it.
     TempDir dir;
     const std::string scene = parse_to_scene(dir, source_path("tests/data/map_trees.osm"));
-    for (const std::string view : {std::string("--camera=-60,-150,45 --look-at=-20,-60,0 --fov 40"),
+    for (const std::string& view : {std::string("--camera=-60,-150,45 --look-at=-20,-60,0 --fov 40"),
                                    std::string("--camera=-100,-60,1.7 --look-at=-80,-40,4 --fov 60")}) {
         SCOPED_TRACE(view);
         const Exr stored = render(dir, scene, "stored", "", 2, view);
