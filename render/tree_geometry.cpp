@@ -35,7 +35,7 @@ double value_noise(Vec3 p, uint32_t seed) {
 }
 
 // A convex polyhedron as the planes n . q <= e of its facets, in a frame where a tree part is
-// a fixed unit shape (see shell_planes, trunk_planes): a ray's entry and exit are the last
+// a fixed unit shape (unit_shell, unit_trunk): a ray's entry and exit are the last
 // entering and the first leaving plane. Exact where the stored triangles are (the facets' own
 // planes), so both modes agree to float precision.
 struct Plane {
@@ -84,7 +84,6 @@ Plane plane_of(Vec3 a, Vec3 b, Vec3 c) {
 // planes of crown_vertex's triangles (a quad between two rings is planar: it is symmetric
 // about its middle meridian).
 struct UnitShell {
-    CrownFacets facets;
     std::vector<Plane> planes;
     double outer_r, outer_h;  // semi-axes of the ellipsoid through its vertices
 };
@@ -96,7 +95,7 @@ UnitShell unit_shell(CrownFacets f) {
         for (int j = 0; j < f.segments; ++j)
             planes.push_back(k > 0 ? plane_of(v(k, j), v(k + 1, j), v(k, j + 1))
                                    : plane_of(v(k, j + 1), v(k + 1, j), v(k + 1, j + 1)));
-    return {f, planes, v(1, 0).x / std::sin(kPi / f.rings), v(0, 0).z};
+    return {planes, v(1, 0).x / std::sin(kPi / f.rings), v(0, 0).z};
 }
 
 const UnitShell& shell_facets() {
@@ -116,7 +115,7 @@ const std::vector<Plane>& unit_trunk() {
         unit.trunk_radius = 1;
         std::vector<Plane> p;
         for (int j = 0; j < kTrunkSides; ++j) {
-            const Vec3 a = trunk_vertex(unit, j), b = trunk_vertex(unit, (j + 1) % kTrunkSides);
+            const Vec3 a = trunk_vertex(unit, j), b = trunk_vertex(unit, j + 1);
             p.push_back(plane_of(a, b, b + Vec3{0, 0, 1}));
         }
         return p;

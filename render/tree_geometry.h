@@ -36,7 +36,7 @@ struct CrownFacets {
 };
 constexpr CrownFacets kShellFacets{16, 10}, kCoreFacets{8, 5};
 
-// Vertex j (0..kTrunkSides-1) of the trunk's foot; its top is trunk_top above it.
+// Vertex j of the trunk's foot (counter-clockwise, kTrunkSides around); its top is trunk_top above.
 Vec3 trunk_vertex(const TreeShape& tree, int j);
 // Vertex (ring k from the top, 0..rings; segment j, 0..segments-1) of the shell with centre c and
 // semi-axes (r, r, h): on a slightly larger ellipsoid, so the facets straddle the true surface.

@@ -138,7 +138,7 @@ TEST(ProceduralRender, SameImageWithOneOrTwoThreads) {
 
 TEST(ProceduralRender, SameRoofsAndColoursOnTheBundledExample) {
     // Neukolln has tagged and default pitched roofs, tagged and default colours and materials.
-    // Trees are left out: their faceted stored crowns have their own comparison (tree tests).
+    // Trees are left out: they have their own comparison (SameTreesAsStored).
     TempDir dir;
     const std::string scene = dir.file("neukolln.scene");
     const CommandResult parsed = run_command(osmparse_binary() + " --quiet --trees none " +
