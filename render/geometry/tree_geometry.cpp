@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include "common/rng.h"
 #include "render/materials/materials.h"
@@ -32,22 +34,115 @@ double value_noise(Vec3 p, uint32_t seed) {
     return lerp(lerp(x00, x10, ty), lerp(x01, x11, ty), tz);
 }
 
-// Ray (o + t d) against the ellipsoid with centre c and semi-axes (r, r, h): entry and exit t.
-bool ellipsoid_hits(Vec3 o, Vec3 d, Vec3 c, double r, double h, double* t0, double* t1) {
-    const Vec3 oc = o - c;
-    const Vec3 os{oc.x / r, oc.y / r, oc.z / h}, ds{d.x / r, d.y / r, d.z / h};
-    const double a = dot(ds, ds), b = dot(os, ds), cc = dot(os, os) - 1;
-    const double disc = b * b - a * cc;
-    if (disc < 0 || a <= 0) return false;
-    const double s = std::sqrt(disc);
-    *t0 = (-b - s) / a;
-    *t1 = (-b + s) / a;
+// A convex polyhedron as the planes n . q <= e of its facets, in a frame where a tree part is
+// a fixed unit shape (unit_shell, unit_trunk): a ray's entry and exit are the last
+// entering and the first leaving plane. Exact where the stored triangles are (the facets' own
+// planes), so both modes agree to float precision.
+struct Plane {
+    Vec3 n;  // outward, unit in the unit frame
+    double e;
+};
+
+struct Crossing {
+    double t_in = 0, t_out = 0;
+    int face_in = -1, face_out = -1;
+};
+
+bool clip_by_planes(const std::vector<Plane>& planes, Vec3 o, Vec3 d, Crossing* out) {
+    double t_in = -std::numeric_limits<double>::infinity(), t_out = std::numeric_limits<double>::infinity();
+    int face_in = -1, face_out = -1;
+    for (size_t i = 0; i < planes.size(); ++i) {
+        const Plane& p = planes[i];
+        const double num = p.e - dot(p.n, o), den = dot(p.n, d);
+        if (den < 0) {
+            // entering: t = num / den, kept when larger (divide only then)
+            if (num < t_in * den) {
+                t_in = num / den;
+                face_in = static_cast<int>(i);
+            }
+        } else if (den > 0) {
+            if (num < t_out * den) {
+                t_out = num / den;
+                face_out = static_cast<int>(i);
+            }
+        } else if (num < 0) {
+            return false;  // parallel and outside
+        }
+        if (t_in > t_out) return false;
+    }
+    if (face_in < 0 || face_out < 0) return false;
+    *out = {t_in, t_out, face_in, face_out};
     return true;
 }
 
-Vec3 ellipsoid_normal(Vec3 p, Vec3 c, double r, double h) {
-    const Vec3 q = p - c;
-    return normalize(Vec3{q.x / (r * r), q.y / (r * r), q.z / (h * h)});
+Plane plane_of(Vec3 a, Vec3 b, Vec3 c) {
+    const Vec3 n = normalize(cross(b - a, c - a));
+    return {n, dot(n, a)};
+}
+
+// The facets of a crown shell, in the frame where its centre is 0 and its semi-axes are 1: the
+// planes of crown_vertex's triangles (a quad between two rings is planar: it is symmetric
+// about its middle meridian).
+struct UnitShell {
+    std::vector<Plane> planes;
+    double outer_r, outer_h;  // semi-axes of the ellipsoid through its vertices
+};
+
+UnitShell unit_shell(CrownFacets f) {
+    std::vector<Plane> planes;
+    auto v = [&](int k, int j) { return crown_vertex({0, 0, 0}, 1, 1, f, k, j % f.segments); };
+    for (int k = 0; k < f.rings; ++k)
+        for (int j = 0; j < f.segments; ++j)
+            planes.push_back(k > 0 ? plane_of(v(k, j), v(k + 1, j), v(k, j + 1))
+                                   : plane_of(v(k, j + 1), v(k + 1, j), v(k + 1, j + 1)));
+    return {planes, v(1, 0).x / std::sin(kPi / f.rings), v(0, 0).z};
+}
+
+const UnitShell& shell_facets() {
+    static const UnitShell shell = unit_shell(kShellFacets);
+    return shell;
+}
+const UnitShell& core_facets() {
+    static const UnitShell core = unit_shell(kCoreFacets);
+    return core;
+}
+// The trunk's side walls (an infinite prism; its height is checked at the crossing), in the
+// frame where its foot's centre is 0 and its radius 1.
+const std::vector<Plane>& unit_trunk() {
+    static const std::vector<Plane> planes = [] {
+        TreeShape unit;
+        unit.base = {0, 0, 0};
+        unit.trunk_radius = 1;
+        std::vector<Plane> p;
+        for (int j = 0; j < kTrunkSides; ++j) {
+            const Vec3 a = trunk_vertex(unit, j), b = trunk_vertex(unit, j + 1);
+            p.push_back(plane_of(a, b, b + Vec3{0, 0, 1}));
+        }
+        return p;
+    }();
+    return planes;
+}
+
+// Ray against a crown shell with centre c and semi-axes (r, r, h) (t as in world space); the
+// normals returned are the world facets' outward unit normals.
+struct ShellCrossing {
+    double t_in, t_out;
+    Vec3 n_in, n_out;
+};
+
+bool shell_hits(const UnitShell& unit, Vec3 o, Vec3 d, Vec3 c, double r, double h, ShellCrossing* out) {
+    const Vec3 oc = o - c;
+    const Vec3 os{oc.x / r, oc.y / r, oc.z / h}, ds{d.x / r, d.y / r, d.z / h};
+    // Early out: the polyhedron lies inside the ellipsoid through its vertices.
+    const double gr = unit.outer_r, gh = unit.outer_h;
+    const Vec3 og{os.x / gr, os.y / gr, os.z / gh}, dg{ds.x / gr, ds.y / gr, ds.z / gh};
+    const double a = dot(dg, dg), b = dot(og, dg), cc = dot(og, og) - 1;
+    if (a <= 0 || b * b - a * cc < 0) return false;
+    Crossing x;
+    if (!clip_by_planes(unit.planes, os, ds, &x)) return false;
+    auto world = [&](Vec3 n) { return normalize(Vec3{n.x / r, n.y / r, n.z / h}); };
+    *out = {x.t_in, x.t_out, world(unit.planes[x.face_in].n), world(unit.planes[x.face_out].n)};
+    return true;
 }
 
 // Closest surface of a tree along the ray in [tmin, tmax].
@@ -66,43 +161,44 @@ bool intersect_tree(const TreeShape& s, Vec3 o, Vec3 d, double tmin, double tmax
             found = true;
         }
     };
-    // Trunk: a vertical cylinder, no caps (its foot is on the ground, its top in the crown).
+    // Trunk: the prism's walls, no caps (its foot is on the ground, its top in the core).
     {
-        const double ox = o.x - s.base.x, oy = o.y - s.base.y;
-        const double a = d.x * d.x + d.y * d.y, b = ox * d.x + oy * d.y,
-                     c = ox * ox + oy * oy - s.trunk_radius * s.trunk_radius;
-        const double disc = b * b - a * c;
-        if (a > 0 && disc >= 0) {
-            const double root = std::sqrt(disc);
-            for (double t : {(-b - root) / a, (-b + root) / a}) {
+        const double tr = s.trunk_radius;
+        const Vec3 os{(o.x - s.base.x) / tr, (o.y - s.base.y) / tr, 0}, ds{d.x / tr, d.y / tr, 0};
+        Crossing x;
+        if (clip_by_planes(unit_trunk(), os, ds, &x)) {
+            const std::vector<Plane>& walls = unit_trunk();
+            for (int side = 0; side < 2; ++side) {
+                const double t = side == 0 ? x.t_in : x.t_out;
                 const double z = o.z + d.z * t - s.base.z;
                 if (z >= 0 && z <= s.trunk_top && t >= tmin && t <= tmax) {
-                    const Vec3 p = o + d * t;
-                    take(t, normalize(Vec3{p.x - s.base.x, p.y - s.base.y, 0}), kBark);
+                    take(t, walls[side == 0 ? x.face_in : x.face_out].n, kBark);
                     break;
                 }
             }
         }
     }
-    double t0, t1;
-    if (!ellipsoid_hits(o, d, s.crown_centre, s.crown_radius, s.crown_half_height, &t0, &t1)) return found;
-    if (t0 > tmax || t1 < tmin) return found;
+    ShellCrossing shell;
+    if (!shell_hits(shell_facets(), o, d, s.crown_centre, s.crown_radius, s.crown_half_height, &shell))
+        return found;
+    if (shell.t_in > tmax || shell.t_out < tmin) return found;
     // The shell where it has leaves, then the core, then the far shell.
-    if (t0 >= tmin && t0 <= tmax && leaf_present(s, o + d * t0)) {
-        take(t0, ellipsoid_normal(o + d * t0, s.crown_centre, s.crown_radius, s.crown_half_height), s.leaf_material);
+    if (shell.t_in >= tmin && shell.t_in <= tmax && leaf_at(s, o + d * shell.t_in)) {
+        take(shell.t_in, shell.n_in, s.leaf_material);
         return true;
     }
-    const double cr = s.crown_radius * kTreeCoreScale, ch = s.crown_half_height * kTreeCoreScale;
-    double c0, c1;
-    if (ellipsoid_hits(o, d, s.crown_centre, cr, ch, &c0, &c1)) {
-        const double t = c0 >= tmin ? c0 : c1;
+    ShellCrossing core;
+    if (shell_hits(core_facets(), o, d, s.crown_centre, s.crown_radius * kTreeCoreScale,
+                   s.crown_half_height * kTreeCoreScale, &core)) {
+        const bool front = core.t_in >= tmin;
+        const double t = front ? core.t_in : core.t_out;
         if (t >= tmin && t <= tmax) {
-            take(t, ellipsoid_normal(o + d * t, s.crown_centre, cr, ch), s.leaf_material);
+            take(t, front ? core.n_in : core.n_out, s.leaf_material);
             return true;
         }
     }
-    if (t1 >= tmin && t1 <= tmax && leaf_present(s, o + d * t1))
-        take(t1, ellipsoid_normal(o + d * t1, s.crown_centre, s.crown_radius, s.crown_half_height), s.leaf_material);
+    if (shell.t_out >= tmin && shell.t_out <= tmax && leaf_at(s, o + d * shell.t_out))
+        take(shell.t_out, shell.n_out, s.leaf_material);
     return found;
 }
 
@@ -132,13 +228,15 @@ public:
     // What the Embree callbacks (user_geometry.h) compute per tree.
     void bounds(unsigned prim, RTCBounds* out) const {
         const TreeShape s = shape(prim);
-        const double r = std::max(s.crown_radius, s.trunk_radius) + 1e-3;
+        // The facets' vertices lie a little outside the crown's ellipsoid.
+        const UnitShell& shell = shell_facets();
+        const double r = std::max(s.crown_radius * shell.outer_r, s.trunk_radius) + 1e-3;
         out->lower_x = static_cast<float>(s.base.x - r);
         out->lower_y = static_cast<float>(s.base.y - r);
         out->lower_z = static_cast<float>(s.base.z - 1e-3);
         out->upper_x = static_cast<float>(s.base.x + r);
         out->upper_y = static_cast<float>(s.base.y + r);
-        out->upper_z = static_cast<float>(s.crown_centre.z + s.crown_half_height + 1e-3);
+        out->upper_z = static_cast<float>(s.crown_centre.z + s.crown_half_height * shell.outer_h + 1e-3);
     }
     bool intersect(unsigned prim, Vec3 origin, Vec3 direction, double tmin, double tmax, UserHit* hit) const {
         TreeHit found;
@@ -198,35 +296,20 @@ private:
             const Vec3 o{RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i), RTCRayN_org_z(args->ray, N, i)};
             const Vec3 d{RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i), RTCRayN_dir_z(args->ray, N, i)};
             const TreeShape& shape = self->shapes_[self->stored_mesh()->face_object[prim]];
-            // The facet's point moved onto the true ellipsoid, so the leaf pattern matches the
-            // procedural crown's.
-            const Vec3 q = o + d * RTCRayN_tfar(args->ray, N, i) - shape.crown_centre;
-            const double r = shape.crown_radius, h = shape.crown_half_height;
-            const double scale = std::sqrt((q.x * q.x + q.y * q.y) / (r * r) + q.z * q.z / (h * h));
-            const Vec3 on_surface = shape.crown_centre + q * (scale > 0 ? 1 / scale : 1.0);
-            if (!leaf_present(shape, on_surface)) args->valid[i] = 0;
+            if (!leaf_at(shape, o + d * RTCRayN_tfar(args->ray, N, i))) args->valid[i] = 0;
         }
     }
     std::vector<uint8_t> cut_out_;
     std::vector<TreeShape> shapes_;
 };
 
-// An ellipsoid as a UV sphere, counter-clockwise seen from outside.
-void add_ellipsoid(TriangleMesh& mesh, std::vector<uint8_t>& cut_out, uint8_t cut, Vec3 c, double r, double h,
-                   int segments, int rings, uint32_t object, uint16_t material) {
+// A crown shell (crown_vertex) as triangles, counter-clockwise seen from outside.
+void add_shell(TriangleMesh& mesh, std::vector<uint8_t>& cut_out, uint8_t cut, Vec3 c, double r, double h,
+               CrownFacets facets, uint32_t object, uint16_t material) {
+    const int segments = facets.segments, rings = facets.rings;
     const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
-    // Vertices a little outside the surface, so the facets straddle it instead of lying inside.
-    const double out = 0.5 * (1 + 1 / std::cos(kPi / segments));
-    r *= out;
-    h *= 0.5 * (1 + 1 / std::cos(kPi / (2 * rings)));
-    for (int k = 0; k <= rings; ++k) {
-        const double theta = kPi * k / rings;  // from the top
-        for (int j = 0; j < segments; ++j) {
-            const double phi = 2 * kPi * j / segments;
-            mesh.add_vertex({c.x + r * std::sin(theta) * std::cos(phi), c.y + r * std::sin(theta) * std::sin(phi),
-                             c.z + h * std::cos(theta)});
-        }
-    }
+    for (int k = 0; k <= rings; ++k)
+        for (int j = 0; j < segments; ++j) mesh.add_vertex(crown_vertex(c, r, h, facets, k, j));
     auto v = [&](int k, int j) { return first + static_cast<uint32_t>(k * segments + (j % segments)); };
     for (int k = 0; k < rings; ++k)
         for (int j = 0; j < segments; ++j) {
@@ -263,11 +346,33 @@ TreeShape tree_shape(float x, float y, float height, float crown, bool needle, d
     return s;
 }
 
+Vec3 trunk_vertex(const TreeShape& s, int j) {
+    const double a = 2 * kPi * j / kTrunkSides;
+    return {s.base.x + s.trunk_radius * std::cos(a), s.base.y + s.trunk_radius * std::sin(a), s.base.z};
+}
+
+Vec3 crown_vertex(Vec3 c, double r, double h, CrownFacets facets, int k, int j) {
+    // Scaled so a facet's middle and its vertices are about equally far from the true surface.
+    r *= 0.5 * (1 + 1 / std::cos(kPi / facets.segments));
+    h *= 0.5 * (1 + 1 / std::cos(kPi / (2 * facets.rings)));
+    const double theta = kPi * k / facets.rings;  // from the top
+    const double phi = 2 * kPi * j / facets.segments;
+    return {c.x + r * std::sin(theta) * std::cos(phi), c.y + r * std::sin(theta) * std::sin(phi),
+            c.z + h * std::cos(theta)};
+}
+
 bool leaf_present(const TreeShape& tree, Vec3 p) {
     const Vec3 q = p - tree.crown_centre;
     const double n = 0.65 * value_noise(q * (1 / 0.7), tree.noise_seed) +
                      0.35 * value_noise(q * (1 / 0.25), tree.noise_seed + 1);
     return n > 0.45;
+}
+
+bool leaf_at(const TreeShape& tree, Vec3 p) {
+    const Vec3 q = p - tree.crown_centre;
+    const double r = tree.crown_radius, h = tree.crown_half_height;
+    const double scale = std::sqrt((q.x * q.x + q.y * q.y) / (r * r) + q.z * q.z / (h * h));
+    return leaf_present(tree, tree.crown_centre + q * (scale > 0 ? 1 / scale : 1.0));
 }
 
 std::unique_ptr<RenderGeometry> build_stored_trees(const Scene& scene) {
@@ -279,20 +384,17 @@ std::unique_ptr<RenderGeometry> build_stored_trees(const Scene& scene) {
     for (uint32_t i = 0; i < scene.trees.size(); ++i) {
         const TreeShape s = tree_shape(scene, i);
         shapes.push_back(s);
-        // Trunk: an 8-sided prism (walls only).
-        constexpr int kSides = 8;
-        for (int j = 0; j < kSides; ++j) {
-            const double a0 = 2 * kPi * j / kSides, a1 = 2 * kPi * (j + 1) / kSides;
-            const Vec3 p0{s.base.x + s.trunk_radius * std::cos(a0), s.base.y + s.trunk_radius * std::sin(a0), s.base.z};
-            const Vec3 p1{s.base.x + s.trunk_radius * std::cos(a1), s.base.y + s.trunk_radius * std::sin(a1), s.base.z};
+        // Trunk: the prism's walls.
+        for (int j = 0; j < kTrunkSides; ++j) {
+            const Vec3 p0 = trunk_vertex(s, j), p1 = trunk_vertex(s, j + 1);
             const Vec3 up{0, 0, s.trunk_top};
             mesh.add_quad(p0, p1, p1 + up, p0 + up, i, kBark);
             cut_out.insert(cut_out.end(), {0, 0});
         }
-        add_ellipsoid(mesh, cut_out, 1, s.crown_centre, s.crown_radius, s.crown_half_height, 16, 10, i,
-                      s.leaf_material);
-        add_ellipsoid(mesh, cut_out, 0, s.crown_centre, s.crown_radius * kTreeCoreScale,
-                      s.crown_half_height * kTreeCoreScale, 8, 5, i, s.leaf_material);
+        add_shell(mesh, cut_out, 1, s.crown_centre, s.crown_radius, s.crown_half_height, kShellFacets, i,
+                  s.leaf_material);
+        add_shell(mesh, cut_out, 0, s.crown_centre, s.crown_radius * kTreeCoreScale,
+                  s.crown_half_height * kTreeCoreScale, kCoreFacets, i, s.leaf_material);
     }
     return std::make_unique<StoredTrees>(std::move(mesh), std::move(cut_out), std::move(shapes));
 }

@@ -60,17 +60,16 @@ void compare(const Exr& stored, const Exr& procedural, const std::vector<float>&
         }
     }
     for (float k : kinds_expected) EXPECT_GT(seen[static_cast<int>(k)], pixels / 100) << "object kind " << k;
-    // Trees are faceted in stored mode (a 16 x 10 shell straddling the analytic ellipsoid), so
-    // crown silhouettes differ by a pixel here and there; flat surfaces agree exactly.
+    // Trees are the same facets and cut-out in both modes (tree_geometry.h) and flat surfaces
+    // agree exactly.
     std::string by_kind;
     for (int k = 0; k < 16; ++k)
         if (differ[k]) by_kind += " kind " + std::to_string(k) + ": " + std::to_string(differ[k]);
     EXPECT_GE(same, 0.99 * pixels) << pixels - same << " pixels differ in id or depth;" << by_kind;
     const double psnr = 10 * std::log10(1 / std::max(squared / (3.0 * pixels), 1e-12));
-    // Beauty: the faceted crowns and the road/joint overlaps (markings on one, none on the
-    // other) keep this near 27 dB on the street view (27.1 dB before the neighbour heights of
-    // issue 11 moved some shadows, 26.97 dB after, with the same disagreeing pixels); above
-    // the harbour it is over 40 dB.
+    // Beauty: the road/joint overlaps (markings on one, none on the other) keep this near 36 dB
+    // on the street view (it was near 30 dB while the modes' trees differed); above the harbour
+    // it is over 40 dB.
     EXPECT_GE(psnr, 26.5);
     std::printf("agreeing pixels %d of %d, PSNR %.1f dB;%s\n", same, pixels, psnr, by_kind.c_str());
 }

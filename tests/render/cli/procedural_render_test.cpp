@@ -138,7 +138,7 @@ TEST(ProceduralRender, SameImageWithOneOrTwoThreads) {
 
 TEST(ProceduralRender, SameRoofsAndColoursOnTheBundledExample) {
     // Neukolln has tagged and default pitched roofs, tagged and default colours and materials.
-    // Trees are left out: their faceted stored crowns have their own comparison (tree tests).
+    // Trees are left out: they have their own comparison (SameTreesAsStored).
     TempDir dir;
     const std::string scene = dir.file("neukolln.scene");
     const CommandResult parsed = run_command(osmparse_binary() + " --quiet --trees none " +
@@ -235,6 +235,39 @@ TEST(ProceduralRender, SameLampsAsStored) {
     const Comparison c = compare(stored, procedural);
     EXPECT_GT(c.lamp_pixels, c.pixels / 100) << "the lamp should be in the picture";
     expect_same_picture(c);
+}
+
+TEST(ProceduralRender, SameTreesAsStored) {
+    // Trees are triangles in stored mode and clipped against the same facets' planes in
+    // procedural mode, with the same leaf cut-out: the same tree at the same depth (1 cm) in
+    // nearly every pixel, from above a forest and from inside it.
+    TempDir dir;
+    const std::string scene = parse_to_scene(dir, source_path("tests/data/map_trees.osm"));
+    for (const std::string& view : {std::string("--camera=-60,-150,45 --look-at=-20,-60,0 --fov 40"),
+                                   std::string("--camera=-100,-60,1.7 --look-at=-80,-40,4 --fov 60")}) {
+        SCOPED_TRACE(view);
+        const Exr stored = render(dir, scene, "stored", "", 2, view);
+        const Exr procedural = render(dir, scene, "procedural", "--procedural", 2, view);
+        ASSERT_GT(stored.width, 0);
+        ASSERT_EQ(stored.pixels.size(), procedural.pixels.size());
+        const int kind = stored.channel("id.kind"), index = stored.channel("id.index"), depth = stored.channel("Z");
+        const int pixels = stored.width * stored.height;
+        int trees = 0, same_id = 0, same_depth = 0;
+        float worst = 0;
+        for (int p = 0; p < pixels; ++p) {
+            trees += stored.at(p, kind) == 8.0f;  // ObjectKind::Tree
+            if (stored.at(p, kind) != procedural.at(p, kind) || stored.at(p, index) != procedural.at(p, index)) continue;
+            ++same_id;
+            const float d = std::abs(stored.at(p, depth) - procedural.at(p, depth));
+            same_depth += d <= 0.01f;
+            worst = std::max(worst, d);
+        }
+        EXPECT_GT(trees, pixels / 2) << "the view should be mostly trees";
+        EXPECT_GE(same_id, std::ceil(0.999 * pixels)) << pixels - same_id << " pixels differ in id";
+        EXPECT_GE(same_depth, std::ceil(0.999 * pixels))
+            << same_id - same_depth << " pixels with the same id differ in depth by more than 1 cm (worst " << worst
+            << " m)";
+    }
 }
 
 TEST(ProceduralRender, SameNightPictureAsStored) {
