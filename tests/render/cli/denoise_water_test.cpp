@@ -8,8 +8,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "test_exr.h"
-#include "test_support.h"
+#include "tests/render/test_exr.h"
+#include "tests/test_support.h"
 
 using namespace citygen::test;
 
