@@ -286,31 +286,62 @@ size_t building_wall_count(const Building& building) {
 
 BuildingWalls::BuildingWalls(const Building& building)
     : building_(building), count_(building_wall_count(building)) {
-    for (size_t r = 0; r <= building.holes.size() && r < 64; ++r)
-        if (signed_area(r == 0 ? building.outer : building.holes[r - 1]) > 0) counter_clockwise_ |= uint64_t{1} << r;
+    const size_t rings = 1 + building.holes.size();
+    auto ring = [&](size_t r) -> const Ring& { return r == 0 ? building.outer : building.holes[r - 1]; };
+    if (rings <= kInlineRings) {
+        for (size_t r = 0; r < rings; ++r)
+            if (signed_area(ring(r)) > 0) counter_clockwise_ |= uint64_t{1} << r;
+        return;
+    }
+    ring_first_.reserve(rings + 1);
+    ring_ccw_.reserve(rings);
+    size_t first = 0;
+    for (size_t r = 0; r < rings; ++r) {
+        ring_first_.push_back(first);
+        first += ring(r).size();
+        ring_ccw_.push_back(signed_area(ring(r)) > 0);
+    }
+    ring_first_.push_back(first);
 }
 
 bool BuildingWalls::counter_clockwise(size_t ring) const {
-    if (ring < 64) return (counter_clockwise_ >> ring) & 1;
-    return signed_area(building_.holes[ring - 1]) > 0;
+    if (ring_ccw_.empty()) return (counter_clockwise_ >> ring) & 1;
+    return ring_ccw_[ring];
+}
+
+const Ring& BuildingWalls::ring_of(size_t index, size_t* ring, size_t* first) const {
+    if (!ring_first_.empty()) {
+        // The last ring whose first wall is at or before index (empty rings share a first wall).
+        const size_t r = static_cast<size_t>(std::upper_bound(ring_first_.begin(), ring_first_.end() - 1, index) -
+                                             ring_first_.begin()) - 1;
+        *ring = r;
+        *first = ring_first_[r];
+        return r == 0 ? building_.outer : building_.holes[r - 1];
+    }
+    const Ring* current = &building_.outer;
+    size_t r = 0, start = 0;
+    while (index - start >= current->size() && r < building_.holes.size()) {
+        start += current->size();
+        current = &building_.holes[r++];
+    }
+    *ring = r;
+    *first = start;
+    return *current;
 }
 
 void BuildingWalls::wall(size_t index, Vec2* a, Vec2* b) const {
-    const Ring* ring = &building_.outer;
-    size_t hole = 0;
-    while (index >= ring->size() && hole < building_.holes.size()) {
-        index -= ring->size();
-        ring = &building_.holes[hole++];
-    }
+    size_t ring_index, first;
+    const Ring& ring = ring_of(index, &ring_index, &first);
+    index -= first;
     // Walk outer rings counter-clockwise and holes clockwise whatever the file says, so that the
     // building is always on the left (+w) of a wall.
-    const size_t n = ring->size();
-    if (counter_clockwise(ring == &building_.outer ? 0 : hole) == (ring == &building_.outer)) {
-        *a = (*ring)[index];
-        *b = (*ring)[(index + 1) % n];
+    const size_t n = ring.size();
+    if (counter_clockwise(ring_index) == (ring_index == 0)) {
+        *a = ring[index];
+        *b = ring[(index + 1) % n];
     } else {
-        *a = (*ring)[n - 1 - index];
-        *b = (*ring)[(2 * n - 2 - index) % n];
+        *a = ring[n - 1 - index];
+        *b = ring[(2 * n - 2 - index) % n];
     }
 }
 
@@ -336,11 +367,8 @@ WallInput BuildingWalls::input(size_t index) const {
     Vec2 a, b;
     wall(index, &a, &b);
     // The neighbours of this wall in the same ring (walls are numbered ring by ring).
-    size_t first = 0, count = building.outer.size();
-    for (size_t h = 0; index >= first + count && h < building.holes.size(); ++h) {
-        first += count;
-        count = building.holes[h].size();
-    }
+    size_t ring, first;
+    const size_t count = ring_of(index, &ring, &first).size();
     Vec2 before, unused, after;
     wall(first + (index - first + count - 1) % count, &before, &unused);
     wall(first + (index - first + 1) % count, &unused, &after);

@@ -165,8 +165,8 @@ WallFrame wall_frame(Vec2 a, Vec2 b, double bottom_z);
 size_t building_wall_count(const Building& building);
 
 // A building's walls, each ring's orientation found once (O(n)) so that each wall then costs
-// O(1): loops over a building's walls make one of these. It refers to the building, which must
-// not change while it is used.
+// O(1) for up to kInlineRings rings and O(log rings) beyond: loops over a building's walls make
+// one of these. It refers to the building, which must not change while it is used.
 class BuildingWalls {
 public:
     explicit BuildingWalls(const Building& building);
@@ -177,13 +177,22 @@ public:
     // The rules' input for wall `index`.
     WallInput input(size_t index) const;
 
+    // Rings (the outer one and the holes) kept without the heap: the night lights build one per
+    // wall they look up. Beyond, the rings' first walls and orientations are kept in vectors.
+    static constexpr size_t kInlineRings = 64;
+
 private:
     const Building& building_;
     size_t count_;
-    // Orientation of ring r (0: the outer ring, h + 1: hole h), bit r for the first 64 rings,
-    // found again on each call beyond: no heap, as the night lights build one per wall they look up.
+    // Orientation of ring r (0: the outer ring, h + 1: hole h), bit r, when there are at most
+    // kInlineRings rings; else ring_ccw_[r].
     uint64_t counter_clockwise_ = 0;
+    // With more than kInlineRings rings: ring r's first wall index (one more entry: count_).
+    std::vector<size_t> ring_first_;
+    std::vector<uint8_t> ring_ccw_;
     bool counter_clockwise(size_t ring) const;
+    // The ring holding wall `index` (0: the outer ring, h + 1: hole h) and its first wall.
+    const Ring& ring_of(size_t index, size_t* ring, size_t* first) const;
 };
 
 // One wall without a BuildingWalls (each call finds the rings' orientation again).

@@ -33,6 +33,51 @@ void ProceduralGeometry::add_polygon(uint32_t object, const Ring& outer, const s
         points_.insert(points_.end(), hole.begin(), hole.end());
         ring_ends_.push_back(static_cast<uint32_t>(points_.size()));
     }
+    polygon.hole_root = kNoHoleTree;
+    if (holes.size() > kHoleTreeMin) {
+        // Median splits on the wider axis of the holes' box centres: O(h log h), depth log2(h).
+        struct Item {
+            Box2 box;
+            Vec2 centre;
+            uint32_t ring;
+        };
+        std::vector<Item> items(holes.size());
+        for (size_t h = 0; h < holes.size(); ++h) {
+            items[h].box = bounds_of(holes[h]);
+            items[h].centre = (items[h].box.min + items[h].box.max) * 0.5;
+            items[h].ring = polygon.first_ring + 1 + static_cast<uint32_t>(h);
+        }
+        polygon.hole_root = static_cast<uint32_t>(hole_nodes_.size());
+        auto build = [&](auto&& self, size_t begin, size_t end) -> void {
+            const size_t node = hole_nodes_.size();
+            hole_nodes_.push_back({});
+            Box2 box, centres;
+            for (size_t i = begin; i < end; ++i) {
+                box.extend(items[i].box.min);
+                box.extend(items[i].box.max);
+                centres.extend(items[i].centre);
+            }
+            hole_nodes_[node].box = box;
+            if (end - begin <= kHoleLeafSize) {
+                hole_nodes_[node].first = static_cast<uint32_t>(hole_rings_.size());
+                hole_nodes_[node].count = static_cast<uint32_t>(end - begin);
+                for (size_t i = begin; i < end; ++i) hole_rings_.push_back(items[i].ring);
+                return;
+            }
+            const bool x = centres.max.x - centres.min.x >= centres.max.y - centres.min.y;
+            const size_t mid = begin + (end - begin) / 2;
+            std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
+                             [x](const Item& a, const Item& b) {
+                                 const double ka = x ? a.centre.x : a.centre.y, kb = x ? b.centre.x : b.centre.y;
+                                 return ka != kb ? ka < kb : a.ring < b.ring;
+                             });
+            self(self, begin, mid);
+            hole_nodes_[node].first = static_cast<uint32_t>(hole_nodes_.size());
+            hole_nodes_[node].count = 0;
+            self(self, mid, end);
+        };
+        build(build, 0, items.size());
+    }
     polygons_.push_back(polygon);
 }
 
@@ -62,16 +107,45 @@ size_t ProceduralGeometry::buffer_bytes() const {
     return walls_.capacity() * sizeof(Wall) + plain_walls_.capacity() * sizeof(PlainWall) +
            faces_.capacity() * sizeof(Face) + face_points_.capacity() * sizeof(Vec2) +
            polygons_.capacity() * sizeof(Polygon) +
-           points_.capacity() * sizeof(Vec2) + ring_ends_.capacity() * sizeof(uint32_t);
+           points_.capacity() * sizeof(Vec2) + ring_ends_.capacity() * sizeof(uint32_t) +
+           hole_nodes_.capacity() * sizeof(HoleNode) + hole_rings_.capacity() * sizeof(uint32_t);
+}
+
+bool ProceduralGeometry::in_ring(uint32_t ring, Vec2 p) const {
+    const uint32_t begin = ring == 0 ? 0 : ring_ends_[ring - 1];
+    return point_in_ring(p, points_.data() + begin, ring_ends_[ring] - begin);
+}
+
+namespace {
+bool box_holds(const Box2& b, Vec2 p) { return p.x >= b.min.x && p.x <= b.max.x && p.y >= b.min.y && p.y <= b.max.y; }
+}  // namespace
+
+bool ProceduralGeometry::in_some_hole(uint32_t root, Vec2 p) const {
+    // A point outside a ring's bounding box has winding number 0: skipping such holes changes
+    // nothing. The tree is balanced, so 64 entries hold any path.
+    uint32_t stack[64];
+    int top = 0;
+    stack[top++] = root;
+    while (top > 0) {
+        const HoleNode& node = hole_nodes_[stack[--top]];
+        if (!box_holds(node.box, p)) continue;
+        if (node.count > 0) {
+            for (uint32_t i = node.first; i < node.first + node.count; ++i)
+                if (in_ring(hole_rings_[i], p)) return true;
+            continue;
+        }
+        stack[top++] = node.first;
+        stack[top++] = static_cast<uint32_t>(&node - hole_nodes_.data()) + 1;
+    }
+    return false;
 }
 
 bool ProceduralGeometry::inside_polygon(const Polygon& polygon, Vec2 p) const {
-    const Box2& b = polygon.bounds;
-    if (p.x < b.min.x || p.x > b.max.x || p.y < b.min.y || p.y > b.max.y) return false;
+    if (!box_holds(polygon.bounds, p)) return false;
+    if (polygon.hole_root != kNoHoleTree)
+        return in_ring(polygon.first_ring, p) && !in_some_hole(polygon.hole_root, p);
     for (uint32_t r = 0; r < polygon.ring_count; ++r) {
-        const uint32_t ring = polygon.first_ring + r;
-        const uint32_t begin = ring == 0 ? 0 : ring_ends_[ring - 1];
-        const bool inside = point_in_ring(p, points_.data() + begin, ring_ends_[ring] - begin);
+        const bool inside = in_ring(polygon.first_ring + r, p);
         if (inside != (r == 0)) return false;  // outside the outer ring, or inside a hole
     }
     return true;

@@ -94,6 +94,7 @@ private:
     };
     struct Polygon {
         uint32_t first_ring, ring_count;  // into ring_ends_; the first ring is the outer one
+        uint32_t hole_root;               // into hole_nodes_, or kNoHoleTree: the holes one by one
         double z;
         Box2 bounds;
         uint32_t object;
@@ -109,6 +110,18 @@ private:
         uint32_t object;
         uint16_t material;
     };
+    // A bounding-box tree over one polygon's holes (built when it has more than kHoleTreeMin), so
+    // that a point is tested against the few holes whose box holds it, not against every hole.
+    // A leaf (count > 0) holds hole_rings_[first, first + count); an inner node's children are the
+    // next node and node `first`.
+    struct HoleNode {
+        Box2 box;
+        uint32_t first, count;
+    };
+    static constexpr uint32_t kNoHoleTree = 0xffffffffu;
+    static constexpr size_t kHoleTreeMin = 16, kHoleLeafSize = 4;
+    bool in_ring(uint32_t ring, Vec2 p) const;
+    bool in_some_hole(uint32_t root, Vec2 p) const;
     bool intersect_face(const Face& face, Vec3 origin, Vec3 direction, double tmin, double tmax, double* t) const;
     bool inside_polygon(const Polygon& polygon, Vec2 p) const;
     // The wall primitive prim_id as a layout and frame (plain walls are built on the fly).
@@ -123,6 +136,8 @@ private:
     std::vector<Vec2> face_points_;    // all faces' projected points, back to back
     std::vector<Vec2> points_;         // all polygon rings, back to back
     std::vector<uint32_t> ring_ends_;  // end (exclusive) of each ring in points_
+    std::vector<HoleNode> hole_nodes_;
+    std::vector<uint32_t> hole_rings_;  // ring indices (into ring_ends_), in the trees' leaf order
 };
 
 // Procedural builders, one per object class, producing the same surfaces as build_stored_*.

@@ -119,6 +119,15 @@ Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays, 
             radiance = radiance + throughput * sky.radiance(horizon, false) * (1 - T);
             throughput = throughput * T;
         }
+        if (!found && bounce == 0 && settings.haze_extinction > 0 && ray.direction.z < 0) {
+            // Below the horizon past the ground plane's edge (at least 1000 km away, where the
+            // haze lets through under e^-3.9 of the ground even at the longest visibility): the
+            // ground there would be all haze, so show the haze, as on the plane just before its
+            // edge, not the sky's darkened stand-in for the land (a dark line on wide views).
+            const Vec3 horizon = normalize(Vec3{ray.direction.x, ray.direction.y, 0.06});
+            radiance = radiance + throughput * sky.radiance(horizon, false);
+            break;
+        }
         if (!found) {
             radiance = radiance + throughput * sky.radiance(ray.direction, previous_delta);
             if (sky.in_sun_disc(ray.direction)) {

@@ -59,6 +59,10 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
         if (!has_volume(building)) continue;
         if (!(options.lit_windows > 0)) continue;
         const BuildingWalls walls(building);
+        if (building.holes.size() + 1 > BuildingWalls::kInlineRings) {
+            many_ring_buildings_.push_back(b);
+            many_ring_walls_.push_back(walls);
+        }
         for (uint32_t w = 0, n = static_cast<uint32_t>(walls.count()); w < n; ++w) {
             WallGeometry g;
             if (!derive_wall_geometry(walls, b, w, &g) || g.layout.plain()) continue;
@@ -156,8 +160,15 @@ bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* 
     slot.wall = wall;
     // The rings' orientation is found again on each miss (a few dozen flops beside the layout's
     // microsecond) rather than kept per building (that cost about 1 MB on Monaco).
-    slot.ok = options_.lit_windows > 0 && building < scene_->buildings.size() &&
-              derive_wall_geometry(BuildingWalls(scene_->buildings[building]), building, wall, &slot.geometry);
+    slot.ok = false;
+    if (options_.lit_windows > 0 && building < scene_->buildings.size()) {
+        const auto kept = std::lower_bound(many_ring_buildings_.begin(), many_ring_buildings_.end(), building);
+        if (kept != many_ring_buildings_.end() && *kept == building)
+            slot.ok = derive_wall_geometry(many_ring_walls_[kept - many_ring_buildings_.begin()], building, wall,
+                                           &slot.geometry);
+        else
+            slot.ok = derive_wall_geometry(BuildingWalls(scene_->buildings[building]), building, wall, &slot.geometry);
+    }
     *out = slot.geometry;
     return slot.ok;
 }

@@ -156,6 +156,10 @@ private:
     Color lamp_radiance_{0, 0, 0};
     std::vector<Lamp> lamps_;             // light i < lamps_.size(): lamp i of the scene
     std::vector<Strip> strips_;           // light lamps_.size() + j: strip j, by (building, wall, floor, slot)
+    // The walls of buildings of more than BuildingWalls::kInlineRings rings, by building index
+    // (ascending): finding a wall again on each cache miss would cost O(rings) for these.
+    std::vector<uint32_t> many_ring_buildings_;
+    std::vector<BuildingWalls> many_ring_walls_;
     uint64_t lit_windows_ = 0, windows_ = 0;
     // With the tree, lamps and window strips have a light BVH each: in one tree over both, the
     // thousands of dim strips widened the clusters holding the lamps, and the lamp choice at the

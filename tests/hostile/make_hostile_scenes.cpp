@@ -1,8 +1,10 @@
 // Writes the hostile scene files of tests/hostile/run_hostile.sh into a directory: scenes that
 // encode_scene accepts (it checks nothing) and that the loader or the renderer must refuse.
-// Usage: make_hostile_scenes DIR
+// Usage: make_hostile_scenes DIR          (every scene)
+//        make_hostile_scenes DIR HOLES    (only courtyards_HOLES.scene, to measure growth)
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "common/scene_io.h"
@@ -29,6 +31,23 @@ Scene scene_of(Building b) {
     return s;
 }
 
+// One building of `holes` square courtyards (1 m, on a 3 m grid, clockwise), every ring within
+// the limits: the cost of everything the renderer sets up per building must not grow with the
+// square of its rings.
+Scene courtyards(int holes) {
+    const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(holes))));
+    Building b = box(-1.5 * side - 1, -1.5 * side - 1, 1.5 * side + 1, 1.5 * side + 1, 10);
+    for (int i = 0; i < holes; ++i) {
+        const double x = -1.5 * side + 3.0 * (i % side) + 1, y = -1.5 * side + 3.0 * (i / side) + 1;
+        b.holes.push_back({{x, y}, {x, y + 1}, {x + 1, y + 1}, {x + 1, y}});
+    }
+    Scene s = scene_of(std::move(b));
+    s.buildings.front().outer = box(1.5 * side + 20, 0, 1.5 * side + 40, 10, 12).outer;
+    s.ground.min = {-1.5 * side - 100, -1.5 * side - 100};
+    s.ground.max = {1.5 * side + 100, 1.5 * side + 100};
+    return s;
+}
+
 void write(const std::string& dir, const std::string& name, const Scene& s) {
     save_scene(s, dir + "/" + name + ".scene");
 }
@@ -36,11 +55,16 @@ void write(const std::string& dir, const std::string& name, const Scene& s) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc != 2) {
-        std::fprintf(stderr, "usage: make_hostile_scenes DIR\n");
+    if (argc != 2 && argc != 3) {
+        std::fprintf(stderr, "usage: make_hostile_scenes DIR [HOLES]\n");
         return 2;
     }
     const std::string dir = argv[1];
+    if (argc == 3) {
+        const int holes = std::atoi(argv[2]);
+        write(dir, "courtyards_" + std::to_string(holes), courtyards(holes));
+        return 0;
+    }
     Building b = box(0, 0, 10, 10, 10);
     b.outer = {{0, 0}, {5, 0}, {10, 0}, {3, 0}};
     write(dir, "collinear_outline", scene_of(b));
@@ -61,5 +85,6 @@ int main(int argc, char** argv) {
         big.buildings.back().osm.id = 1 + i;
     }
     write(dir, "too_big_to_fit", big);
+    write(dir, "courtyards_100k", courtyards(100000));
     return 0;
 }

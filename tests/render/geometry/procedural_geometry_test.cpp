@@ -2,6 +2,7 @@
 // object, material, distance and normal whichever mode built the geometry.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -120,4 +121,54 @@ TEST(ProceduralGeometry, ProceduralBuildingsAreTiny) {
     EXPECT_EQ(procedural->polygon_count(), scene.buildings.size() + 1);
     EXPECT_GT(stored.triangle_count(), 50 * procedural->primitive_count());
     EXPECT_LT(procedural->buffer_bytes() * 20, stored.bytes());
+}
+
+// A building of many courtyards (more than BuildingWalls keeps inline, some holes wound the
+// wrong way): each wall is the ring edge a walk over the rings finds, with the building on its
+// left, and rays from above find the same roof or courtyard floor in both modes (the procedural
+// roof tests a point against the holes of a box tree, not each hole in turn).
+TEST(ProceduralGeometry, ManyCourtyardsSameWallsAndHitsAsAWalkOverTheRings) {
+    Scene scene;
+    Building b = box_building(1, {-61, -61}, {61, 61}, 12);
+    for (int i = 0; i < 1600; ++i) {
+        const double x = -60 + 3.0 * (i % 40) + 1, y = -60 + 3.0 * (i / 40) + 1;
+        b.holes.push_back({{x, y}, {x, y + 1}, {x + 1, y + 1}, {x + 1, y}});
+        if (i % 7 == 0) std::reverse(b.holes.back().begin(), b.holes.back().end());
+    }
+    scene.buildings.push_back(b);
+    scene.ground.min = {-100, -100};
+    scene.ground.max = {100, 100};
+    const BuildingWalls walls(b);
+    ASSERT_EQ(walls.count(), 4u * 1601);
+    size_t index = 0;
+    for (size_t r = 0; r <= b.holes.size(); ++r) {
+        const Ring& ring = r == 0 ? b.outer : b.holes[r - 1];
+        for (size_t k = 0; k < ring.size(); ++k, ++index) {
+            Vec2 p, q;
+            walls.wall(index, &p, &q);
+            const bool edge_of_ring =
+                std::find(ring.begin(), ring.end(), p) != ring.end() && std::find(ring.begin(), ring.end(), q) != ring.end();
+            ASSERT_TRUE(edge_of_ring) << "wall " << index;
+            const Vec2 centre = r == 0 ? Vec2{0, 0} : (ring[0] + ring[2]) * 0.5;
+            // The building on the left: inside the outer ring, outside each courtyard.
+            EXPECT_EQ(cross(q - p, centre - p) > 0, r == 0) << "wall " << index;
+            EXPECT_EQ(walls.input(index).wall_index, index);
+        }
+    }
+    auto stored = build_render_scene(scene, GeometryModes::all(GeometryMode::Stored));
+    auto procedural = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural));
+    Rng rng(9);
+    int roof = 0, mismatches = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Ray ray;
+        ray.origin = {uniform(rng, -62, 62), uniform(rng, -62, 62), 40};
+        ray.direction = normalize(Vec3{uniform(rng, -0.05, 0.05), uniform(rng, -0.05, 0.05), -1});
+        Hit a, h;
+        const bool ha = stored->intersect(ray, a), hb = procedural->intersect(ray, h);
+        if (ha != hb || a.kind != h.kind || std::abs(a.t - h.t) > 1e-3 * std::max(1.0, a.t)) ++mismatches;
+        if (ha && a.kind == ObjectKind::Building && a.geometric_normal.z > 0.5) ++roof;
+    }
+    EXPECT_LE(mismatches, 20);   // rounding at shared edges
+    EXPECT_GT(roof, 20000 / 2);  // most of the footprint is roof; 1/9 is courtyards
+    EXPECT_LT(roof, 20000 * 19 / 20);
 }
