@@ -5,9 +5,10 @@
 # either), then runs each libFuzzer harness in tests/fuzz for FUZZ_SECONDS (default 60) from its
 # seed corpus. Fails on any test failure, crash, sanitizer report, timeout (over 10 s on one
 # input) or out-of-memory (over 2 GB).
-# The sanitized suite leaves out the tests labelled slow (tests/CMakeLists.txt): those run the
-# programs on the big real extracts, the farm or Blender, code the fast tests' fixtures already
-# reach; under ASan at -O1 they would take most of CI's time. SANITIZE_ALL=1 runs them too.
+# The sanitized suite leaves out the tests labelled slow or extract (tests/CMakeLists.txt): the
+# farm and Blender only run the programs through Slurm and Blender, and the real extracts run the
+# code the fixtures and the parse fuzzer already reach under the sanitizers, many times slower
+# at -O1 (the gcc build runs them all). SANITIZE_ALL=1 runs them too.
 # Usage: scripts/check-sanitizers.sh [build|test|fuzz|all]   (default all; test.sh times each)
 # Environment: SANITIZE_BUILD_DIR (default build-sanitize), FUZZ_SECONDS, SANITIZE_ALL.
 set -euo pipefail
@@ -40,7 +41,7 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # ASan reserves terabytes of address space for its shadow: no ulimit -v in the hostile set.
 export HOSTILE_MEMORY_KB=unlimited
 run_tests() {
-    local select=(-LE slow)
+    local select=(-LE 'slow|extract')
     [ "${SANITIZE_ALL:-0}" = 1 ] && select=()
     (cd "$dir" && ctest --output-on-failure -j"$jobs" "${select[@]}")
 }

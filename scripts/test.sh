@@ -4,12 +4,12 @@
 #               and its slow stages need clang, Slurm and Blender; a local run wants the same
 #               suite CI runs (without them the farm and Blender tests would only be skipped).
 #   build       gcc, Release, everything (tests included) into build/
-#   fast tests  ctest -LE slow: every test not labelled slow (tests/CMakeLists.txt)
-#   slow tests  ctest -L slow, less the two below: the programs on the big real extracts
+#   fast tests  ctest -LE slow: every test but the two labelled slow (tests/CMakeLists.txt)
 #   farm        the slurm_farm test (a single-node Slurm started by the test)
 #   blender     the blender_gltf_import test (Blender imports render's glTF)
 #   asan build  scripts/check-sanitizers.sh build: clang, ASan+UBSan, with the fuzzers
-#   asan tests  scripts/check-sanitizers.sh test: the suite less the slow tests, sanitized
+#   asan tests  scripts/check-sanitizers.sh test: the suite sanitized, less farm, Blender and
+#               the real extracts
 #   fuzzers     scripts/check-sanitizers.sh fuzz: each libFuzzer harness for FUZZ_SECONDS
 # and prints each stage's wall time at the end (and which stage failed). The first failing stage
 # stops the run. CITYGEN_SKIP_SANITIZERS=1 skips the sanitizer and fuzz stages (for a quick
@@ -53,7 +53,6 @@ ctest_in_build() { (cd build && ctest --output-on-failure -j"$jobs" "$@"); }
 stage install scripts/install-deps.sh ci
 stage build scripts/build.sh ci
 stage "fast tests" ctest_in_build -LE slow
-stage "slow tests" ctest_in_build -L slow -E '^(slurm_farm|blender_gltf_import)$'
 stage farm ctest_in_build -R '^slurm_farm$'
 stage blender ctest_in_build -R '^blender_gltf_import$'
 if [ "${CITYGEN_SKIP_SANITIZERS:-0}" != 1 ]; then
