@@ -106,6 +106,9 @@ int main(int argc, char** argv) {
                    "benchmark aid: ignore height, building:levels, min_height, roof:height, ... on this "
                    "fraction of buildings (seeded; 1 = all)")
         ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--hide-roof-tags", job.hide_roof_tags,
+                   "benchmark aid: ignore roof:shape on this fraction of buildings (seeded; 1 = all)")
+        ->check(CLI::Range(0.0, 1.0));
     app.add_option("--threads", job.threads,
                    "at most this many threads for the stages after reading (0: every core); the scene "
                    "is the same whatever the number")

@@ -170,6 +170,20 @@ void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
     }
 }
 
+// For the roof benchmark (tests/bench/roof_bench.sh): forget the roof:shape tag of a seeded
+// `fraction` of the buildings (another draw than hide_height_tags').
+void hide_roof_tags(OsmData& osm, double fraction, uint64_t seed) {
+    for (OsmArea& area : osm.building_areas) {
+        const uint64_t key = hash_keys(seed, 0x524f4f46ull, static_cast<uint64_t>(area.ref.type),
+                                       static_cast<uint64_t>(area.ref.id));
+        if (hash_to_unit(key) >= fraction) continue;
+        auto& entries = area.tags.entries;
+        entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                     [](const auto& kv) { return kv.first == "roof:shape"; }),
+                      entries.end());
+    }
+}
+
 // Hands the pages of freed memory back to the system (see parse_osm_to_scene).
 void trim_heap() {
 #ifdef __GLIBC__
@@ -183,6 +197,7 @@ void trim_heap() {
 Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<SceneEncoder>* encoder) {
     OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
     if (job.hide_height_tags > 0) hide_height_tags(osm, job.hide_height_tags, job.params.seed);
+    if (job.hide_roof_tags > 0) hide_roof_tags(osm, job.hide_roof_tags, job.params.seed);
     const Projection projection = projection_for(osm);
 
     Scene scene;
@@ -267,8 +282,17 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
         }
         release(scene.buildings);
         size_t trimmed_at = (*encoder)->size();
+        // The extract's roof evidence, of all the slices (as all at once).
+        RoofEvidence evidence;
+        for (const std::vector<Building>& slice : slices) {
+            const RoofEvidence e = roof_evidence(slice, *building_tags);
+            for (int g = 0; g < static_cast<int>(RoofGroup::Count); ++g) {
+                evidence.tagged[g] += e.tagged[g];
+                evidence.pitched[g] += e.pitched[g];
+            }
+        }
         for (std::vector<Building>& slice : slices) {
-            add_seconds(roofs_seconds, [&] { build_roofs(slice, *building_tags, job.params.buildings, roofs_report); });
+            add_seconds(roofs_seconds, [&] { build_roofs(slice, *building_tags, job.params.buildings, roofs_report, &evidence); });
             add_seconds(colours_seconds,
                         [&] { choose_colours_and_materials(slice, *building_tags, job.params.buildings, colours_report); });
             // Nothing reads the buildings after this but the scene's bounds: encoded, they

@@ -248,7 +248,9 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
     // Roofs, colours and materials by the same default rules as untagged mapped buildings.
     const OsmData no_tags;
     const BuildingTagIndex tags(no_tags);
-    build_roofs(generated, tags, buildings, report);
+    // Their roofs follow what the map's tagged roofs say of the region.
+    const RoofEvidence evidence = roof_evidence_of_scene(scene.buildings);
+    build_roofs(generated, tags, buildings, report, &evidence);
     choose_colours_and_materials(generated, tags, buildings, report);
     report.kept(kGeneratedBuildings, static_cast<int64_t>(generated.size()));
     return generated;
