@@ -56,7 +56,7 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
     PointGrid tagged(std::max(params.min_distance_to_tagged, 1.0));
     for (const OsmNode& node : osm.street_lamps) {
         Vec2 p = projection.to_local(node.location.lat, node.location.lon);
-        if (std::max(std::fabs(p.x), std::fabs(p.y)) > kMaxCoordinate) {
+        if (!point_within_limit(p)) {
             report.dropped(kTaggedStreetLamps, kTooFarOut);
             continue;
         }

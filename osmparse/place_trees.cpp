@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "build_buildings.h"
 #include "clean_footprint.h"
 #include "osm_units.h"
 #include "place_lamps.h"
@@ -11,6 +12,7 @@
 #include "polygon_overlap.h"
 #include "read_osm.h"
 #include "rng.h"
+#include "scene_limits.h"
 
 namespace citygen {
 
@@ -84,6 +86,10 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
         t.osm = {OsmType::Node, node.id};
         t.source = TreeSource::Mapped;
         Vec2 p = round_to_stored_precision(projection.to_local(node.location.lat, node.location.lon));
+        if (!point_within_limit(p)) {  // a stray node: the scene loader would refuse it
+            report.dropped(kMappedTrees, kTooFarOut);
+            continue;
+        }
         if (const Ring* ring = surface_containing(p)) {
             p = push_out_of(*ring, p, kTrunkClearance + 0.05);
             report.note(kMappedTrees, kMovedOffRoad);
@@ -113,6 +119,10 @@ std::vector<Tree> place_trees(const OsmData& osm, const Projection& projection, 
             for (; s <= len; s += params.row_spacing) {
                 const Vec2 p = round_to_stored_precision(a + (b - a) * (s / len));
                 report.read(kTreeRowTrees);
+                if (!point_within_limit(p)) {
+                    report.dropped(kTreeRowTrees, kTooFarOut);
+                    continue;
+                }
                 if (!free_ground(p)) {
                     report.dropped(kTreeRowTrees, kOnRoadBuildingOrWater);
                     continue;
