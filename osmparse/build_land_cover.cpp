@@ -89,6 +89,8 @@ std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& pr
 
 namespace {
 
+constexpr char kClippedAtSceneLimits[] = "clipped to the scene limits (1000 km from the origin)";
+
 // The ring cut to the square of coordinates the scene limits allow (Sutherland-Hodgman: the
 // square is convex), its new points at stored precision. Empty when nothing of it is inside.
 Ring clip_to_coordinate_limit(const Ring& ring) {
@@ -130,7 +132,8 @@ bool is_area(const Ring& ring) { return ring.size() >= 3 && std::fabs(signed_are
 
 }  // namespace
 
-std::vector<LandCover> limit_land_cover(std::vector<LandCover> cover, ParseReport& report) {
+// (Declared as dropping: it also clips, to the coordinate limit, what reaches beyond it.)
+std::vector<LandCover> drop_land_cover_beyond_limits(std::vector<LandCover> cover, ParseReport& report) {
     std::vector<LandCover> kept;
     kept.reserve(cover.size());
     for (LandCover& c : cover) {

@@ -17,7 +17,6 @@ namespace citygen {
 // Report rows and reasons of this stage (areas are counted under read_osm.h's kLandCoverAreas).
 inline constexpr char kLandCoverClassPrefix[] = "land cover: ";
 inline constexpr char kBeyondSceneLimits[] = "beyond the scene limits (points or extent)";
-inline constexpr char kClippedAtSceneLimits[] = "clipped to the scene limits (1000 km from the origin)";
 
 // The land cover class of an area's tags, or nullopt when it has none. The one table:
 //   water     natural=water, waterway=riverbank, landuse=basin|reservoir, leisure=swimming_pool
@@ -41,9 +40,8 @@ const std::vector<const char*>& land_cover_keys();
 std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& projection,
                                         const BuildingParams& params, ParseReport& report);
 
-// Applies the land cover limits of scene_limits.h, which the scene loader checks: polygons
-// reaching beyond the coordinate limit are clipped to it (counted as clipped), those with too
-// many points or nothing within dropped (counted as beyond the scene limits).
-std::vector<LandCover> limit_land_cover(std::vector<LandCover> cover, ParseReport& report);
+// Drops (and counts) polygons beyond the land cover limits of scene_limits.h, which the
+// scene loader would refuse: a ring with too many points or wider than a region.
+std::vector<LandCover> drop_land_cover_beyond_limits(std::vector<LandCover> cover, ParseReport& report);
 
 }  // namespace citygen

@@ -382,7 +382,7 @@ Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<Sce
                 std::vector<LandCover> sea =
                     assemble_sea(osm, projection, extract_box(osm, projection), scene.buildings, report);
                 cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
-                return limit_land_cover(std::move(cover), report);
+                return drop_land_cover_beyond_limits(std::move(cover), report);
             });
             scene.trees = timed(report, "trees", [&] {
                 return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);

@@ -18,7 +18,7 @@ namespace citygen {
 
 namespace {
 
-constexpr double kMinHeight = 1, kMaxHeight = 80, kMinCrown = 0.5, kMaxCrown = 40;
+constexpr double kMinHeight = 1, kMaxTreeHeight = 80, kMinCrown = 0.5, kMaxCrown = 40;
 constexpr double kTrunkClearance = 0.75;  // metres a trunk keeps from roads and buildings
 
 }  // namespace
@@ -34,7 +34,7 @@ Tree tree_from_tags(const OsmTags& tags, ParseReport& report, const char* kind) 
         const char* text = tags.get(key);
         if (!text) continue;
         const std::optional<double> h = parse_osm_length(text);
-        if (h && *h >= kMinHeight && *h <= kMaxHeight) {
+        if (h && *h >= kMinHeight && *h <= kMaxTreeHeight) {
             t.height = *h;
             break;
         }
