@@ -116,7 +116,7 @@ struct Checker {
     // A coordinate: finite and within kMaxCoordinate of the origin.
     double coordinate(float v, const char* what, double limit = kMaxCoordinate) const {
         finite(v, what);
-        if (std::fabs(v) > limit)
+        if (!coordinate_within_limit(v, limit))
             fail(std::string("coordinate in ") + what + " is " + std::to_string(v) + " m from the origin (limit " +
                  std::to_string(static_cast<long>(limit)) + " m)");
         return v;
@@ -147,8 +147,7 @@ struct Checker {
     }
     // One object's points fit in a max_extent square.
     void extent(const std::vector<Vec2>& points, const char* what, double max_extent = kMaxObjectExtent) const {
-        const Box2 box = bounds_of(points);
-        if (!box.empty() && std::max(box.max.x - box.min.x, box.max.y - box.min.y) > max_extent)
+        if (!extent_within_limit(points, max_extent))
             fail(std::string(what) + " is over " + std::to_string(static_cast<long>(max_extent)) + " m across");
     }
     Ring ring(const fb::Ring* r, const char* what, size_t max_points = kMaxRingPoints,
@@ -685,6 +684,14 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             s.crossings.push_back(c);
         }
     return s;
+}
+
+void check_scene_loads(const uint8_t* data, size_t size, const std::string& name) {
+    try {
+        decode_scene(data, size, name);
+    } catch (const Error& e) {
+        throw Error(std::string(e.what()) + " (not written: the scene loader would refuse it)");
+    }
 }
 
 Scene load_scene(const std::string& path) {

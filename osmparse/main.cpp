@@ -147,7 +147,9 @@ int main(int argc, char** argv) {
             parse_osm_to_file(job, report, output);  // the lower peak memory
         } else {
             const Scene scene = parse_osm_to_scene(job, report);
-            save_scene(scene, output);
+            const std::vector<uint8_t> bytes = encode_scene(scene);
+            check_scene_loads(bytes.data(), bytes.size(), output);  // never a file its loader refuses
+            write_file_atomically(output, bytes.data(), bytes.size());
             write_geojson(scene, geojson);
         }
         if (!job.quiet) report.print(stderr);

@@ -77,42 +77,78 @@ std::string base_name(const std::string& path) {
     return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// The median of every kept location, per axis.
-LatLon median_location(const OsmData& osm) {
-    std::vector<double> lats, lons;
-    auto add = [&](const LatLon& l) {
-        lats.push_back(l.lat);
-        lons.push_back(l.lon);
-    };
+// Calls f(LatLon) for every location of the town: buildings, highways (roads and paths) and
+// lamps (the read stage's bounds also take in the tree rows).
+template <typename F>
+void for_each_town_location(const OsmData& osm, F&& f) {
     for (const OsmArea& a : osm.building_areas)
         for (const OsmPolygon& p : a.polygons)
-            for (const LatLon& l : p.outer) add(l);
+            for (const LatLon& l : p.outer) f(l);
     for (const OsmWay& w : osm.highways)
-        for (const LatLon& l : w.locations) add(l);
-    for (const OsmNode& n : osm.street_lamps) add(n.location);
-    if (lats.empty()) return {0.5 * (osm.min.lat + osm.max.lat), 0.5 * (osm.min.lon + osm.max.lon)};
+        for (const LatLon& l : w.locations) f(l);
+    for (const OsmNode& n : osm.street_lamps) f(n.location);
+}
+
+// Calls f(LatLon) for every other location that can reach the scene: tree rows, land cover,
+// trees, crossings, rails, and the coastline as far as the sea is clipped to (the extract's box,
+// see extract_box; none without one).
+template <typename F>
+void for_each_map_location(const OsmData& osm, F&& f) {
+    for (const OsmWay& w : osm.tree_rows)
+        for (const LatLon& l : w.locations) f(l);
+    for (const OsmArea& a : osm.land_cover_areas)
+        for (const OsmPolygon& p : a.polygons)
+            for (const LatLon& l : p.outer) f(l);
+    for (const OsmNode& n : osm.trees) f(n.location);
+    for (const OsmNode& n : osm.road_marks) f(n.location);
+    for (const OsmWay& w : osm.railways)
+        for (const LatLon& l : w.locations) f(l);
+    const LatLon lo = osm.has_extract_bounds ? osm.extract_min : osm.min;
+    const LatLon hi = osm.has_extract_bounds ? osm.extract_max : osm.max;
+    if (lo.lat <= hi.lat && lo.lon <= hi.lon)
+        for (const OsmWay& w : osm.coastlines)
+            for (const LatLon& l : w.locations)
+                f(LatLon{std::clamp(l.lat, lo.lat, hi.lat), std::clamp(l.lon, lo.lon, hi.lon)});
+}
+
+// The median of the locations, per axis.
+LatLon median_location(std::vector<double> lats, std::vector<double> lons) {
     const size_t mid = lats.size() / 2;
     std::nth_element(lats.begin(), lats.begin() + mid, lats.end());
     std::nth_element(lons.begin(), lons.begin() + mid, lons.end());
     return {lats[mid], lons[mid]};
 }
 
-// The origin is the centre of the data's bounding box, so coordinates stay small. Data
-// spanning more than a degree is a region, or a city with a stray node far away (a mapping
-// mistake): then the median location, which a few strays cannot move out of town (their
-// objects are dropped as beyond the scene limits).
+// The origin is the centre of the box of the town's locations (the read stage's bounds), so
+// coordinates stay small; where the extract has no town (a nature reserve, a lake), of
+// everything else located. Data spanning more than a degree is a region, or a city with a stray
+// node far away (a mapping mistake): then the median location, which a few strays cannot move
+// out of town (what lies beyond the scene limits is dropped or clipped).
 Projection projection_for(const OsmData& osm) {
-    if (osm.min.lat > osm.max.lat) {  // nothing located but perhaps coastline: the extract's centre
+    const bool town = osm.min.lat <= osm.max.lat;
+    std::vector<double> lats, lons;
+    auto add = [&](const LatLon& l) {
+        lats.push_back(l.lat);
+        lons.push_back(l.lon);
+    };
+    if (town) for_each_town_location(osm, add);
+    else for_each_map_location(osm, add);
+    if (!town && lats.empty()) {  // nothing located: the extract's centre
         if (osm.has_extract_bounds)
             return Projection(0.5 * (osm.extract_min.lat + osm.extract_max.lat),
                               0.5 * (osm.extract_min.lon + osm.extract_max.lon));
         return Projection(0, 0);
     }
-    if (osm.max.lat - osm.min.lat > 1 || osm.max.lon - osm.min.lon > 1) {
-        const LatLon m = median_location(osm);
+    LatLon min = osm.min, max = osm.max;
+    if (!town) {
+        min = {*std::min_element(lats.begin(), lats.end()), *std::min_element(lons.begin(), lons.end())};
+        max = {*std::max_element(lats.begin(), lats.end()), *std::max_element(lons.begin(), lons.end())};
+    }
+    if ((max.lat - min.lat > 1 || max.lon - min.lon > 1) && !lats.empty()) {
+        const LatLon m = median_location(std::move(lats), std::move(lons));
         return Projection(m.lat, m.lon);
     }
-    return Projection(0.5 * (osm.min.lat + osm.max.lat), 0.5 * (osm.min.lon + osm.max.lon));
+    return Projection(0.5 * (min.lat + max.lat), 0.5 * (min.lon + max.lon));
 }
 
 SceneHeader make_header(const ParseJob& job, const Projection& projection) {
@@ -140,6 +176,12 @@ void set_bounds_and_ground(Scene& scene, Box2 box = {}) {
     for (const Joint& j : scene.joints) for (Vec2 p : j.polygon) box.extend(p);
     for (const Sidewalk& s : scene.sidewalks) for (Vec2 p : s.polygon) box.extend(p);
     for (const Lamp& l : scene.lamps) box.extend({l.position.x, l.position.y});
+    // And the rest of the map: a scene of a forest is framed by its forest.
+    for (const LandCover& c : scene.land_cover) for (Vec2 p : c.outer) box.extend(p);
+    for (const Tree& t : scene.trees) box.extend(t.position);
+    for (const PathEdge& e : scene.paths) for (Vec2 p : e.quad) box.extend(p);
+    for (const Joint& j : scene.path_joints) for (Vec2 p : j.polygon) box.extend(p);
+    for (const Crossing& c : scene.crossings) box.extend(c.position);
     if (box.empty()) box.extend({0, 0});
     scene.header.bounds_min = box.min;
     scene.header.bounds_max = box.max;
@@ -417,6 +459,7 @@ void parse_osm_to_file(const ParseJob& job, ParseReport& report, const std::stri
     // Each part is freed once encoded, and its pages handed back before the encoder takes
     // more: the encoded scene grows as the in-memory one shrinks.
     encoder->finish_releasing(scene, trim_heap);
+    check_scene_loads(encoder->data(), encoder->size(), path);  // never a file its loader refuses
     write_file_atomically(path, encoder->data(), encoder->size());  // no copy of the bytes
 }
 
