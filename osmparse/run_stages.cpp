@@ -6,6 +6,8 @@
 
 #include <tbb/task_group.h>
 
+#include "common/error.h"
+
 namespace citygen {
 
 namespace {
@@ -81,7 +83,18 @@ std::vector<std::vector<size_t>> stage_runs(const std::vector<Stage>& stages) {
     return runs;
 }
 
+void check_parts(const std::vector<Stage>& stages) {
+    std::set<std::string> written;
+    for (const Stage& s : stages) {
+        if (!s.enabled) continue;
+        for (const std::string& p : s.reads)
+            if (!written.count(p)) throw Error("stage '" + s.name + "' reads '" + p + "', which no stage before it writes");
+        written.insert(s.writes.begin(), s.writes.end());
+    }
+}
+
 void run_stages(const std::vector<Stage>& stages, const StageHooks& hooks, ParseReport& report) {
+    check_parts(stages);
     const std::map<std::string, size_t> last = last_readers(stages);
     std::set<std::string> freed;
     for (const std::vector<size_t>& run : stage_runs(stages)) {

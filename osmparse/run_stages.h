@@ -42,7 +42,11 @@ std::map<std::string, size_t> last_readers(const std::vector<Stage>& stages);
 // writes a part another writes run side by side; per-slice stages form runs of their own.
 std::vector<std::vector<size_t>> stage_runs(const std::vector<Stage>& stages);
 
-// Runs the stages: each into a report of its own, merged into `report` in table order with its
+// Throws Error if an enabled stage reads a part no enabled stage before it writes (a misspelt
+// or misplaced part would otherwise be freed at the wrong time).
+void check_parts(const std::vector<Stage>& stages);
+
+// Runs the stages (after check_parts): each into a report of its own, merged into `report` in table order with its
 // time, so the report does not depend on which stages ran side by side.
 void run_stages(const std::vector<Stage>& stages, const StageHooks& hooks, ParseReport& report);
 

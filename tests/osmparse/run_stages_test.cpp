@@ -1,6 +1,8 @@
 // The stage runner on a made-up stage table: last readers, freeing, side by side, report order.
 #include "osmparse/run_stages.h"
 
+#include "common/error.h"
+
 #include <atomic>
 #include <chrono>
 #include <mutex>
@@ -78,6 +80,17 @@ TEST(RunStages, LastReadersComeFromTheTable) {
     EXPECT_EQ(last.at("d"), 4u);
     EXPECT_EQ(last.at("e"), 4u);  // read by none: its writer
     EXPECT_EQ(last.count("x"), 0u);
+}
+
+TEST(RunStages, APartReadBeforeItIsWrittenIsAnError) {
+    Table t;
+    std::vector<Stage> stages = t.stages();
+    EXPECT_NO_THROW(check_parts(stages));
+    stages[3].reads.push_back("bb");  // misspelt
+    EXPECT_THROW(check_parts(stages), Error);
+    std::swap(stages[0], stages[1]);  // B before A: reads a before it is written
+    stages[3].reads.pop_back();
+    EXPECT_THROW(check_parts(stages), Error);
 }
 
 TEST(RunStages, IndependentConsecutiveStagesRunTogether) {
