@@ -269,17 +269,6 @@ void build_roof(Building& b, const BuildingTagIndex& index, const RoofEvidence& 
 
 }  // namespace
 
-RoofEvidence roof_evidence_of_scene(const std::vector<Building>& buildings) {
-    RoofEvidence e;
-    for (const Building& b : buildings) {
-        if (b.roof_inferred || !has_volume(b)) continue;
-        const int g = static_cast<int>(roof_group(b, std::fabs(signed_area(b.outer))));
-        ++e.tagged[g];
-        e.pitched[g] += b.roof_shape != RoofShape::Flat;
-    }
-    return e;
-}
-
 void build_roofs(std::vector<Building>& buildings, const BuildingTagIndex& index, const BuildingParams& params,
                  ParseReport& report, const RoofEvidence* given) {
     // Buildings are independent (the straight skeleton is most of the stage's time): in parallel,

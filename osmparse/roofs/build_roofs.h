@@ -45,8 +45,6 @@ struct RoofEvidence {
     int pitched[static_cast<int>(RoofGroup::Count)] = {};
 };
 RoofEvidence roof_evidence(const std::vector<Building>& buildings, const BuildingTagIndex& tags);
-// The same from buildings whose roofs are built: those not inferred (their tagged shapes).
-RoofEvidence roof_evidence_of_scene(const std::vector<Building>& buildings);
 
 // The share of a group's untagged roofs that are pitched: churches and farm buildings pitched
 // unless the extract's tags say otherwise; the other groups flat (the OSM default roof:shape)
