@@ -161,40 +161,33 @@ bool roof_face_is_valid(const RoofFace& face, const Building& b, double z_min, d
 namespace {
 
 // One building's roof; what the report should count goes to `notes`.
-void build_roof(Building& b, const BuildingTagIndex& index, const RoofEvidence& evidence, const BuildingParams& params,
-                std::vector<std::string>& notes) {
-    b.roof_faces.clear();
-    b.roof_height = 0;
-    b.roof_shape = RoofShape::Flat;
-    if (!has_volume(b)) return;
-    const OsmTags& tags = index.find(b.osm);
-    const double area = std::fabs(signed_area(b.outer));
-
-    // Shape.
+// The roof's shape: tagged, or by the default rules (b.roof_inferred); its pitch: the shape's
+// default or roof:angle.
+RoofShape roof_shape_and_pitch(Building& b, const OsmTags& tags, double area, const RoofEvidence& evidence,
+                               const BuildingParams& params, double* pitch, std::vector<std::string>& notes) {
     RoofShape shape = RoofShape::Flat;
-    double pitch = 0;
     b.roof_inferred = false;
     if (const char* text = tags.get("roof:shape")) {
         if (!parse_roof_shape(text, &shape)) {
             notes.push_back("unknown roof:shape: flat");
             shape = RoofShape::Flat;
         }
-        pitch = default_pitch(shape);
+        *pitch = default_pitch(shape);
     } else {
-        shape = default_roof(b, area, params.seed, &pitch, evidence);
+        shape = default_roof(b, area, params.seed, pitch, evidence);
         b.roof_inferred = true;
     }
     if (const char* text = tags.get("roof:angle")) {
         char* end = nullptr;
         const double angle = std::strtod(text, &end);
-        if (end != text && *end == '\0' && angle > 0 && angle <= 85) pitch = angle;
+        if (end != text && *end == '\0' && angle > 0 && angle <= 85) *pitch = angle;
         else notes.push_back("bad roof:angle ignored");
     }
-    if (shape == RoofShape::Flat) {
-        notes.push_back(b.roof_inferred ? "flat (default)" : "flat (tagged)");
-        return;
-    }
+    return shape;
+}
 
+// The shape with its ridge direction and orientation from the tags.
+RoofSpec roof_spec(RoofShape shape, const OsmTags& tags, std::vector<std::string>& notes) {
     RoofSpec spec;
     spec.shape = shape;
     if (const char* text = tags.get("roof:direction")) {
@@ -207,8 +200,14 @@ void build_roof(Building& b, const BuildingTagIndex& index, const RoofEvidence& 
         }
     }
     spec.across = tags.has("roof:orientation", "across");
+    return spec;
+}
 
-    // Height.
+// The roof's height: roof:height, else roof:levels, else from the pitch over the footprint (at
+// most three quarters of the building). building:levels counts the storeys under the roof, so
+// there the roof goes on top (b.height grows); a tagged height above the building is clamped.
+double roof_height(Building& b, const OsmTags& tags, const RoofSpec& spec, double pitch,
+                   const BuildingParams& params, std::vector<std::string>& notes) {
     const double budget = b.height - b.min_height;
     double height = 0;
     bool derived = false;
@@ -225,17 +224,38 @@ void build_roof(Building& b, const BuildingTagIndex& index, const RoofEvidence& 
     } else if (levels && *levels > 0 && *levels < 100) {
         height = *levels * params.level_height;
     } else {
-        height = height_from_pitch(shape, pitch, roof_frame(b.outer, spec));
+        height = height_from_pitch(spec.shape, pitch, roof_frame(b.outer, spec));
         derived = true;
     }
     if (b.height_source == HeightSource::Levels) {
-        b.height += height;  // building:levels counts the storeys under the roof
+        b.height += height;
     } else if (derived) {
         height = std::min(height, 0.75 * budget);
     } else if (height > budget) {
         notes.push_back("roof:height above the building: clamped");
         height = budget;
     }
+    return height;
+}
+
+void build_roof(Building& b, const BuildingTagIndex& index, const RoofEvidence& evidence, const BuildingParams& params,
+                std::vector<std::string>& notes) {
+    b.roof_faces.clear();
+    b.roof_height = 0;
+    b.roof_shape = RoofShape::Flat;
+    if (!has_volume(b)) return;
+    const OsmTags& tags = index.find(b.osm);
+    const double area = std::fabs(signed_area(b.outer));
+
+    double pitch = 0;
+    const RoofShape shape = roof_shape_and_pitch(b, tags, area, evidence, params, &pitch, notes);
+    if (shape == RoofShape::Flat) {
+        notes.push_back(b.roof_inferred ? "flat (default)" : "flat (tagged)");
+        return;
+    }
+
+    RoofSpec spec = roof_spec(shape, tags, notes);
+    const double height = roof_height(b, tags, spec, pitch, params, notes);
     if (height < kMinRoofHeight) {
         notes.push_back("roof too low: flat");
         return;
