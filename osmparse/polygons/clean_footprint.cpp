@@ -191,6 +191,29 @@ HoleAssignment assign_holes(const std::vector<Piece>& holes, const std::vector<P
     return out;
 }
 
+// The polygons worth storing: not slivers, and valid by CGAL's check of the stage's output.
+std::vector<Footprint> keep_valid(std::vector<Footprint> polygons, double min_area, ParseReport& report,
+                                  const std::string& kind, const std::string& hole_kind) {
+    std::vector<Footprint> kept;
+    for (Footprint& f : polygons) {
+        double area = signed_area(f.outer);
+        for (const Ring& h : f.holes) area += signed_area(h);  // holes are CW: negative
+        if (area < min_area) {
+            report.dropped(kind, text_of(Reason::SliverBelowMinArea));
+            continue;
+        }
+        // The stage's output checked by CGAL, independently of the predicates above: a polygon
+        // it rejects is counted and never stored.
+        if (!polygon_is_valid_exact(f.outer, f.holes)) {
+            report.dropped(kind, text_of(Reason::InvalidAtOutput));
+            continue;
+        }
+        report.kept(hole_kind, static_cast<int64_t>(f.holes.size()));
+        kept.push_back(std::move(f));
+    }
+    return kept;
+}
+
 }  // namespace
 
 Ring remove_repeated_and_collinear(Ring ring, double tolerance) {
@@ -390,24 +413,7 @@ std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring
         if (fate == HoleFate::Overlaps) report.dropped(hole_kind, text_of(Reason::HoleOverlaps));
     }
 
-    std::vector<Footprint> kept;
-    for (Footprint& f : polygons) {
-        double area = signed_area(f.outer);
-        for (const Ring& h : f.holes) area += signed_area(h);  // holes are CW: negative
-        if (area < params.min_area) {
-            report.dropped(kind, text_of(Reason::SliverBelowMinArea));
-            continue;
-        }
-        // The stage's output checked by CGAL, independently of the predicates above: a polygon
-        // it rejects is counted and never stored.
-        if (!polygon_is_valid_exact(f.outer, f.holes)) {
-            report.dropped(kind, text_of(Reason::InvalidAtOutput));
-            continue;
-        }
-        report.kept(hole_kind, static_cast<int64_t>(f.holes.size()));
-        kept.push_back(std::move(f));
-    }
-    return kept;
+    return keep_valid(std::move(polygons), params.min_area, report, kind, hole_kind);
 }
 
 }  // namespace citygen
