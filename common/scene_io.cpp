@@ -465,24 +465,12 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
     return {encoder.data(), encoder.data() + encoder.size()};
 }
 
-Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
-    Checker check{name};
-    if (size == 0) check.fail("empty file, not a citygen scene");
-    if (size < 8 || !fb::SceneBufferHasIdentifier(data))
-        check.fail("not a citygen scene (wrong file identifier)");
-    flatbuffers::Verifier verifier(data, size, 64, 100000000);
-    if (!fb::VerifySceneBuffer(verifier)) check.fail("corrupt or truncated scene (verification failed)");
+namespace {
 
-    const fb::Scene* in = fb::GetScene(data);
-    const fb::Header* h = in->header();
-    if (!h) check.fail("scene has no header");
-    if (h->format_major() > kSceneFormatMajor)
-        check.fail("scene format " + std::to_string(h->format_major()) + "." +
-                   std::to_string(h->format_minor()) + " is newer than this program reads (" +
-                   std::to_string(kSceneFormatMajor) + ".x); update citygen");
-
-    Scene s;
+// The header: format, origin, bounds, seed and the options the parse ran with.
+void decode_header(const fb::Scene* in, Checker& check, Scene& s) {
     SceneHeader& out = s.header;
+    const fb::Header* h = in->header();
     out.format_major = h->format_major();
     out.format_minor = h->format_minor();
     out.generator = str(h->generator());
@@ -499,7 +487,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
         for (const fb::KeyValue* kv : *h->options())
             out.options.emplace_back(str(kv->key()), str(kv->value()));
     out.source = str(h->source());
+}
 
+void decode_buildings(const fb::Scene* in, Checker& check, Scene& s) {
     if (in->buildings())
         for (const fb::Building* x : *in->buildings()) {
             Building bld;
@@ -521,10 +511,10 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             decode_building_look(x, check, bld);
             s.buildings.push_back(std::move(bld));
         }
+}
 
-    const size_t road_count = in->roads() ? in->roads()->size() : 0;
+void decode_roads(const fb::Scene* in, Checker& check, Scene& s) {
     const size_t joint_count = in->joints() ? in->joints()->size() : 0;
-
     if (in->roads())
         for (const fb::RoadEdge* x : *in->roads()) {
             RoadEdge r;
@@ -552,7 +542,10 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             r.cycle_lane_right = x->cycle_lane_right();
             s.roads.push_back(std::move(r));
         }
+}
 
+void decode_joints(const fb::Scene* in, Checker& check, Scene& s) {
+    const size_t road_count = in->roads() ? in->roads()->size() : 0;
     if (in->joints())
         for (const fb::Joint* x : *in->joints()) {
             Joint j;
@@ -565,7 +558,11 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
                 }
             s.joints.push_back(std::move(j));
         }
+}
 
+void decode_sidewalks(const fb::Scene* in, Checker& check, Scene& s) {
+    const size_t road_count = in->roads() ? in->roads()->size() : 0;
+    const size_t joint_count = in->joints() ? in->joints()->size() : 0;
     if (in->sidewalks())
         for (const fb::Sidewalk* x : *in->sidewalks()) {
             Sidewalk w;
@@ -577,7 +574,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             w.curb_height = check.height(x->curb_height(), "sidewalk curb height");
             s.sidewalks.push_back(std::move(w));
         }
+}
 
+void decode_lamps(const fb::Scene* in, Checker& check, Scene& s) {
     if (in->lamps())
         for (const fb::Lamp* x : *in->lamps()) {
             Lamp l;
@@ -591,7 +590,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             l.source = static_cast<LampSource>(x->source());
             s.lamps.push_back(l);
         }
+}
 
+void decode_ground(const fb::Scene* in, Checker& check, Scene& s) {
     if (const fb::Ground* g = in->ground()) {
         // The ground reaches a margin beyond the objects.
         for (const fb::Vec2* p : {g->min(), g->max()}) {
@@ -603,7 +604,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
         s.ground.max = {g->max()->x(), g->max()->y()};
         s.ground.z = check.coordinate(g->z(), "ground");
     }
+}
 
+void decode_land_cover(const fb::Scene* in, Checker& check, Scene& s) {
     if (in->land_cover())
         for (const fb::LandCover* x : *in->land_cover()) {
             LandCover c;
@@ -619,7 +622,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
                 }
             s.land_cover.push_back(std::move(c));
         }
+}
 
+void decode_trees(const fb::Scene* in, Checker& check, Scene& s) {
     // The verifier aligns a vector of structs to 4 bytes only; a Tree holds a long and needs 8.
     if (in->trees() && in->trees()->size() > 0 &&
         reinterpret_cast<uintptr_t>(in->trees()->Data()) % alignof(fb::Tree) != 0)
@@ -639,7 +644,10 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             t.source = static_cast<TreeSource>(x->source());
             s.trees.push_back(t);
         }
+}
 
+// Paths and rails with their joints.
+void decode_paths(const fb::Scene* in, Checker& check, Scene& s) {
     const size_t path_count = in->paths() ? in->paths()->size() : 0;
     const size_t path_joint_count = in->path_joints() ? in->path_joints()->size() : 0;
     if (in->paths())
@@ -671,6 +679,10 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
                 }
             s.path_joints.push_back(std::move(j));
         }
+}
+
+void decode_crossings(const fb::Scene* in, Checker& check, Scene& s) {
+    const size_t road_count = in->roads() ? in->roads()->size() : 0;
     if (in->crossings())
         for (const fb::Crossing* x : *in->crossings()) {
             Crossing c;
@@ -683,6 +695,38 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             c.side = static_cast<RoadSide>(x->side());
             s.crossings.push_back(c);
         }
+}
+
+}  // namespace
+
+Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
+    Checker check{name};
+    if (size == 0) check.fail("empty file, not a citygen scene");
+    if (size < 8 || !fb::SceneBufferHasIdentifier(data))
+        check.fail("not a citygen scene (wrong file identifier)");
+    flatbuffers::Verifier verifier(data, size, 64, 100000000);
+    if (!fb::VerifySceneBuffer(verifier)) check.fail("corrupt or truncated scene (verification failed)");
+
+    const fb::Scene* in = fb::GetScene(data);
+    const fb::Header* h = in->header();
+    if (!h) check.fail("scene has no header");
+    if (h->format_major() > kSceneFormatMajor)
+        check.fail("scene format " + std::to_string(h->format_major()) + "." +
+                   std::to_string(h->format_minor()) + " is newer than this program reads (" +
+                   std::to_string(kSceneFormatMajor) + ".x); update citygen");
+
+    Scene s;
+    decode_header(in, check, s);
+    decode_buildings(in, check, s);
+    decode_roads(in, check, s);
+    decode_joints(in, check, s);
+    decode_sidewalks(in, check, s);
+    decode_lamps(in, check, s);
+    decode_ground(in, check, s);
+    decode_land_cover(in, check, s);
+    decode_trees(in, check, s);
+    decode_paths(in, check, s);
+    decode_crossings(in, check, s);
     return s;
 }
 
