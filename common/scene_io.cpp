@@ -305,6 +305,104 @@ void release_part(std::vector<T>& part, const std::function<void()>* released) {
 template <typename T>
 void release_part(const std::vector<T>&, const std::function<void()>*) {}
 
+// Each part of the scene in the order of the file; the buildings are encoded as they come.
+std::vector<flatbuffers::Offset<fb::RoadEdge>> encode_roads(Builder& b, const std::vector<RoadEdge>& items) {
+    std::vector<flatbuffers::Offset<fb::RoadEdge>> roads;
+    for (const RoadEdge& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto quad = points(b, x.quad);
+        const auto centreline = points(b, x.centreline);
+        roads.push_back(fb::CreateRoadEdge(
+            b, &osm, x.from_node, x.to_node, centreline, quad,
+            static_cast<float>(x.width), static_cast<fb::RoadClass>(x.road_class),
+            static_cast<uint8_t>(x.lanes), x.oneway, x.bridge, x.from_joint, x.to_joint,
+            x.sidewalk_left, x.sidewalk_right, static_cast<uint8_t>(x.lanes_forward),
+            static_cast<uint8_t>(x.lanes_backward), static_cast<fb::CentreLine>(x.centre_line), x.edge_lines,
+            x.cycle_lane_left, x.cycle_lane_right));
+    }
+    return roads;
+}
+
+std::vector<flatbuffers::Offset<fb::Joint>> encode_joints(Builder& b, const std::vector<Joint>& items) {
+    std::vector<flatbuffers::Offset<fb::Joint>> joints;
+    for (const Joint& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto edges = b.CreateVector(x.edges);
+        const auto polygon = points(b, x.polygon);
+        joints.push_back(
+            fb::CreateJoint(b, &osm, polygon, edges));
+    }
+    return joints;
+}
+
+std::vector<flatbuffers::Offset<fb::Sidewalk>> encode_sidewalks(Builder& b, const std::vector<Sidewalk>& items) {
+    std::vector<flatbuffers::Offset<fb::Sidewalk>> sidewalks;
+    for (const Sidewalk& x : items)
+        sidewalks.push_back(fb::CreateSidewalk(b, static_cast<fb::SidewalkKind>(x.kind),
+                                               points(b, x.polygon), x.road, x.joint,
+                                               static_cast<float>(x.curb_height)));
+    return sidewalks;
+}
+
+std::vector<flatbuffers::Offset<fb::Lamp>> encode_lamps(Builder& b, const std::vector<Lamp>& items) {
+    std::vector<flatbuffers::Offset<fb::Lamp>> lamps;
+    for (const Lamp& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        fb::Vec3 pos = to_fb(x.position);
+        lamps.push_back(fb::CreateLamp(b, &osm, &pos, static_cast<float>(x.height),
+                                       static_cast<fb::LampSource>(x.source)));
+    }
+    return lamps;
+}
+
+std::vector<flatbuffers::Offset<fb::LandCover>> encode_land_cover(Builder& b, const std::vector<LandCover>& items) {
+    std::vector<flatbuffers::Offset<fb::LandCover>> land_cover;
+    for (const LandCover& x : items) {
+        std::vector<flatbuffers::Offset<fb::Ring>> holes;
+        for (const Ring& r : x.holes) holes.push_back(ring(b, r));
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto hole_vector = b.CreateVector(holes);
+        const auto outer = ring(b, x.outer);
+        land_cover.push_back(fb::CreateLandCover(b, &osm, static_cast<fb::LandCoverClass>(x.cover), outer, hole_vector));
+    }
+    return land_cover;
+}
+
+std::vector<flatbuffers::Offset<fb::PathEdge>> encode_paths(Builder& b, const std::vector<PathEdge>& items) {
+    std::vector<flatbuffers::Offset<fb::PathEdge>> paths;
+    for (const PathEdge& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto quad = points(b, x.quad);
+        const auto centreline = points(b, x.centreline);
+        paths.push_back(fb::CreatePathEdge(b, &osm, x.from_node, x.to_node, centreline, quad,
+                                           static_cast<float>(x.width), static_cast<fb::PathClass>(x.path_class),
+                                           x.from_joint, x.to_joint, x.sidewalk));
+    }
+    return paths;
+}
+
+std::vector<flatbuffers::Offset<fb::Crossing>> encode_crossings(Builder& b, const std::vector<Crossing>& items) {
+    std::vector<flatbuffers::Offset<fb::Crossing>> crossings;
+    for (const Crossing& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        fb::Vec2 pos = to_fb(x.position);
+        crossings.push_back(fb::CreateCrossing(b, &osm, x.road, &pos, static_cast<fb::CrossingKind>(x.kind),
+                                               static_cast<fb::RoadSide>(x.side)));
+    }
+    return crossings;
+}
+
+std::vector<fb::Tree> encode_trees(const std::vector<Tree>& items) {
+    std::vector<fb::Tree> trees;
+    trees.reserve(items.size());
+    for (const Tree& x : items)
+        trees.emplace_back(static_cast<float>(x.position.x), static_cast<float>(x.position.y),
+                           static_cast<float>(x.height), static_cast<float>(x.crown_diameter), x.osm.id,
+                           static_cast<fb::OsmType>(x.osm.type), static_cast<fb::LeafType>(x.leaf_type),
+                           static_cast<fb::TreeSource>(x.source));
+    return trees;
+}
+
 }  // namespace
 
 struct SceneEncoder::State {
@@ -339,95 +437,32 @@ void SceneEncoder::finish_parts(S& scene, const std::function<void()>* release) 
     *const_cast<fb::Vec2*>(header->bounds_min()) = to_fb(scene.header.bounds_min);
     *const_cast<fb::Vec2*>(header->bounds_max()) = to_fb(scene.header.bounds_max);
 
-    std::vector<flatbuffers::Offset<fb::RoadEdge>> roads;
-    for (const RoadEdge& x : scene.roads) {
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto quad = points(b, x.quad);
-        const auto centreline = points(b, x.centreline);
-        roads.push_back(fb::CreateRoadEdge(
-            b, &osm, x.from_node, x.to_node, centreline, quad,
-            static_cast<float>(x.width), static_cast<fb::RoadClass>(x.road_class),
-            static_cast<uint8_t>(x.lanes), x.oneway, x.bridge, x.from_joint, x.to_joint,
-            x.sidewalk_left, x.sidewalk_right, static_cast<uint8_t>(x.lanes_forward),
-            static_cast<uint8_t>(x.lanes_backward), static_cast<fb::CentreLine>(x.centre_line), x.edge_lines,
-            x.cycle_lane_left, x.cycle_lane_right));
-    }
+    const auto roads = encode_roads(b, scene.roads);
     release_part(scene.roads, release);
 
-    std::vector<flatbuffers::Offset<fb::Joint>> joints;
-    for (const Joint& x : scene.joints) {
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto edges = b.CreateVector(x.edges);
-        const auto polygon = points(b, x.polygon);
-        joints.push_back(
-            fb::CreateJoint(b, &osm, polygon, edges));
-    }
+    const auto joints = encode_joints(b, scene.joints);
     release_part(scene.joints, release);
 
-    std::vector<flatbuffers::Offset<fb::Sidewalk>> sidewalks;
-    for (const Sidewalk& x : scene.sidewalks)
-        sidewalks.push_back(fb::CreateSidewalk(b, static_cast<fb::SidewalkKind>(x.kind),
-                                               points(b, x.polygon), x.road, x.joint,
-                                               static_cast<float>(x.curb_height)));
+    const auto sidewalks = encode_sidewalks(b, scene.sidewalks);
     release_part(scene.sidewalks, release);
 
-    std::vector<flatbuffers::Offset<fb::Lamp>> lamps;
-    for (const Lamp& x : scene.lamps) {
-        fb::OsmRef osm = to_fb(x.osm);
-        fb::Vec3 pos = to_fb(x.position);
-        lamps.push_back(fb::CreateLamp(b, &osm, &pos, static_cast<float>(x.height),
-                                       static_cast<fb::LampSource>(x.source)));
-    }
+    const auto lamps = encode_lamps(b, scene.lamps);
     release_part(scene.lamps, release);
     fb::Vec2 gmin = to_fb(scene.ground.min), gmax = to_fb(scene.ground.max);
     auto ground = fb::CreateGround(b, &gmin, &gmax, static_cast<float>(scene.ground.z));
 
-    std::vector<flatbuffers::Offset<fb::LandCover>> land_cover;
-    for (const LandCover& x : scene.land_cover) {
-        std::vector<flatbuffers::Offset<fb::Ring>> holes;
-        for (const Ring& r : x.holes) holes.push_back(ring(b, r));
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto hole_vector = b.CreateVector(holes);
-        const auto outer = ring(b, x.outer);
-        land_cover.push_back(fb::CreateLandCover(b, &osm, static_cast<fb::LandCoverClass>(x.cover), outer, hole_vector));
-    }
+    const auto land_cover = encode_land_cover(b, scene.land_cover);
     release_part(scene.land_cover, release);
 
-    std::vector<fb::Tree> trees;
-    trees.reserve(scene.trees.size());
-    for (const Tree& x : scene.trees)
-        trees.emplace_back(static_cast<float>(x.position.x), static_cast<float>(x.position.y),
-                           static_cast<float>(x.height), static_cast<float>(x.crown_diameter), x.osm.id,
-                           static_cast<fb::OsmType>(x.osm.type), static_cast<fb::LeafType>(x.leaf_type),
-                           static_cast<fb::TreeSource>(x.source));
+    const auto trees = encode_trees(scene.trees);
     release_part(scene.trees, release);
 
-    std::vector<flatbuffers::Offset<fb::PathEdge>> paths;
-    for (const PathEdge& x : scene.paths) {
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto quad = points(b, x.quad);
-        const auto centreline = points(b, x.centreline);
-        paths.push_back(fb::CreatePathEdge(b, &osm, x.from_node, x.to_node, centreline, quad,
-                                           static_cast<float>(x.width), static_cast<fb::PathClass>(x.path_class),
-                                           x.from_joint, x.to_joint, x.sidewalk));
-    }
+    const auto paths = encode_paths(b, scene.paths);
     release_part(scene.paths, release);
-    std::vector<flatbuffers::Offset<fb::Joint>> path_joints;
-    for (const Joint& x : scene.path_joints) {
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto edges = b.CreateVector(x.edges);
-        const auto polygon = points(b, x.polygon);
-        path_joints.push_back(fb::CreateJoint(b, &osm, polygon, edges));
-    }
+    const auto path_joints = encode_joints(b, scene.path_joints);
     release_part(scene.path_joints, release);
 
-    std::vector<flatbuffers::Offset<fb::Crossing>> crossings;
-    for (const Crossing& x : scene.crossings) {
-        fb::OsmRef osm = to_fb(x.osm);
-        fb::Vec2 pos = to_fb(x.position);
-        crossings.push_back(fb::CreateCrossing(b, &osm, x.road, &pos, static_cast<fb::CrossingKind>(x.kind),
-                                               static_cast<fb::RoadSide>(x.side)));
-    }
+    const auto crossings = encode_crossings(b, scene.crossings);
     release_part(scene.crossings, release);
 
     const auto crossing_vector = b.CreateVector(crossings);
