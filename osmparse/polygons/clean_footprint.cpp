@@ -340,6 +340,67 @@ Vec2 interior_point(const Ring& ring) {
     return (b + ring[deepest]) * 0.5;
 }
 
+// Where simplifying each ring on its own cost a polygon a hole, its holes assigned again on the
+// unsimplified rings, if that keeps more of them; true for the polygons whose rings are then
+// simplified together.
+std::vector<bool> assign_lost_holes_again(const std::vector<Piece>& hole_candidates, const std::vector<Piece>& outers,
+                                          double min_area, HoleAssignment& assignment) {
+    std::vector<bool> together(outers.size(), false);
+    for (size_t p = 0; p < outers.size(); ++p) {
+        std::vector<Piece> mine;  // the holes that could be this polygon's, in order
+        std::vector<size_t> index;
+        bool lost_any = false;
+        for (size_t i = 0; i < hole_candidates.size(); ++i) {
+            const HoleFate fate = assignment.fate[i];
+            const bool lost_to_simplification =
+                (fate == HoleFate::Outside || fate == HoleFate::Overlaps) &&
+                ring_strictly_inside(hole_candidates[i].unsimplified, outers[p].unsimplified);
+            lost_any |= lost_to_simplification;
+            if (assignment.home[i] == static_cast<int>(p) || lost_to_simplification) {
+                mine.push_back(hole_candidates[i]);
+                index.push_back(i);
+            }
+        }
+        if (!lost_any) continue;  // the common case: nothing to win
+        const HoleAssignment again = assign_holes(mine, {outers[p]}, true, min_area);
+        size_t kept_before = 0, kept_again = 0;
+        for (size_t k = 0; k < mine.size(); ++k) {
+            kept_before += assignment.fate[index[k]] == HoleFate::Kept;
+            kept_again += again.fate[k] == HoleFate::Kept;
+        }
+        if (kept_again <= kept_before) continue;
+        together[p] = true;
+        for (size_t k = 0; k < mine.size(); ++k) {
+            assignment.fate[index[k]] = again.fate[k];
+            assignment.home[index[k]] = again.fate[k] == HoleFate::Kept ? static_cast<int>(p) : -1;
+        }
+    }
+    return together;
+}
+
+// The polygons: each outline with the holes assigned to it, oriented.
+std::vector<Footprint> assemble_polygons(const std::vector<Piece>& outers, const std::vector<Piece>& hole_candidates,
+                                         const HoleAssignment& assignment, const std::vector<bool>& together,
+                                         double simplify_angle_deg) {
+    std::vector<Footprint> polygons;
+    for (size_t p = 0; p < outers.size(); ++p) {
+        std::vector<Ring> rings{together[p] ? outers[p].unsimplified : outers[p].ring};
+        for (size_t i = 0; i < hole_candidates.size(); ++i)
+            if (assignment.home[i] == static_cast<int>(p))
+                rings.push_back(together[p] ? hole_candidates[i].unsimplified : hole_candidates[i].ring);
+        if (together[p]) {
+            // CGAL keeps the rings apart, but the 1 cm clean-up after it may drop an outline
+            // vertex a hole was kept clear of: then the unsimplified rings.
+            std::vector<Ring> simplified = simplified_together(rings, simplify_angle_deg);
+            if (holes_inside_and_apart(simplified)) rings = std::move(simplified);
+        }
+        Footprint f{oriented(std::move(rings[0]), true), {}};
+        for (size_t k = 1; k < rings.size(); ++k) f.holes.push_back(oriented(std::move(rings[k]), false));
+        polygons.push_back(std::move(f));
+    }
+    return polygons;
+}
+
 std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring>& holes,
                                        const BuildingParams& params, ParseReport& report,
                                        const std::string& kind) {
@@ -372,53 +433,9 @@ std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring
     // cost a hole assigns its holes again on the unsimplified rings, then simplifies all its
     // rings together (CGAL), which keeps them apart.
     HoleAssignment assignment = assign_holes(hole_candidates, outers, false, params.min_area);
-    std::vector<bool> together(outers.size(), false);
-    for (size_t p = 0; p < outers.size(); ++p) {
-        std::vector<Piece> mine;  // the holes that could be this polygon's, in order
-        std::vector<size_t> index;
-        bool lost_any = false;
-        for (size_t i = 0; i < hole_candidates.size(); ++i) {
-            const HoleFate fate = assignment.fate[i];
-            const bool lost_to_simplification =
-                (fate == HoleFate::Outside || fate == HoleFate::Overlaps) &&
-                ring_strictly_inside(hole_candidates[i].unsimplified, outers[p].unsimplified);
-            lost_any |= lost_to_simplification;
-            if (assignment.home[i] == static_cast<int>(p) || lost_to_simplification) {
-                mine.push_back(hole_candidates[i]);
-                index.push_back(i);
-            }
-        }
-        if (!lost_any) continue;  // the common case: nothing to win
-        const HoleAssignment again = assign_holes(mine, {outers[p]}, true, params.min_area);
-        size_t kept_before = 0, kept_again = 0;
-        for (size_t k = 0; k < mine.size(); ++k) {
-            kept_before += assignment.fate[index[k]] == HoleFate::Kept;
-            kept_again += again.fate[k] == HoleFate::Kept;
-        }
-        if (kept_again <= kept_before) continue;
-        together[p] = true;
-        for (size_t k = 0; k < mine.size(); ++k) {
-            assignment.fate[index[k]] = again.fate[k];
-            assignment.home[index[k]] = again.fate[k] == HoleFate::Kept ? static_cast<int>(p) : -1;
-        }
-    }
-
-    std::vector<Footprint> polygons;
-    for (size_t p = 0; p < outers.size(); ++p) {
-        std::vector<Ring> rings{together[p] ? outers[p].unsimplified : outers[p].ring};
-        for (size_t i = 0; i < hole_candidates.size(); ++i)
-            if (assignment.home[i] == static_cast<int>(p))
-                rings.push_back(together[p] ? hole_candidates[i].unsimplified : hole_candidates[i].ring);
-        if (together[p]) {
-            // CGAL keeps the rings apart, but the 1 cm clean-up after it may drop an outline
-            // vertex a hole was kept clear of: then the unsimplified rings.
-            std::vector<Ring> simplified = simplified_together(rings, params.simplify_angle_deg);
-            if (holes_inside_and_apart(simplified)) rings = std::move(simplified);
-        }
-        Footprint f{oriented(std::move(rings[0]), true), {}};
-        for (size_t k = 1; k < rings.size(); ++k) f.holes.push_back(oriented(std::move(rings[k]), false));
-        polygons.push_back(std::move(f));
-    }
+    const std::vector<bool> together = assign_lost_holes_again(hole_candidates, outers, params.min_area, assignment);
+    std::vector<Footprint> polygons =
+        assemble_polygons(outers, hole_candidates, assignment, together, params.simplify_angle_deg);
     for (HoleFate fate : assignment.fate) {
         if (fate == HoleFate::BelowMinArea) report.dropped(hole_kind, text_of(Reason::HoleBelowMinArea));
         if (fate == HoleFate::Outside) report.dropped(hole_kind, text_of(Reason::HoleOutside));
