@@ -31,9 +31,9 @@ inline constexpr char kNoPieceLeft[] = "no piece left";
 inline constexpr char kMergedCollinear[] = "merged collinear pieces";
 
 // One straight piece of carriageway between two OSM nodes. As in the thesis the project started
-// from (see README), every edge is a single straight segment: a way with many nodes yields many edges that meet at
-// degree-2 joins; only nearly collinear runs are merged into one edge (the skipped
-// nodes then lie within a few centimetres of the straight piece).
+// from (see README), every edge is a single straight segment: a way with many nodes yields many
+// edges that meet at degree-2 joins; only nearly collinear runs are merged into one edge (the
+// skipped nodes then lie within a few centimetres of the straight piece).
 struct RoadGraphEdge {
     int64_t way_id = 0;
     int64_t from_node = 0, to_node = 0;
