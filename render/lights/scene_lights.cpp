@@ -108,21 +108,22 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
     strips_.shrink_to_fit();
     split_ = options.sampler == LightSamplerKind::Tree && !lamps_.empty() && !strips_.empty();
     if (split_) {
-        strip_sampler_ = LightSampler(std::vector<LightBounds>(bounds.begin() + lamps_.size(), bounds.end()), options.sampler);
+        strip_sampler_ =
+            make_light_sampler(std::vector<LightBounds>(bounds.begin() + lamps_.size(), bounds.end()), options.sampler);
         bounds.resize(lamps_.size());
     }
-    sampler_ = LightSampler(bounds, options.sampler);
+    sampler_ = make_light_sampler(bounds, options.sampler);
 }
 
 bool SceneLights::choose_light(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {
-    if (!split_) return sampler_.sample(p, n, u, light, pmf);
+    if (!split_) return sampler_ && sampler_->sample(p, n, u, light, pmf);
     // One uniform number for both steps, rescaled after the first (as the tree's descent does).
     if (u < kLampShare) {
-        if (!sampler_.sample(p, n, std::min(u / kLampShare, 0x1.fffffffffffffp-1), light, pmf)) return false;
+        if (!sampler_->sample(p, n, std::min(u / kLampShare, 0x1.fffffffffffffp-1), light, pmf)) return false;
         *pmf *= kLampShare;
         return true;
     }
-    if (!strip_sampler_.sample(p, n, std::min((u - kLampShare) / (1 - kLampShare), 0x1.fffffffffffffp-1), light, pmf))
+    if (!strip_sampler_->sample(p, n, std::min((u - kLampShare) / (1 - kLampShare), 0x1.fffffffffffffp-1), light, pmf))
         return false;
     *pmf *= 1 - kLampShare;
     *light += static_cast<uint32_t>(lamps_.size());
@@ -130,13 +131,14 @@ bool SceneLights::choose_light(Vec3 p, Vec3 n, double u, uint32_t* light, double
 }
 
 double SceneLights::light_pmf(Vec3 p, Vec3 n, uint32_t light) const {
-    if (!split_) return sampler_.pmf(p, n, light);
-    if (light < lamps_.size()) return kLampShare * sampler_.pmf(p, n, light);
-    return (1 - kLampShare) * strip_sampler_.pmf(p, n, light - static_cast<uint32_t>(lamps_.size()));
+    if (!split_) return sampler_ ? sampler_->pmf(p, n, light) : 0;
+    if (light < lamps_.size()) return kLampShare * sampler_->pmf(p, n, light);
+    return (1 - kLampShare) * strip_sampler_->pmf(p, n, light - static_cast<uint32_t>(lamps_.size()));
 }
 
 size_t SceneLights::bytes() const {
-    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) + sampler_.bytes() + strip_sampler_.bytes();
+    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) + (sampler_ ? sampler_->bytes() : 0) +
+           (strip_sampler_ ? strip_sampler_->bytes() : 0);
 }
 
 bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {

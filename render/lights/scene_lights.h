@@ -166,8 +166,8 @@ private:
     // street's first hits was 5x further from proportional to the lamps' unshadowed light
     // (tests/bench/night_bench.sh street view; see README). Uniform and power choose among all
     // lights at once, as their names say.
-    LightSampler sampler_;        // all lights; with the tree, the lamps
-    LightSampler strip_sampler_;  // with the tree, the window strips
+    std::unique_ptr<LightSampler> sampler_;        // all lights; with the tree, the lamps (null: no lights)
+    std::unique_ptr<LightSampler> strip_sampler_;  // with the tree, the window strips (null unless split_)
     // With the tree, the probability of choosing among the lamps. Not their share of the power
     // (0.65 on Monaco): a window's light leaves a recessed pane, mostly sideways and upwards into
     // other facades, and most window samples end in the shadow roulette, while a lamp lights the
