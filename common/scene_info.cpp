@@ -33,9 +33,8 @@ void print_building_looks(const Scene& s, std::FILE* out) {
     list("wall_materials", walls);
 }
 
-}  // namespace
-
-void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
+// Where the scene comes from, its frame and seed.
+void print_header_info(const Scene& s, const std::string& name, std::FILE* out) {
     const SceneHeader& h = s.header;
     std::fprintf(out, "scene: %s\n", name.c_str());
     std::fprintf(out, "format_version: %u.%u\n", h.format_major, h.format_minor);
@@ -47,7 +46,9 @@ void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
                  h.bounds_min.y, h.bounds_max.x, h.bounds_max.y, h.bounds_max.x - h.bounds_min.x,
                  h.bounds_max.y - h.bounds_min.y);
     std::fprintf(out, "seed: %llu\n", static_cast<unsigned long long>(h.seed));
+}
 
+void print_buildings_info(const Scene& s, std::FILE* out) {
     size_t holes = 0, parts = 0, tagged_heights = 0;
     for (const Building& b : s.buildings) {
         holes += b.holes.size();
@@ -75,6 +76,10 @@ void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
         std::fprintf(out, "building_vertices: %zu\n", vertices);
         print_building_looks(s, out);
     }
+}
+
+// Roads, joints, sidewalks and lamps.
+void print_streets_info(const Scene& s, std::FILE* out) {
     std::fprintf(out, "roads: %zu\n", s.roads.size());
     std::map<std::string, size_t> per_class;
     for (const RoadEdge& r : s.roads) ++per_class[to_string(r.road_class)];
@@ -88,51 +93,62 @@ void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
     for (const Lamp& l : s.lamps) generated += l.source == LampSource::Generated;
     std::fprintf(out, "lamps: %zu (%zu tagged, %zu generated)\n", s.lamps.size(),
                  s.lamps.size() - generated, generated);
-    // Format 1.1: land cover by class (polygons and square metres) and trees by source.
+}
+
+// Format 1.1: land cover by class (polygons and square metres) and trees by source.
+void print_land_cover_info(const Scene& s, std::FILE* out) {
     std::fprintf(out, "land_cover: %zu\n", s.land_cover.size());
-    {
-        size_t count[kLandCoverClassCount] = {}, holes = 0;
-        double area[kLandCoverClassCount] = {};
-        for (const LandCover& c : s.land_cover) {
-            const int k = static_cast<int>(c.cover);
-            ++count[k];
-            area[k] += std::fabs(signed_area(c.outer));
-            for (const Ring& hole : c.holes) area[k] -= std::fabs(signed_area(hole));
-            holes += c.holes.size();
-        }
-        for (int k = 0; k < kLandCoverClassCount; ++k)
-            if (count[k])
-                std::fprintf(out, "land_cover_%s: %zu (%.0f m2)\n", to_string(static_cast<LandCoverClass>(k)),
-                             count[k], area[k]);
-        std::fprintf(out, "land_cover_holes: %zu\n", holes);
+    size_t count[kLandCoverClassCount] = {}, holes = 0;
+    double area[kLandCoverClassCount] = {};
+    for (const LandCover& c : s.land_cover) {
+        const int k = static_cast<int>(c.cover);
+        ++count[k];
+        area[k] += std::fabs(signed_area(c.outer));
+        for (const Ring& hole : c.holes) area[k] -= std::fabs(signed_area(hole));
+        holes += c.holes.size();
     }
-    {
-        size_t by_source[3] = {};
-        for (const Tree& t : s.trees) ++by_source[static_cast<int>(t.source)];
-        std::fprintf(out, "trees: %zu (%zu mapped, %zu in rows, %zu scattered)\n", s.trees.size(), by_source[0],
-                     by_source[1], by_source[2]);
+    for (int k = 0; k < kLandCoverClassCount; ++k)
+        if (count[k])
+            std::fprintf(out, "land_cover_%s: %zu (%.0f m2)\n", to_string(static_cast<LandCoverClass>(k)),
+                         count[k], area[k]);
+    std::fprintf(out, "land_cover_holes: %zu\n", holes);
+}
+
+// Trees by source, paths and rails by class, crossings and markings.
+void print_map_details_info(const Scene& s, std::FILE* out) {
+    size_t by_source[3] = {};
+    for (const Tree& t : s.trees) ++by_source[static_cast<int>(t.source)];
+    std::fprintf(out, "trees: %zu (%zu mapped, %zu in rows, %zu scattered)\n", s.trees.size(), by_source[0],
+                 by_source[1], by_source[2]);
+    size_t per_class[kPathClassCount] = {}, mapped_sidewalks = 0;
+    for (const PathEdge& p : s.paths) {
+        ++per_class[static_cast<int>(p.path_class)];
+        mapped_sidewalks += p.sidewalk;
     }
-    {
-        size_t per_class[kPathClassCount] = {}, mapped_sidewalks = 0;
-        for (const PathEdge& p : s.paths) {
-            ++per_class[static_cast<int>(p.path_class)];
-            mapped_sidewalks += p.sidewalk;
-        }
-        std::fprintf(out, "paths: %zu (%zu mapped sidewalks)\n", s.paths.size(), mapped_sidewalks);
-        for (int k = 0; k < kPathClassCount; ++k)
-            if (per_class[k]) std::fprintf(out, "paths_%s: %zu\n", to_string(static_cast<PathClass>(k)), per_class[k]);
-        std::fprintf(out, "path_joints: %zu\n", s.path_joints.size());
-        size_t zebras = 0, marked = 0;
-        for (const Crossing& c : s.crossings) zebras += c.kind == CrossingKind::Zebra;
-        for (const RoadEdge& r : s.roads) marked += r.centre_line != CentreLine::None || r.edge_lines;
-        std::fprintf(out, "crossings: %zu (%zu zebra, %zu stop lines)\n", s.crossings.size(), zebras,
-                     s.crossings.size() - zebras);
-        std::fprintf(out, "roads_with_markings: %zu\n", marked);
-    }
+    std::fprintf(out, "paths: %zu (%zu mapped sidewalks)\n", s.paths.size(), mapped_sidewalks);
+    for (int k = 0; k < kPathClassCount; ++k)
+        if (per_class[k]) std::fprintf(out, "paths_%s: %zu\n", to_string(static_cast<PathClass>(k)), per_class[k]);
+    std::fprintf(out, "path_joints: %zu\n", s.path_joints.size());
+    size_t zebras = 0, marked = 0;
+    for (const Crossing& c : s.crossings) zebras += c.kind == CrossingKind::Zebra;
+    for (const RoadEdge& r : s.roads) marked += r.centre_line != CentreLine::None || r.edge_lines;
+    std::fprintf(out, "crossings: %zu (%zu zebra, %zu stop lines)\n", s.crossings.size(), zebras,
+                 s.crossings.size() - zebras);
+    std::fprintf(out, "roads_with_markings: %zu\n", marked);
+}
+
+}  // namespace
+
+void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
+    print_header_info(s, name, out);
+    print_buildings_info(s, out);
+    print_streets_info(s, out);
+    print_land_cover_info(s, out);
+    print_map_details_info(s, out);
     std::fprintf(out, "ground: [%.1f, %.1f] - [%.1f, %.1f] m at z=%.2f\n", s.ground.min.x,
                  s.ground.min.y, s.ground.max.x, s.ground.max.y, s.ground.z);
     std::fprintf(out, "options:\n");
-    for (const auto& [k, v] : h.options) std::fprintf(out, "  %s = %s\n", k.c_str(), v.c_str());
+    for (const auto& [k, v] : s.header.options) std::fprintf(out, "  %s = %s\n", k.c_str(), v.c_str());
 }
 
 }  // namespace citygen

@@ -116,7 +116,7 @@ struct Checker {
     // A coordinate: finite and within kMaxCoordinate of the origin.
     double coordinate(float v, const char* what, double limit = kMaxCoordinate) const {
         finite(v, what);
-        if (std::fabs(v) > limit)
+        if (!coordinate_within_limit(v, limit))
             fail(std::string("coordinate in ") + what + " is " + std::to_string(v) + " m from the origin (limit " +
                  std::to_string(static_cast<long>(limit)) + " m)");
         return v;
@@ -147,8 +147,7 @@ struct Checker {
     }
     // One object's points fit in a max_extent square.
     void extent(const std::vector<Vec2>& points, const char* what, double max_extent = kMaxObjectExtent) const {
-        const Box2 box = bounds_of(points);
-        if (!box.empty() && std::max(box.max.x - box.min.x, box.max.y - box.min.y) > max_extent)
+        if (!extent_within_limit(points, max_extent))
             fail(std::string(what) + " is over " + std::to_string(static_cast<long>(max_extent)) + " m across");
     }
     Ring ring(const fb::Ring* r, const char* what, size_t max_points = kMaxRingPoints,
@@ -306,6 +305,104 @@ void release_part(std::vector<T>& part, const std::function<void()>* released) {
 template <typename T>
 void release_part(const std::vector<T>&, const std::function<void()>*) {}
 
+// Each part of the scene in the order of the file; the buildings are encoded as they come.
+std::vector<flatbuffers::Offset<fb::RoadEdge>> encode_roads(Builder& b, const std::vector<RoadEdge>& items) {
+    std::vector<flatbuffers::Offset<fb::RoadEdge>> roads;
+    for (const RoadEdge& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto quad = points(b, x.quad);
+        const auto centreline = points(b, x.centreline);
+        roads.push_back(fb::CreateRoadEdge(
+            b, &osm, x.from_node, x.to_node, centreline, quad,
+            static_cast<float>(x.width), static_cast<fb::RoadClass>(x.road_class),
+            static_cast<uint8_t>(x.lanes), x.oneway, x.bridge, x.from_joint, x.to_joint,
+            x.sidewalk_left, x.sidewalk_right, static_cast<uint8_t>(x.lanes_forward),
+            static_cast<uint8_t>(x.lanes_backward), static_cast<fb::CentreLine>(x.centre_line), x.edge_lines,
+            x.cycle_lane_left, x.cycle_lane_right));
+    }
+    return roads;
+}
+
+std::vector<flatbuffers::Offset<fb::Joint>> encode_joints(Builder& b, const std::vector<Joint>& items) {
+    std::vector<flatbuffers::Offset<fb::Joint>> joints;
+    for (const Joint& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto edges = b.CreateVector(x.edges);
+        const auto polygon = points(b, x.polygon);
+        joints.push_back(
+            fb::CreateJoint(b, &osm, polygon, edges));
+    }
+    return joints;
+}
+
+std::vector<flatbuffers::Offset<fb::Sidewalk>> encode_sidewalks(Builder& b, const std::vector<Sidewalk>& items) {
+    std::vector<flatbuffers::Offset<fb::Sidewalk>> sidewalks;
+    for (const Sidewalk& x : items)
+        sidewalks.push_back(fb::CreateSidewalk(b, static_cast<fb::SidewalkKind>(x.kind),
+                                               points(b, x.polygon), x.road, x.joint,
+                                               static_cast<float>(x.curb_height)));
+    return sidewalks;
+}
+
+std::vector<flatbuffers::Offset<fb::Lamp>> encode_lamps(Builder& b, const std::vector<Lamp>& items) {
+    std::vector<flatbuffers::Offset<fb::Lamp>> lamps;
+    for (const Lamp& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        fb::Vec3 pos = to_fb(x.position);
+        lamps.push_back(fb::CreateLamp(b, &osm, &pos, static_cast<float>(x.height),
+                                       static_cast<fb::LampSource>(x.source)));
+    }
+    return lamps;
+}
+
+std::vector<flatbuffers::Offset<fb::LandCover>> encode_land_cover(Builder& b, const std::vector<LandCover>& items) {
+    std::vector<flatbuffers::Offset<fb::LandCover>> land_cover;
+    for (const LandCover& x : items) {
+        std::vector<flatbuffers::Offset<fb::Ring>> holes;
+        for (const Ring& r : x.holes) holes.push_back(ring(b, r));
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto hole_vector = b.CreateVector(holes);
+        const auto outer = ring(b, x.outer);
+        land_cover.push_back(fb::CreateLandCover(b, &osm, static_cast<fb::LandCoverClass>(x.cover), outer, hole_vector));
+    }
+    return land_cover;
+}
+
+std::vector<flatbuffers::Offset<fb::PathEdge>> encode_paths(Builder& b, const std::vector<PathEdge>& items) {
+    std::vector<flatbuffers::Offset<fb::PathEdge>> paths;
+    for (const PathEdge& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto quad = points(b, x.quad);
+        const auto centreline = points(b, x.centreline);
+        paths.push_back(fb::CreatePathEdge(b, &osm, x.from_node, x.to_node, centreline, quad,
+                                           static_cast<float>(x.width), static_cast<fb::PathClass>(x.path_class),
+                                           x.from_joint, x.to_joint, x.sidewalk));
+    }
+    return paths;
+}
+
+std::vector<flatbuffers::Offset<fb::Crossing>> encode_crossings(Builder& b, const std::vector<Crossing>& items) {
+    std::vector<flatbuffers::Offset<fb::Crossing>> crossings;
+    for (const Crossing& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        fb::Vec2 pos = to_fb(x.position);
+        crossings.push_back(fb::CreateCrossing(b, &osm, x.road, &pos, static_cast<fb::CrossingKind>(x.kind),
+                                               static_cast<fb::RoadSide>(x.side)));
+    }
+    return crossings;
+}
+
+std::vector<fb::Tree> encode_trees(const std::vector<Tree>& items) {
+    std::vector<fb::Tree> trees;
+    trees.reserve(items.size());
+    for (const Tree& x : items)
+        trees.emplace_back(static_cast<float>(x.position.x), static_cast<float>(x.position.y),
+                           static_cast<float>(x.height), static_cast<float>(x.crown_diameter), x.osm.id,
+                           static_cast<fb::OsmType>(x.osm.type), static_cast<fb::LeafType>(x.leaf_type),
+                           static_cast<fb::TreeSource>(x.source));
+    return trees;
+}
+
 }  // namespace
 
 struct SceneEncoder::State {
@@ -340,95 +437,32 @@ void SceneEncoder::finish_parts(S& scene, const std::function<void()>* release) 
     *const_cast<fb::Vec2*>(header->bounds_min()) = to_fb(scene.header.bounds_min);
     *const_cast<fb::Vec2*>(header->bounds_max()) = to_fb(scene.header.bounds_max);
 
-    std::vector<flatbuffers::Offset<fb::RoadEdge>> roads;
-    for (const RoadEdge& x : scene.roads) {
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto quad = points(b, x.quad);
-        const auto centreline = points(b, x.centreline);
-        roads.push_back(fb::CreateRoadEdge(
-            b, &osm, x.from_node, x.to_node, centreline, quad,
-            static_cast<float>(x.width), static_cast<fb::RoadClass>(x.road_class),
-            static_cast<uint8_t>(x.lanes), x.oneway, x.bridge, x.from_joint, x.to_joint,
-            x.sidewalk_left, x.sidewalk_right, static_cast<uint8_t>(x.lanes_forward),
-            static_cast<uint8_t>(x.lanes_backward), static_cast<fb::CentreLine>(x.centre_line), x.edge_lines,
-            x.cycle_lane_left, x.cycle_lane_right));
-    }
+    const auto roads = encode_roads(b, scene.roads);
     release_part(scene.roads, release);
 
-    std::vector<flatbuffers::Offset<fb::Joint>> joints;
-    for (const Joint& x : scene.joints) {
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto edges = b.CreateVector(x.edges);
-        const auto polygon = points(b, x.polygon);
-        joints.push_back(
-            fb::CreateJoint(b, &osm, polygon, edges));
-    }
+    const auto joints = encode_joints(b, scene.joints);
     release_part(scene.joints, release);
 
-    std::vector<flatbuffers::Offset<fb::Sidewalk>> sidewalks;
-    for (const Sidewalk& x : scene.sidewalks)
-        sidewalks.push_back(fb::CreateSidewalk(b, static_cast<fb::SidewalkKind>(x.kind),
-                                               points(b, x.polygon), x.road, x.joint,
-                                               static_cast<float>(x.curb_height)));
+    const auto sidewalks = encode_sidewalks(b, scene.sidewalks);
     release_part(scene.sidewalks, release);
 
-    std::vector<flatbuffers::Offset<fb::Lamp>> lamps;
-    for (const Lamp& x : scene.lamps) {
-        fb::OsmRef osm = to_fb(x.osm);
-        fb::Vec3 pos = to_fb(x.position);
-        lamps.push_back(fb::CreateLamp(b, &osm, &pos, static_cast<float>(x.height),
-                                       static_cast<fb::LampSource>(x.source)));
-    }
+    const auto lamps = encode_lamps(b, scene.lamps);
     release_part(scene.lamps, release);
     fb::Vec2 gmin = to_fb(scene.ground.min), gmax = to_fb(scene.ground.max);
     auto ground = fb::CreateGround(b, &gmin, &gmax, static_cast<float>(scene.ground.z));
 
-    std::vector<flatbuffers::Offset<fb::LandCover>> land_cover;
-    for (const LandCover& x : scene.land_cover) {
-        std::vector<flatbuffers::Offset<fb::Ring>> holes;
-        for (const Ring& r : x.holes) holes.push_back(ring(b, r));
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto hole_vector = b.CreateVector(holes);
-        const auto outer = ring(b, x.outer);
-        land_cover.push_back(fb::CreateLandCover(b, &osm, static_cast<fb::LandCoverClass>(x.cover), outer, hole_vector));
-    }
+    const auto land_cover = encode_land_cover(b, scene.land_cover);
     release_part(scene.land_cover, release);
 
-    std::vector<fb::Tree> trees;
-    trees.reserve(scene.trees.size());
-    for (const Tree& x : scene.trees)
-        trees.emplace_back(static_cast<float>(x.position.x), static_cast<float>(x.position.y),
-                           static_cast<float>(x.height), static_cast<float>(x.crown_diameter), x.osm.id,
-                           static_cast<fb::OsmType>(x.osm.type), static_cast<fb::LeafType>(x.leaf_type),
-                           static_cast<fb::TreeSource>(x.source));
+    const auto trees = encode_trees(scene.trees);
     release_part(scene.trees, release);
 
-    std::vector<flatbuffers::Offset<fb::PathEdge>> paths;
-    for (const PathEdge& x : scene.paths) {
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto quad = points(b, x.quad);
-        const auto centreline = points(b, x.centreline);
-        paths.push_back(fb::CreatePathEdge(b, &osm, x.from_node, x.to_node, centreline, quad,
-                                           static_cast<float>(x.width), static_cast<fb::PathClass>(x.path_class),
-                                           x.from_joint, x.to_joint, x.sidewalk));
-    }
+    const auto paths = encode_paths(b, scene.paths);
     release_part(scene.paths, release);
-    std::vector<flatbuffers::Offset<fb::Joint>> path_joints;
-    for (const Joint& x : scene.path_joints) {
-        fb::OsmRef osm = to_fb(x.osm);
-        const auto edges = b.CreateVector(x.edges);
-        const auto polygon = points(b, x.polygon);
-        path_joints.push_back(fb::CreateJoint(b, &osm, polygon, edges));
-    }
+    const auto path_joints = encode_joints(b, scene.path_joints);
     release_part(scene.path_joints, release);
 
-    std::vector<flatbuffers::Offset<fb::Crossing>> crossings;
-    for (const Crossing& x : scene.crossings) {
-        fb::OsmRef osm = to_fb(x.osm);
-        fb::Vec2 pos = to_fb(x.position);
-        crossings.push_back(fb::CreateCrossing(b, &osm, x.road, &pos, static_cast<fb::CrossingKind>(x.kind),
-                                               static_cast<fb::RoadSide>(x.side)));
-    }
+    const auto crossings = encode_crossings(b, scene.crossings);
     release_part(scene.crossings, release);
 
     const auto crossing_vector = b.CreateVector(crossings);
@@ -466,24 +500,12 @@ std::vector<uint8_t> encode_scene(const Scene& scene) {
     return {encoder.data(), encoder.data() + encoder.size()};
 }
 
-Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
-    Checker check{name};
-    if (size == 0) check.fail("empty file, not a citygen scene");
-    if (size < 8 || !fb::SceneBufferHasIdentifier(data))
-        check.fail("not a citygen scene (wrong file identifier)");
-    flatbuffers::Verifier verifier(data, size, 64, 100000000);
-    if (!fb::VerifySceneBuffer(verifier)) check.fail("corrupt or truncated scene (verification failed)");
+namespace {
 
-    const fb::Scene* in = fb::GetScene(data);
-    const fb::Header* h = in->header();
-    if (!h) check.fail("scene has no header");
-    if (h->format_major() > kSceneFormatMajor)
-        check.fail("scene format " + std::to_string(h->format_major()) + "." +
-                   std::to_string(h->format_minor()) + " is newer than this program reads (" +
-                   std::to_string(kSceneFormatMajor) + ".x); update citygen");
-
-    Scene s;
+// The header: format, origin, bounds, seed and the options the parse ran with.
+void decode_header(const fb::Scene* in, Checker& check, Scene& s) {
     SceneHeader& out = s.header;
+    const fb::Header* h = in->header();
     out.format_major = h->format_major();
     out.format_minor = h->format_minor();
     out.generator = str(h->generator());
@@ -500,7 +522,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
         for (const fb::KeyValue* kv : *h->options())
             out.options.emplace_back(str(kv->key()), str(kv->value()));
     out.source = str(h->source());
+}
 
+void decode_buildings(const fb::Scene* in, Checker& check, Scene& s) {
     if (in->buildings())
         for (const fb::Building* x : *in->buildings()) {
             Building bld;
@@ -522,10 +546,10 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             decode_building_look(x, check, bld);
             s.buildings.push_back(std::move(bld));
         }
+}
 
-    const size_t road_count = in->roads() ? in->roads()->size() : 0;
+void decode_roads(const fb::Scene* in, Checker& check, Scene& s) {
     const size_t joint_count = in->joints() ? in->joints()->size() : 0;
-
     if (in->roads())
         for (const fb::RoadEdge* x : *in->roads()) {
             RoadEdge r;
@@ -553,7 +577,10 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             r.cycle_lane_right = x->cycle_lane_right();
             s.roads.push_back(std::move(r));
         }
+}
 
+void decode_joints(const fb::Scene* in, Checker& check, Scene& s) {
+    const size_t road_count = in->roads() ? in->roads()->size() : 0;
     if (in->joints())
         for (const fb::Joint* x : *in->joints()) {
             Joint j;
@@ -566,7 +593,11 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
                 }
             s.joints.push_back(std::move(j));
         }
+}
 
+void decode_sidewalks(const fb::Scene* in, Checker& check, Scene& s) {
+    const size_t road_count = in->roads() ? in->roads()->size() : 0;
+    const size_t joint_count = in->joints() ? in->joints()->size() : 0;
     if (in->sidewalks())
         for (const fb::Sidewalk* x : *in->sidewalks()) {
             Sidewalk w;
@@ -578,7 +609,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             w.curb_height = check.height(x->curb_height(), "sidewalk curb height");
             s.sidewalks.push_back(std::move(w));
         }
+}
 
+void decode_lamps(const fb::Scene* in, Checker& check, Scene& s) {
     if (in->lamps())
         for (const fb::Lamp* x : *in->lamps()) {
             Lamp l;
@@ -592,7 +625,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             l.source = static_cast<LampSource>(x->source());
             s.lamps.push_back(l);
         }
+}
 
+void decode_ground(const fb::Scene* in, Checker& check, Scene& s) {
     if (const fb::Ground* g = in->ground()) {
         // The ground reaches a margin beyond the objects.
         for (const fb::Vec2* p : {g->min(), g->max()}) {
@@ -604,7 +639,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
         s.ground.max = {g->max()->x(), g->max()->y()};
         s.ground.z = check.coordinate(g->z(), "ground");
     }
+}
 
+void decode_land_cover(const fb::Scene* in, Checker& check, Scene& s) {
     if (in->land_cover())
         for (const fb::LandCover* x : *in->land_cover()) {
             LandCover c;
@@ -620,7 +657,9 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
                 }
             s.land_cover.push_back(std::move(c));
         }
+}
 
+void decode_trees(const fb::Scene* in, Checker& check, Scene& s) {
     // The verifier aligns a vector of structs to 4 bytes only; a Tree holds a long and needs 8.
     if (in->trees() && in->trees()->size() > 0 &&
         reinterpret_cast<uintptr_t>(in->trees()->Data()) % alignof(fb::Tree) != 0)
@@ -640,7 +679,10 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             t.source = static_cast<TreeSource>(x->source());
             s.trees.push_back(t);
         }
+}
 
+// Paths and rails with their joints.
+void decode_paths(const fb::Scene* in, Checker& check, Scene& s) {
     const size_t path_count = in->paths() ? in->paths()->size() : 0;
     const size_t path_joint_count = in->path_joints() ? in->path_joints()->size() : 0;
     if (in->paths())
@@ -672,6 +714,10 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
                 }
             s.path_joints.push_back(std::move(j));
         }
+}
+
+void decode_crossings(const fb::Scene* in, Checker& check, Scene& s) {
+    const size_t road_count = in->roads() ? in->roads()->size() : 0;
     if (in->crossings())
         for (const fb::Crossing* x : *in->crossings()) {
             Crossing c;
@@ -684,7 +730,47 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
             c.side = static_cast<RoadSide>(x->side());
             s.crossings.push_back(c);
         }
+}
+
+}  // namespace
+
+Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
+    Checker check{name};
+    if (size == 0) check.fail("empty file, not a citygen scene");
+    if (size < 8 || !fb::SceneBufferHasIdentifier(data))
+        check.fail("not a citygen scene (wrong file identifier)");
+    flatbuffers::Verifier verifier(data, size, 64, 100000000);
+    if (!fb::VerifySceneBuffer(verifier)) check.fail("corrupt or truncated scene (verification failed)");
+
+    const fb::Scene* in = fb::GetScene(data);
+    const fb::Header* h = in->header();
+    if (!h) check.fail("scene has no header");
+    if (h->format_major() > kSceneFormatMajor)
+        check.fail("scene format " + std::to_string(h->format_major()) + "." +
+                   std::to_string(h->format_minor()) + " is newer than this program reads (" +
+                   std::to_string(kSceneFormatMajor) + ".x); update citygen");
+
+    Scene s;
+    decode_header(in, check, s);
+    decode_buildings(in, check, s);
+    decode_roads(in, check, s);
+    decode_joints(in, check, s);
+    decode_sidewalks(in, check, s);
+    decode_lamps(in, check, s);
+    decode_ground(in, check, s);
+    decode_land_cover(in, check, s);
+    decode_trees(in, check, s);
+    decode_paths(in, check, s);
+    decode_crossings(in, check, s);
     return s;
+}
+
+void check_scene_loads(const uint8_t* data, size_t size, const std::string& name) {
+    try {
+        decode_scene(data, size, name);
+    } catch (const Error& e) {
+        throw Error(std::string(e.what()) + " (not written: the scene loader would refuse it)");
+    }
 }
 
 Scene load_scene(const std::string& path) {

@@ -50,6 +50,10 @@ size_t encoded_size_bound(const Scene& scene);
 // corrupt buffer, index out of range, non-finite coordinate.
 Scene decode_scene(const uint8_t* data, size_t size, const std::string& name);
 
+// The writer's last guard: throws citygen::Error (one line naming `name` and the problem) when
+// decode_scene would refuse these bytes, so nothing is written that its own loader refuses.
+void check_scene_loads(const uint8_t* data, size_t size, const std::string& name);
+
 // Loads a scene file; throws citygen::Error with one line naming the file.
 Scene load_scene(const std::string& path);
 

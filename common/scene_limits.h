@@ -3,7 +3,12 @@
 // bounded by the file's size and never by the values inside it. Documented in README.md.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <vector>
+
+#include "common/geometry.h"
 
 namespace citygen {
 
@@ -22,5 +27,22 @@ constexpr size_t kMaxRingPoints = 10000;
 // mode's tiling costs about points^2 / 32, a second or two at this limit).
 constexpr size_t kMaxLandCoverPoints = 100000;
 constexpr double kMaxLandCoverExtent = 2 * kMaxCoordinate;
+
+// The checks themselves, on a value as the scene stores it (float32): decode_scene refuses
+// what fails them, and osmparse drops or clips it before writing with these same functions.
+// A coordinate within `limit` of the origin (and finite).
+inline bool coordinate_within_limit(double v, double limit = kMaxCoordinate) {
+    // Compared as a double first: a double beyond float's range has no float value.
+    return std::fabs(v) <= 2 * limit && std::fabs(static_cast<float>(v)) <= limit;
+}
+inline bool point_within_limit(Vec2 p, double limit = kMaxCoordinate) {
+    return coordinate_within_limit(p.x, limit) && coordinate_within_limit(p.y, limit);
+}
+// One object's points, as stored, fit in a `max_extent` square.
+inline bool extent_within_limit(const std::vector<Vec2>& points, double max_extent = kMaxObjectExtent) {
+    Box2 box;
+    for (Vec2 p : points) box.extend({static_cast<float>(p.x), static_cast<float>(p.y)});
+    return box.empty() || std::max(box.max.x - box.min.x, box.max.y - box.min.y) <= max_extent;
+}
 
 }  // namespace citygen

@@ -46,6 +46,105 @@ std::vector<std::string> split_list(const std::string& text) {
     return out;
 }
 
+// The command line's values that are not ParseJob's own.
+struct Options {
+    std::string output, info_file, geojson;
+    std::vector<std::string> diff_files;
+    double tolerance = 0.01;
+    std::string ignore_types, road_classes, trees = "all";
+};
+
+void add_file_options(CLI::App& app, ParseJob& job, Options& o) {
+    app.add_option("input", job.input, "OSM input: .osm, .osm.gz, .osm.bz2 or .osm.pbf");
+    app.add_option("-o,--output", o.output, "scene file to write");
+    app.add_option("--info", o.info_file, "print a summary of a scene file and exit");
+    app.add_option("--diff", o.diff_files, "compare two scene files; exit 0 only if they match")
+        ->expected(2);
+    app.add_option("--tolerance", o.tolerance, "distance in metres below which --diff ignores moves")
+        ->check(CLI::Range(0.0, 1e6))->capture_default_str();
+    app.add_option("--geojson", o.geojson, "also write the scene as GeoJSON in WGS84");
+}
+
+void add_building_options(CLI::App& app, ParseParams& p, Options& o) {
+    app.add_option("--building-min-h", p.buildings.random_min_height,
+                   "lowest random height (m) for buildings with no height tags")
+        ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
+    app.add_option("--building-max-h", p.buildings.random_max_height,
+                   "highest random height (m) for buildings with no height tags")
+        ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
+    app.add_option("--simplify-angle", p.buildings.simplify_angle_deg,
+                   "merge footprint edges whose direction changes by less than this (degrees)")
+        ->check(CLI::Range(0.0, 45.0))->capture_default_str();
+    app.add_option("--ignore-building-types", o.ignore_types,
+                   "comma-separated building=* values to skip (default: roof,carport,ruins,...)");
+    app.add_flag("--fill-empty-blocks", p.blocks.enabled,
+                 "generate buildings in built-up road-graph blocks the map left empty (marked generated)");
+}
+
+void add_road_and_map_options(CLI::App& app, ParseParams& p, Options& o) {
+    app.add_option("--road-classes", o.road_classes,
+                   "comma-separated highway=* values that are carriageways (default: motorway ... service)");
+    app.add_option("--road-merge-angle", p.roads.merge_angle_deg,
+                   "merge consecutive road edges turning less than this at degree-2 nodes (degrees)")
+        ->check(CLI::Range(0.0, 90.0))->capture_default_str();
+    app.add_option("--road-min-width", p.roads.min_width,
+                   "roads narrowed below this width (m) near buildings are dropped")
+        ->check(CLI::Range(0.0, 100.0))->capture_default_str();
+    app.add_option("--lamp-spacing", p.lamps.spacing, "distance between generated street lamps (m)")
+        ->check(CLI::Range(1.0, 10000.0))->capture_default_str();
+    app.add_option("--trees", o.trees, "which trees: none, mapped (natural=tree nodes and tree rows) or all (+ forests)")
+        ->check(CLI::IsMember({"none", "mapped", "all"}))->capture_default_str();
+    app.add_option("--forest-tree-spacing", p.trees.forest_spacing, "least distance between trees scattered in forests (m)")
+        ->check(CLI::Range(1.0, 1000.0))->capture_default_str();
+}
+
+void add_run_options(CLI::App& app, ParseJob& job) {
+    app.add_option("--seed", job.params.seed, "seed for every random choice")->capture_default_str();
+    app.add_option("--hide-height-tags", job.hide_height_tags,
+                   "benchmark aid: ignore height, building:levels, min_height, roof:height, ... on this "
+                   "fraction of buildings (seeded; 1 = all)")
+        ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--hide-roof-tags", job.hide_roof_tags,
+                   "benchmark aid: ignore roof:shape on this fraction of buildings (seeded; 1 = all)")
+        ->check(CLI::Range(0.0, 1.0));
+    app.add_option("--threads", job.threads,
+                   "at most this many threads for the stages after reading (0: every core); the scene "
+                   "is the same whatever the number")
+        ->check(CLI::Range(0, 1024))->capture_default_str();
+    app.add_flag("-q,--quiet", job.quiet, "no progress and no report on stderr");
+}
+
+// Checks the options against each other and the outputs before the (possibly long) parse, then
+// parses and writes.
+int run_parse(ParseJob& job, const Options& o) {
+    ParseParams& p = job.params;
+    if (job.input.empty() || o.output.empty()) throw Error("need an input file and -o OUTPUT.scene (see --help)");
+    check_output_target(o.output, {job.input});
+    if (!o.geojson.empty()) {
+        check_output_target(o.geojson, {job.input, o.output});
+        if (o.geojson == o.output) throw Error("--geojson and -o name the same file");
+    }
+    if (p.buildings.random_min_height > p.buildings.random_max_height)
+        throw Error("--building-min-h is larger than --building-max-h");
+    if (!o.ignore_types.empty()) p.buildings.ignore_types = split_list(o.ignore_types);
+    if (!o.road_classes.empty()) p.roads.classes = split_list(o.road_classes);
+    p.buildings.seed = p.seed;
+    p.trees.mode = o.trees == "none" ? TreeMode::None : o.trees == "mapped" ? TreeMode::Mapped : TreeMode::All;
+
+    ParseReport report;
+    if (o.geojson.empty()) {
+        parse_osm_to_file(job, report, o.output);  // the lower peak memory
+    } else {
+        const Scene scene = parse_osm_to_scene(job, report);
+        const std::vector<uint8_t> bytes = encode_scene(scene);
+        check_scene_loads(bytes.data(), bytes.size(), o.output);  // never a file its loader refuses
+        write_file_atomically(o.output, bytes.data(), bytes.size());
+        write_geojson(scene, o.geojson);
+    }
+    if (!job.quiet) report.print(stderr);
+    return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -58,60 +157,12 @@ int main(int argc, char** argv) {
 #endif
     CLI::App app{"osmparse: turn OpenStreetMap data into a citygen scene"};
     app.set_version_flag("--version", std::string("citygen osmparse ") + CITYGEN_VERSION);
-
     ParseJob job;
-    ParseParams& p = job.params;
-    std::string output, info_file, geojson;
-    std::vector<std::string> diff_files;
-    double tolerance = 0.01;
-    std::string ignore_types, road_classes, trees = "all";
-
-    app.add_option("input", job.input, "OSM input: .osm, .osm.gz, .osm.bz2 or .osm.pbf");
-    app.add_option("-o,--output", output, "scene file to write");
-    app.add_option("--info", info_file, "print a summary of a scene file and exit");
-    app.add_option("--diff", diff_files, "compare two scene files; exit 0 only if they match")
-        ->expected(2);
-    app.add_option("--tolerance", tolerance, "distance in metres below which --diff ignores moves")
-        ->check(CLI::Range(0.0, 1e6))->capture_default_str();
-    app.add_option("--seed", p.seed, "seed for every random choice")->capture_default_str();
-    app.add_option("--building-min-h", p.buildings.random_min_height,
-                   "lowest random height (m) for buildings with no height tags")
-        ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
-    app.add_option("--building-max-h", p.buildings.random_max_height,
-                   "highest random height (m) for buildings with no height tags")
-        ->check(CLI::Range(0.0, 1000.0))->capture_default_str();
-    app.add_option("--simplify-angle", p.buildings.simplify_angle_deg,
-                   "merge footprint edges whose direction changes by less than this (degrees)")
-        ->check(CLI::Range(0.0, 45.0))->capture_default_str();
-    app.add_option("--ignore-building-types", ignore_types,
-                   "comma-separated building=* values to skip (default: roof,carport,ruins,...)");
-    app.add_option("--road-classes", road_classes,
-                   "comma-separated highway=* values that are carriageways (default: motorway ... service)");
-    app.add_option("--road-merge-angle", p.roads.merge_angle_deg,
-                   "merge consecutive road edges turning less than this at degree-2 nodes (degrees)")
-        ->check(CLI::Range(0.0, 90.0))->capture_default_str();
-    app.add_option("--road-min-width", p.roads.min_width,
-                   "roads narrowed below this width (m) near buildings are dropped")
-        ->check(CLI::Range(0.0, 100.0))->capture_default_str();
-    app.add_option("--lamp-spacing", p.lamps.spacing, "distance between generated street lamps (m)")
-        ->check(CLI::Range(1.0, 10000.0))->capture_default_str();
-    app.add_option("--trees", trees, "which trees: none, mapped (natural=tree nodes and tree rows) or all (+ forests)")
-        ->check(CLI::IsMember({"none", "mapped", "all"}))->capture_default_str();
-    app.add_option("--forest-tree-spacing", p.trees.forest_spacing, "least distance between trees scattered in forests (m)")
-        ->check(CLI::Range(1.0, 1000.0))->capture_default_str();
-    app.add_option("--geojson", geojson, "also write the scene as GeoJSON in WGS84");
-    app.add_flag("--fill-empty-blocks", p.blocks.enabled,
-                 "generate buildings in built-up road-graph blocks the map left empty (marked generated)");
-    app.add_option("--hide-height-tags", job.hide_height_tags,
-                   "benchmark aid: ignore height, building:levels, min_height, roof:height, ... on this "
-                   "fraction of buildings (seeded; 1 = all)")
-        ->check(CLI::Range(0.0, 1.0));
-    app.add_option("--threads", job.threads,
-                   "at most this many threads for the stages after reading (0: every core); the scene "
-                   "is the same whatever the number")
-        ->check(CLI::Range(0, 1024))->capture_default_str();
-    app.add_flag("-q,--quiet", job.quiet, "no progress and no report on stderr");
-
+    Options o;
+    add_file_options(app, job, o);
+    add_run_options(app, job);
+    add_building_options(app, job.params, o);
+    add_road_and_map_options(app, job.params, o);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {
@@ -122,33 +173,9 @@ int main(int argc, char** argv) {
     }
 
     try {
-        if (!info_file.empty()) return run_info(info_file);
-        if (!diff_files.empty()) return run_diff(diff_files, tolerance);
-        if (job.input.empty() || output.empty())
-            throw Error("need an input file and -o OUTPUT.scene (see --help)");
-        // Every output is checked before the (possibly long) parse.
-        check_output_target(output, {job.input});
-        if (!geojson.empty()) {
-            check_output_target(geojson, {job.input, output});
-            if (geojson == output) throw Error("--geojson and -o name the same file");
-        }
-        if (p.buildings.random_min_height > p.buildings.random_max_height)
-            throw Error("--building-min-h is larger than --building-max-h");
-        if (!ignore_types.empty()) p.buildings.ignore_types = split_list(ignore_types);
-        if (!road_classes.empty()) p.roads.classes = split_list(road_classes);
-        p.buildings.seed = p.seed;
-        p.trees.mode = trees == "none" ? TreeMode::None : trees == "mapped" ? TreeMode::Mapped : TreeMode::All;
-
-        ParseReport report;
-        if (geojson.empty()) {
-            parse_osm_to_file(job, report, output);  // the lower peak memory
-        } else {
-            const Scene scene = parse_osm_to_scene(job, report);
-            save_scene(scene, output);
-            write_geojson(scene, geojson);
-        }
-        if (!job.quiet) report.print(stderr);
-        return 0;
+        if (!o.info_file.empty()) return run_info(o.info_file);
+        if (!o.diff_files.empty()) return run_diff(o.diff_files, o.tolerance);
+        return run_parse(job, o);
     } catch (const Error& e) {
         std::fprintf(stderr, "osmparse: %s\n", e.what());
         return 1;

@@ -1,14 +1,9 @@
-// osmparse from top to bottom: each stage is a function from data to data. The stage numbers in
-// the headers follow this file: 1 read, 2 buildings, 3 heights, 4 roofs, 5 colours, 6 road graph,
-// 7 roads vs buildings, 8 road polygons, 9 lanes, 10 sidewalks, 11 paths and rails, 12 empty
-// blocks (optional), 13 street lamps, 14 land cover and sea, 15 trees, 16 crossings. One
-// exception, for peak memory (see run_pipeline): roofs and colours (4, 5), which no other
-// stage reads, run last (or just before the empty blocks, 12, when those are filled).
+// osmparse from top to bottom: the stage list in parse_stages is the one place the order is
+// declared, with what each stage reads and writes; run_stages (run_stages.h) runs it, frees each
+// part after its last reader and times each stage.
 #include "osmparse/pipeline.h"
 
 #include <algorithm>
-#include <chrono>
-#include <functional>
 #include <memory>
 #include <optional>
 
@@ -17,7 +12,6 @@
 #endif
 
 #include <tbb/task_arena.h>
-#include <tbb/task_group.h>
 
 #include "common/rng.h"
 #include "common/scene_io.h"
@@ -39,6 +33,7 @@
 #include "osmparse/roads/lay_out_lanes.h"
 #include "osmparse/roads/narrow_roads.h"
 #include "osmparse/roofs/build_roofs.h"
+#include "osmparse/run_stages.h"
 
 namespace citygen {
 
@@ -50,69 +45,83 @@ void release(std::vector<T>& v) {
     std::vector<T>().swap(v);
 }
 
-// Times one stage and records it in the report.
-template <typename F>
-auto timed(ParseReport& report, const char* stage, F&& f) {
-    const auto start = std::chrono::steady_clock::now();
-    auto result = f();
-    report.stage_time(stage, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-    return result;
-}
-
-// Runs groups of stages side by side (TBB), each reporting into a report of its own, merged into
-// `report` in the order given: the printed report is the one a run on one thread prints. The
-// groups below name their parameter `report` on purpose: it hides the shared one, so no group
-// can write to it while others run.
-void side_by_side(ParseReport& report, const std::vector<std::function<void(ParseReport&)>>& groups) {
-    std::vector<ParseReport> reports(groups.size());
-    tbb::task_group tasks;
-    for (size_t i = 1; i < groups.size(); ++i) tasks.run([&, i] { groups[i](reports[i]); });
-    groups.front()(reports.front());  // on this thread
-    tasks.wait();
-    for (const ParseReport& r : reports) report.merge(r);
-}
-
 std::string base_name(const std::string& path) {
     const size_t slash = path.find_last_of('/');
     return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// The median of every kept location, per axis.
-LatLon median_location(const OsmData& osm) {
-    std::vector<double> lats, lons;
-    auto add = [&](const LatLon& l) {
-        lats.push_back(l.lat);
-        lons.push_back(l.lon);
-    };
+// Calls f(LatLon) for every location of the town: buildings, highways (roads and paths) and
+// lamps (the read stage's bounds also take in the tree rows).
+template <typename F>
+void for_each_town_location(const OsmData& osm, F&& f) {
     for (const OsmArea& a : osm.building_areas)
         for (const OsmPolygon& p : a.polygons)
-            for (const LatLon& l : p.outer) add(l);
+            for (const LatLon& l : p.outer) f(l);
     for (const OsmWay& w : osm.highways)
-        for (const LatLon& l : w.locations) add(l);
-    for (const OsmNode& n : osm.street_lamps) add(n.location);
-    if (lats.empty()) return {0.5 * (osm.min.lat + osm.max.lat), 0.5 * (osm.min.lon + osm.max.lon)};
+        for (const LatLon& l : w.locations) f(l);
+    for (const OsmNode& n : osm.street_lamps) f(n.location);
+}
+
+// Calls f(LatLon) for every other location that can reach the scene: tree rows, land cover,
+// trees, crossings, rails, and the coastline as far as the sea is clipped to (the extract's box,
+// see extract_box; none without one).
+template <typename F>
+void for_each_map_location(const OsmData& osm, F&& f) {
+    for (const OsmWay& w : osm.tree_rows)
+        for (const LatLon& l : w.locations) f(l);
+    for (const OsmArea& a : osm.land_cover_areas)
+        for (const OsmPolygon& p : a.polygons)
+            for (const LatLon& l : p.outer) f(l);
+    for (const OsmNode& n : osm.trees) f(n.location);
+    for (const OsmNode& n : osm.road_marks) f(n.location);
+    for (const OsmWay& w : osm.railways)
+        for (const LatLon& l : w.locations) f(l);
+    const LatLon lo = osm.has_extract_bounds ? osm.extract_min : osm.min;
+    const LatLon hi = osm.has_extract_bounds ? osm.extract_max : osm.max;
+    if (lo.lat <= hi.lat && lo.lon <= hi.lon)
+        for (const OsmWay& w : osm.coastlines)
+            for (const LatLon& l : w.locations)
+                f(LatLon{std::clamp(l.lat, lo.lat, hi.lat), std::clamp(l.lon, lo.lon, hi.lon)});
+}
+
+// The median of the locations, per axis.
+LatLon median_location(std::vector<double> lats, std::vector<double> lons) {
     const size_t mid = lats.size() / 2;
     std::nth_element(lats.begin(), lats.begin() + mid, lats.end());
     std::nth_element(lons.begin(), lons.begin() + mid, lons.end());
     return {lats[mid], lons[mid]};
 }
 
-// The origin is the centre of the data's bounding box, so coordinates stay small. Data
-// spanning more than a degree is a region, or a city with a stray node far away (a mapping
-// mistake): then the median location, which a few strays cannot move out of town (their
-// objects are dropped as beyond the scene limits).
+// The origin is the centre of the box of the town's locations (the read stage's bounds), so
+// coordinates stay small; where the extract has no town (a nature reserve, a lake), of
+// everything else located. Data spanning more than a degree is a region, or a city with a stray
+// node far away (a mapping mistake): then the median location, which a few strays cannot move
+// out of town (what lies beyond the scene limits is dropped or clipped).
 Projection projection_for(const OsmData& osm) {
-    if (osm.min.lat > osm.max.lat) {  // nothing located but perhaps coastline: the extract's centre
+    const bool town = osm.min.lat <= osm.max.lat;
+    std::vector<double> lats, lons;
+    auto add = [&](const LatLon& l) {
+        lats.push_back(l.lat);
+        lons.push_back(l.lon);
+    };
+    if (town) for_each_town_location(osm, add);
+    else for_each_map_location(osm, add);
+    if (!town && lats.empty()) {  // nothing located: the extract's centre
         if (osm.has_extract_bounds)
             return Projection(0.5 * (osm.extract_min.lat + osm.extract_max.lat),
                               0.5 * (osm.extract_min.lon + osm.extract_max.lon));
         return Projection(0, 0);
     }
-    if (osm.max.lat - osm.min.lat > 1 || osm.max.lon - osm.min.lon > 1) {
-        const LatLon m = median_location(osm);
+    LatLon min = osm.min, max = osm.max;
+    if (!town) {
+        min = {*std::min_element(lats.begin(), lats.end()), *std::min_element(lons.begin(), lons.end())};
+        max = {*std::max_element(lats.begin(), lats.end()), *std::max_element(lons.begin(), lons.end())};
+    }
+    if ((max.lat - min.lat > 1 || max.lon - min.lon > 1) && !lats.empty()) {
+        const LatLon m = median_location(std::move(lats), std::move(lons));
         return Projection(m.lat, m.lon);
     }
-    return Projection(0.5 * (osm.min.lat + osm.max.lat), 0.5 * (osm.min.lon + osm.max.lon));
+    return Projection(0.5 * (min.lat + max.lat), 0.5 * (min.lon + max.lon));
 }
 
 SceneHeader make_header(const ParseJob& job, const Projection& projection) {
@@ -140,6 +149,12 @@ void set_bounds_and_ground(Scene& scene, Box2 box = {}) {
     for (const Joint& j : scene.joints) for (Vec2 p : j.polygon) box.extend(p);
     for (const Sidewalk& s : scene.sidewalks) for (Vec2 p : s.polygon) box.extend(p);
     for (const Lamp& l : scene.lamps) box.extend({l.position.x, l.position.y});
+    // And the rest of the map: a scene of a forest is framed by its forest.
+    for (const LandCover& c : scene.land_cover) for (Vec2 p : c.outer) box.extend(p);
+    for (const Tree& t : scene.trees) box.extend(t.position);
+    for (const PathEdge& e : scene.paths) for (Vec2 p : e.quad) box.extend(p);
+    for (const Joint& j : scene.path_joints) for (Vec2 p : j.polygon) box.extend(p);
+    for (const Crossing& c : scene.crossings) box.extend(c.position);
     if (box.empty()) box.extend({0, 0});
     scene.header.bounds_min = box.min;
     scene.header.bounds_max = box.max;
@@ -170,6 +185,20 @@ void hide_height_tags(OsmData& osm, double fraction, uint64_t seed) {
     }
 }
 
+// For the roof benchmark (tests/bench/roof_bench.sh): forget the roof:shape tag of a seeded
+// `fraction` of the buildings (another draw than hide_height_tags').
+void hide_roof_tags(OsmData& osm, double fraction, uint64_t seed) {
+    for (OsmArea& area : osm.building_areas) {
+        const uint64_t key = hash_keys(seed, 0x524f4f46ull, static_cast<uint64_t>(area.ref.type),
+                                       static_cast<uint64_t>(area.ref.id));
+        if (hash_to_unit(key) >= fraction) continue;
+        auto& entries = area.tags.entries;
+        entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                     [](const auto& kv) { return kv.first == "roof:shape"; }),
+                      entries.end());
+    }
+}
+
 // Hands the pages of freed memory back to the system (see parse_osm_to_scene).
 void trim_heap() {
 #ifdef __GLIBC__
@@ -177,223 +206,249 @@ void trim_heap() {
 #endif
 }
 
-// The stages in order; parse_osm_to_scene runs them on job.threads threads. With `encoder`
-// (parse_osm_to_file), the buildings are encoded as soon as they are final and their roof
-// faces, which no later stage reads, are freed; the rest of the scene is encoded by the caller.
-Scene run_pipeline(const ParseJob& job, ParseReport& report, std::unique_ptr<SceneEncoder>* encoder) {
-    OsmData osm = timed(report, "read", [&] { return read_osm(job.input, job.quiet, report); });
-    if (job.hide_height_tags > 0) hide_height_tags(osm, job.hide_height_tags, job.params.seed);
-    const Projection projection = projection_for(osm);
+// The parts of the parse, each named in the stage list by the string in its comment.
+struct ParseState {
+    ParseState(const ParseJob& job, bool to_file) : job(job), to_file(to_file) {}
+    const ParseJob& job;
+    const ParseParams& params() const { return job.params; }
+    const bool to_file;  // parse_osm_to_file: the buildings are encoded as soon as they are final
 
-    Scene scene;
-    scene.header = make_header(job, projection);
-    scene.buildings = timed(report, "buildings", [&] {
-        return build_buildings(osm, projection, job.params.buildings, report);
-    });
-    timed(report, "building heights", [&] {
-        infer_heights(scene.buildings, land_use_areas(osm, projection, report), job.params.buildings, report,
-                      named_buildings(osm), homes_by_use(osm));
-        return 0;
-    });
+    OsmData osm;                          // "osm" (but the two below)
+    //                                       "osm building areas": osm.building_areas
+    //                                       "osm ways": osm.highways and osm.railways
+    std::optional<Projection> projection;  // "projection"
+    Scene scene;  // "header", "buildings", "roads", "joints", "sidewalks", "paths", "lamps", ...
+    std::optional<BuildingTagIndex> building_tags;  // "building tags": what roofs and colours read
+    RoofEvidence roof_evidence;  // "roof evidence": the map's tagged roofs, which untagged ones follow
+    size_t map_buildings = 0;  // the map's buildings come first; the empty blocks' after them
+    RoadGraph road_graph;      // "road graph"
+    NarrowedRoads narrowed;    // "narrowed roads"
+    RoadSurface surface;       // "road surface"
+    PathSurface paths;         // "paths"
+
+    // "building slices": the buildings once every other stage is done with them, finished (roofs
+    // and colours) and encoded a slice at a time; `has_roofs`: the empty blocks' buildings.
+    struct BuildingSlice {
+        std::vector<Building> buildings;
+        bool has_roofs = false;
+    };
+    std::vector<BuildingSlice> slices;
+    size_t slice = 0;  // the one the per-slice stages work on
+
+    std::unique_ptr<SceneEncoder> encoder;  // "encoded scene" (parse_osm_to_file)
+    Box2 encoded_box;                       // the bounds of the buildings encoded and freed
+    size_t trimmed_at = 0;                  // the encoder's size when the heap was last trimmed
+};
+
+void read(ParseState& s, ParseReport& report) {
+    s.osm = read_osm(s.job.input, s.job.quiet, report);
+    if (s.job.hide_height_tags > 0) hide_height_tags(s.osm, s.job.hide_height_tags, s.params().seed);
+    if (s.job.hide_roof_tags > 0) hide_roof_tags(s.osm, s.job.hide_roof_tags, s.params().seed);
+    s.projection.emplace(projection_for(s.osm));
+    s.scene.header = make_header(s.job, *s.projection);
+}
+
+void infer_building_heights(ParseState& s, ParseReport& report) {
+    const BuildingParams& params = s.params().buildings;
+    infer_heights(s.scene.buildings, land_use_areas(s.osm, *s.projection, report), params, report,
+                  named_buildings(s.osm), homes_by_use(s.osm));
     // The building areas' rings are in the footprints now; the roofs and colours read only
     // some of their tags: those are kept, the areas freed.
-    std::optional<BuildingTagIndex> building_tags;
-    building_tags.emplace(std::move(osm.building_areas));
-    // Roofs and colours change only the heights, roofs and colours of the buildings; the roads,
-    // the paths and the stages after them read only the buildings' footprints (outer and holes)
-    // or the OSM data. So roofs and colours run last (before the empty blocks when those are
-    // filled: their buildings get roofs of their own): the roof faces (Kaiserslautern: 7 MB)
-    // are then not held while another stage's working set is, only until they are encoded.
-    // (They ran beside the road section before, which saved little time: build_roofs runs on
-    // every thread anyway.)
-    auto roofs_and_colours = [&](ParseReport& report) {
-        timed(report, "roofs", [&] {
-            build_roofs(scene.buildings, *building_tags, job.params.buildings, report);
-            return 0;
-        });
-        timed(report, "colours", [&] {
-            choose_colours_and_materials(scene.buildings, *building_tags, job.params.buildings, report);
-            return 0;
-        });
-        building_tags.reset();  // their last readers are done
-    };
-    // The buildings are final once their roofs and colours are (and the empty blocks'
-    // buildings, which have theirs, are added): encoded then, their roof faces freed.
-    auto encode_buildings = [&] {
-        if (!encoder) return;
-        // Reserved for the scene so far (with --fill-empty-blocks, the lamps, trees, land
-        // cover and crossings come later): twice its generous bound (~3x the actual size).
-        // Untouched reserve costs nothing resident; a short one only a copy as it grows.
-        *encoder = std::make_unique<SceneEncoder>(scene.header, 2 * encoded_size_bound(scene));
-        // The encoded scene grows as the roof faces are freed: their pages go back to the
-        // system every megabyte, so the two do not add up.
-        size_t trimmed_at = (*encoder)->size();
-        for (Building& b : scene.buildings) {
-            (*encoder)->add_building(b);
-            release(b.roof_faces);
-            if ((*encoder)->size() > trimmed_at + (1 << 20)) {
-                trim_heap();
-                trimmed_at = (*encoder)->size();
-            }
-        }
-    };
-    // Without empty blocks, a building is final once it has its roof and colours: with an
-    // encoder, the buildings get theirs a slice at a time, each slice encoded and its roof
-    // faces freed before the next is built, so the roof faces (Kaiserslautern: 7 MB) are never
-    // held all at once. Each building's roof and colours are its own (build_roofs,
-    // choose_colours_and_materials): the same roofs, colours, report and bytes as all at once.
-    Box2 freed_buildings_box;  // the bounds of the buildings it frees
-    auto finish_buildings_in_slices = [&] {
+    s.building_tags.emplace(std::move(s.osm.building_areas));
+    s.map_buildings = s.scene.buildings.size();
+    s.roof_evidence = roof_evidence(s.scene.buildings, *s.building_tags);
+}
+
+void lay_out_road_lanes(ParseState& s, ParseReport& report) {
+    lay_out_lanes(s.surface.roads, s.osm, report);
+    // The highways' last reader is the paths, after the sidewalks: only their ways wait.
+    keep_path_ways(s.osm.highways);
+}
+
+void lay_out_sidewalks(ParseState& s, ParseReport& report) {
+    s.scene.sidewalks = build_sidewalks(s.narrowed.graph, s.surface, s.scene.buildings, s.params().sidewalks,
+                                        s.params().roads.miter_limit, report);
+    s.scene.roads = std::move(s.surface.roads);
+    s.scene.joints = std::move(s.surface.joints);
+}
+
+void lay_out_paths(ParseState& s, ParseReport& report) {
+    s.paths = build_paths(s.osm, *s.projection, s.params().roads, report);
+    s.scene.sidewalks = drop_doubled_sidewalks(std::move(s.scene.sidewalks), s.paths.paths, report);
+    s.scene.paths = std::move(s.paths.paths);
+    s.scene.path_joints = std::move(s.paths.joints);
+}
+
+void add_empty_blocks(ParseState& s, ParseReport& report) {
+    const ParseParams& p = s.params();
+    std::vector<Building> generated = fill_empty_blocks(s.scene, p.buildings, p.blocks, p.sidewalks.width, s.roof_evidence, report);
+    s.scene.buildings.insert(s.scene.buildings.end(), generated.begin(), generated.end());
+}
+
+void lay_out_land_cover(ParseState& s, ParseReport& report) {
+    std::vector<LandCover> cover = build_land_cover(s.osm, *s.projection, s.params().buildings, report);
+    std::vector<LandCover> sea =
+        assemble_sea(s.osm, *s.projection, extract_box(s.osm, *s.projection), s.scene.buildings, report);
+    cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
+    s.scene.land_cover = drop_land_cover_beyond_limits(std::move(cover), report);
+}
+
+// Roofs and colours change only the heights, roofs and colours of the buildings, and no other
+// stage reads those: they run last, so the roof faces (Kaiserslautern: 7 MB) are not held while
+// another stage's working set is. For the file, the buildings are then finished and encoded a
+// slice at a time, each slice freed before the next is built: the roof faces and footprints are
+// never held all at once, and the encoded scene grows as they are freed. Each building's roof and
+// colours are its own: the same roofs, colours, report and bytes as all at once.
+void slice_buildings(ParseState& s, ParseReport&) {
+    std::vector<Building>& all = s.scene.buildings;
+    if (s.to_file) {
         // Reserved before the roofs exist: the bound of the rest alone is ~2x the whole
         // encoded scene on the real extracts; a short reserve costs only a copy as it grows.
-        *encoder = std::make_unique<SceneEncoder>(scene.header, 2 * encoded_size_bound(scene));
-        ParseReport roofs_report, colours_report;  // merged in the order of a run all at once
-        double roofs_seconds = 0, colours_seconds = 0;
-        auto add_seconds = [](double& sum, auto&& f) {
-            const auto start = std::chrono::steady_clock::now();
-            f();
-            sum += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        };
-        constexpr size_t kSlice = 1024;  // buildings; build_roofs still runs on every thread
-        // The buildings move into slices first and their array (2.7 MB on Kaiserslautern) is
-        // freed: each slice is then freed as soon as it is encoded, while the encoded scene
-        // grows, instead of the whole array waiting for the last slice.
-        std::vector<std::vector<Building>> slices;
-        slices.reserve((scene.buildings.size() + kSlice - 1) / kSlice);
-        for (size_t begin = 0; begin < scene.buildings.size(); begin += kSlice) {
-            const auto first = scene.buildings.begin() + static_cast<std::ptrdiff_t>(begin);
-            const auto last = scene.buildings.begin() + static_cast<std::ptrdiff_t>(std::min(scene.buildings.size(), begin + kSlice));
-            slices.emplace_back(std::make_move_iterator(first), std::make_move_iterator(last));
-        }
-        release(scene.buildings);
-        size_t trimmed_at = (*encoder)->size();
-        for (std::vector<Building>& slice : slices) {
-            add_seconds(roofs_seconds, [&] { build_roofs(slice, *building_tags, job.params.buildings, roofs_report); });
-            add_seconds(colours_seconds,
-                        [&] { choose_colours_and_materials(slice, *building_tags, job.params.buildings, colours_report); });
-            // Nothing reads the buildings after this but the scene's bounds: encoded, they
-            // are freed (their footprints too, 4 MB on Kaiserslautern) once their extent is
-            // taken. Their pages go back to the system every megabyte of encoded scene.
-            extend_by_footprints(freed_buildings_box, slice);
-            for (const Building& b : slice) (*encoder)->add_building(b);
-            release(slice);
-            if ((*encoder)->size() > trimmed_at + (1 << 20)) {
-                trim_heap();
-                trimmed_at = (*encoder)->size();
-            }
-        }
-        building_tags.reset();  // their last readers are done
-        report.merge(roofs_report);
-        report.stage_time("roofs", roofs_seconds);
-        report.merge(colours_report);
-        report.stage_time("colours", colours_seconds);
-    };
-    auto lay_out_roads = [&](ParseReport& report) {  // the road section
-        RoadGraph road_graph = timed(report, "road graph", [&] {
-            return build_road_graph(osm, projection, job.params.roads, report);
-        });
-        NarrowedRoads narrowed = timed(report, "roads vs buildings", [&] {
-            return narrow_roads(std::move(road_graph), scene.buildings, job.params.roads, report);
-        });
-        const RoadGraph& narrowed_graph = narrowed.graph;
-        RoadSurface surface = timed(report, "road polygons", [&] {
-            return build_road_polygons(narrowed_graph, std::move(narrowed.layout), report);
-        });
-        lay_out_lanes(surface.roads, osm, report);  // the sidewalks read no lane
-        // The highways' last reader is the paths, after the sidewalks: only their ways wait.
-        keep_path_ways(osm.highways);
-        scene.sidewalks = timed(report, "sidewalks", [&] {
-            return build_sidewalks(narrowed_graph, surface, scene.buildings, job.params.sidewalks,
-                                   job.params.roads.miter_limit, report);
-        });
-        scene.roads = std::move(surface.roads);
-        scene.joints = std::move(surface.joints);
-    };  // end of the road section
-    PathSurface paths;
-    auto lay_out_paths = [&](ParseReport& report) {
-        paths = timed(report, "paths and rails", [&] { return build_paths(osm, projection, job.params.roads, report); });
-    };
-    // The paths after the roads, not beside them: they are kept to the end, and would then be
-    // held at the road section's peak (the sidewalks') too.
-    lay_out_roads(report);
-    lay_out_paths(report);
-    scene.sidewalks = drop_doubled_sidewalks(std::move(scene.sidewalks), paths.paths, report);
-    scene.paths = std::move(paths.paths);
-    scene.path_joints = std::move(paths.joints);
-    release(osm.highways);  // read by the road graph, the lanes and the paths, all done
-    release(osm.railways);
-    if (job.params.blocks.enabled) {
-        // The blocks' own buildings have their roofs and colours: the map's get theirs first.
-        roofs_and_colours(report);
-        std::vector<Building> generated = timed(report, "empty blocks", [&] {
-            return fill_empty_blocks(scene, job.params.buildings, job.params.blocks, job.params.sidewalks.width, report);
-        });
-        scene.buildings.insert(scene.buildings.end(), generated.begin(), generated.end());
-        encode_buildings();
+        s.encoder = std::make_unique<SceneEncoder>(s.scene.header, 2 * encoded_size_bound(s.scene));
+        s.trimmed_at = s.encoder->size();
     }
-    // Street lamps, land cover with the trees in it, and crossings read the scene so far and each
-    // write a part of their own. The lamps first (they are placed in parallel themselves), then
-    // the other two side by side: the lamps' indexes and the trees' are not held at once
-    // (Kaiserslautern PBF on 2 threads: 34.5 -> 32 MB here). The report is merged in this order.
-    trim_heap();  // the road section's working set is freed: its pages back first
-    scene.lamps = timed(report, "street lamps", [&] {
-        return place_lamps(osm, projection, scene, job.params.lamps, job.params.seed, report);
-    });
-    // Lamps and trees are counted as they are placed (grown by doubling); they are kept to the
-    // end of the parse without the spare capacity (Kaiserslautern: 0.4 and 0.2 MB).
-    scene.lamps.shrink_to_fit();
-    side_by_side(report, {
-        [&](ParseReport& report) {
-            scene.land_cover = timed(report, "land cover", [&] {
-                std::vector<LandCover> cover = build_land_cover(osm, projection, job.params.buildings, report);
-                std::vector<LandCover> sea =
-                    assemble_sea(osm, projection, extract_box(osm, projection), scene.buildings, report);
-                cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
-                return drop_land_cover_beyond_limits(std::move(cover), report);
-            });
-            scene.trees = timed(report, "trees", [&] {
-                return place_trees(osm, projection, scene, job.params.trees, job.params.seed, report);
-            });
-            scene.trees.shrink_to_fit();
-        },
-        [&](ParseReport& report) {
-            scene.crossings = timed(report, "crossings", [&] { return place_crossings(osm, projection, scene, report); });
-        },
-    });
-    if (!job.params.blocks.enabled) {
-        trim_heap();  // and the last stages' working sets
-        if (encoder) {
-            finish_buildings_in_slices();
-        } else {
-            roofs_and_colours(report);
+    // A slice of the file's buildings: build_roofs still runs on every thread.
+    const size_t slice = s.to_file ? 1024 : all.size();
+    auto add_slices = [&](size_t begin, size_t end, bool has_roofs) {
+        for (; begin < end; begin += std::max<size_t>(slice, 1)) {
+            const auto first = all.begin() + static_cast<std::ptrdiff_t>(begin);
+            const auto last = all.begin() + static_cast<std::ptrdiff_t>(std::min(end, begin + slice));
+            s.slices.push_back({{std::make_move_iterator(first), std::make_move_iterator(last)}, has_roofs});
         }
+    };
+    add_slices(0, s.map_buildings, false);
+    add_slices(s.map_buildings, all.size(), true);  // the empty blocks' buildings
+    release(all);  // each slice is freed when encoded, not all of them with the last
+}
+
+void build_slice_roofs(ParseState& s, ParseReport& report) {
+    ParseState::BuildingSlice& slice = s.slices[s.slice];
+    if (!slice.has_roofs)
+        build_roofs(slice.buildings, *s.building_tags, s.params().buildings, report, &s.roof_evidence);
+}
+
+void choose_slice_colours(ParseState& s, ParseReport& report) {
+    ParseState::BuildingSlice& slice = s.slices[s.slice];
+    if (!slice.has_roofs)
+        choose_colours_and_materials(slice.buildings, *s.building_tags, s.params().buildings, report);
+}
+
+// Nothing reads the buildings after this but the scene's bounds: encoded, they are freed once
+// their extent is taken. Their pages go back to the system every megabyte of encoded scene.
+void encode_slice(ParseState& s, ParseReport&) {
+    std::vector<Building>& buildings = s.slices[s.slice].buildings;
+    extend_by_footprints(s.encoded_box, buildings);
+    for (const Building& b : buildings) s.encoder->add_building(b);
+    release(buildings);
+    if (s.encoder->size() > s.trimmed_at + (1 << 20)) {
+        trim_heap();
+        s.trimmed_at = s.encoder->size();
     }
-    set_bounds_and_ground(scene, freed_buildings_box);
-    return scene;
+}
+
+void gather_buildings(ParseState& s, ParseReport&) {
+    for (ParseState::BuildingSlice& slice : s.slices)
+        s.scene.buildings.insert(s.scene.buildings.end(), std::make_move_iterator(slice.buildings.begin()),
+                                 std::make_move_iterator(slice.buildings.end()));
+}
+
+// The stages in the order they run; stages side by side when none reads what another writes.
+std::vector<Stage> parse_stages(ParseState& s) {
+    const ParseParams& p = s.params();
+    Scene& scene = s.scene;
+    auto run = [&s](void (*f)(ParseState&, ParseReport&)) { return [&s, f](ParseReport& r) { f(s, r); }; };
+    return {
+        {"read", {}, {"osm", "osm building areas", "osm ways", "projection", "header"}, run(read)},
+        {"buildings", {"osm building areas", "projection"}, {"buildings"},
+         [&](ParseReport& r) { scene.buildings = build_buildings(s.osm, *s.projection, p.buildings, r); }},
+        {"building heights", {"osm", "osm building areas", "projection", "buildings"},
+         {"buildings", "building tags", "roof evidence", "osm building areas"}, run(infer_building_heights)},
+        {"road graph", {"osm ways", "projection"}, {"road graph"},
+         [&](ParseReport& r) { s.road_graph = build_road_graph(s.osm, *s.projection, p.roads, r); }},
+        {"roads vs buildings", {"road graph", "buildings"}, {"narrowed roads"},
+         [&](ParseReport& r) { s.narrowed = narrow_roads(std::move(s.road_graph), scene.buildings, p.roads, r); }},
+        {"road polygons", {"narrowed roads"}, {"road surface"},
+         [&](ParseReport& r) { s.surface = build_road_polygons(s.narrowed.graph, std::move(s.narrowed.layout), r); }},
+        {"lanes", {"road surface", "osm", "osm ways"}, {"road surface", "osm ways"}, run(lay_out_road_lanes)},
+        {"sidewalks", {"narrowed roads", "road surface", "buildings"}, {"sidewalks", "roads", "joints"},
+         run(lay_out_sidewalks)},
+        {"paths and rails", {"osm", "osm ways", "projection", "sidewalks"}, {"paths", "sidewalks"},
+         run(lay_out_paths)},
+        {"empty blocks", {"buildings", "roads", "joints", "sidewalks", "paths", "roof evidence"}, {"buildings"},
+         run(add_empty_blocks), p.blocks.enabled},
+        {"street lamps", {"osm", "projection", "buildings", "roads", "joints", "sidewalks"}, {"lamps"},
+         [&](ParseReport& r) {
+             scene.lamps = place_lamps(s.osm, *s.projection, scene, p.lamps, p.seed, r);
+             scene.lamps.shrink_to_fit();  // counted as placed (grown by doubling), then kept to the end
+         }},
+        {"land cover", {"osm", "projection", "buildings"}, {"land cover"}, run(lay_out_land_cover)},
+        {"trees", {"osm", "projection", "buildings", "roads", "joints", "paths", "land cover"}, {"trees"},
+         [&](ParseReport& r) {
+             scene.trees = place_trees(s.osm, *s.projection, scene, p.trees, p.seed, r);
+             scene.trees.shrink_to_fit();
+         }},
+        {"crossings", {"osm", "projection", "roads", "joints", "sidewalks", "paths"}, {"crossings"},
+         [&](ParseReport& r) { scene.crossings = place_crossings(s.osm, *s.projection, scene, r); }},
+        {"slice buildings", {"buildings", "header"}, {"building slices", "buildings", "encoded scene"},
+         run(slice_buildings)},
+        {"roofs", {"building slices", "building tags", "roof evidence"}, {"building slices"}, run(build_slice_roofs),
+         true, true},
+        {"colours", {"building slices", "building tags"}, {"building slices"}, run(choose_slice_colours), true,
+         true},
+        {"encode buildings", {"building slices"}, {"encoded scene"}, run(encode_slice), s.to_file, true},
+        {"gather buildings", {"building slices"}, {"buildings"}, run(gather_buildings), !s.to_file},
+        {"bounds", {"buildings", "roads", "joints", "sidewalks", "lamps", "land cover", "trees", "paths", "crossings"},
+         {"header", "ground"},
+         [&](ParseReport&) { set_bounds_and_ground(scene, s.encoded_box); }},
+    };
+}
+
+// How each intermediate part is freed after its last reader (the scene's parts are the result).
+StageHooks parse_hooks(ParseState& s) {
+    StageHooks hooks;
+    hooks.free = {
+        {"osm", [&s] { s.osm = OsmData(); }},
+        {"osm building areas", [&s] { release(s.osm.building_areas); }},
+        {"osm ways", [&s] { release(s.osm.highways); release(s.osm.railways); }},
+        {"building tags", [&s] { s.building_tags.reset(); }},
+        {"road graph", [&s] { s.road_graph = RoadGraph(); }},
+        {"narrowed roads", [&s] { s.narrowed = NarrowedRoads(); }},
+        {"road surface", [&s] { s.surface = RoadSurface(); }},
+        {"paths", [&s] { s.paths = PathSurface(); }},
+        {"building slices", [&s] { release(s.slices); }},
+    };
+    hooks.freed = trim_heap;  // the freed memory is in small pieces all over the heap: its pages back
+    hooks.slice_count = [&s] { return s.slices.size(); };
+    hooks.select_slice = [&s](size_t i) { s.slice = i; };
+    return hooks;
+}
+
+void run_pipeline(ParseState& state, ParseReport& report) {
+    tbb::task_arena arena(state.job.threads > 0 ? state.job.threads : tbb::task_arena::automatic);
+    arena.execute([&] { run_stages(parse_stages(state), parse_hooks(state), report); });
 }
 
 }  // namespace
 
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
-    tbb::task_arena arena(job.threads > 0 ? job.threads : tbb::task_arena::automatic);
-    Scene scene = arena.execute([&] { return run_pipeline(job, report, nullptr); });
+    ParseState state(job, false);
+    run_pipeline(state, report);
     // The OSM data and the stages' working sets are freed now, in small pieces all over the heap
     // (one arena, see main.cpp): hand their pages back before the scene is encoded, so encoding
     // adds to what the scene holds, not to the stages' peak (Kaiserslautern: 92 MB -> 72 MB).
     trim_heap();
-    return scene;
+    return std::move(state.scene);
 }
 
 void parse_osm_to_file(const ParseJob& job, ParseReport& report, const std::string& path) {
-    tbb::task_arena arena(job.threads > 0 ? job.threads : tbb::task_arena::automatic);
-    std::unique_ptr<SceneEncoder> encoder;
-    Scene scene = arena.execute([&] { return run_pipeline(job, report, &encoder); });
-    release(scene.buildings);  // encoded, and read for the bounds
+    ParseState state(job, true);
+    run_pipeline(state, report);
     trim_heap();
     // Each part is freed once encoded, and its pages handed back before the encoder takes
     // more: the encoded scene grows as the in-memory one shrinks.
-    encoder->finish_releasing(scene, trim_heap);
-    write_file_atomically(path, encoder->data(), encoder->size());  // no copy of the bytes
+    state.encoder->finish_releasing(state.scene, trim_heap);
+    check_scene_loads(state.encoder->data(), state.encoder->size(), path);  // never a file its loader refuses
+    write_file_atomically(path, state.encoder->data(), state.encoder->size());
 }
 
 }  // namespace citygen

@@ -14,6 +14,7 @@ struct ParseJob {
     ParseParams params;
     bool quiet = false;
     double hide_height_tags = 0;  // benchmark aid: this fraction of buildings loses its height tags
+    double hide_roof_tags = 0;    // benchmark aid: this fraction of buildings loses its roof:shape tag
     int threads = 0;              // --threads: at most this many threads for the stages (0: every core)
 };
 

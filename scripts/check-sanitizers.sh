@@ -1,13 +1,20 @@
 #!/usr/bin/env bash
-# The sanitizer and fuzz stage of CI (run by scripts/test.sh): builds everything with clang,
+# The sanitizer and fuzz stages of CI (run by scripts/test.sh): builds everything with clang,
 # AddressSanitizer and UndefinedBehaviorSanitizer (any report aborts) in a second build
-# directory, runs the whole test suite there (so a compiler-dependent result cannot hide
-# behind gcc either), then runs each libFuzzer harness in tests/fuzz for FUZZ_SECONDS
-# (default 60) from its seed corpus. Fails on any test failure, crash, sanitizer report,
-# timeout (over 10 s on one input) or out-of-memory (over 2 GB).
-# Environment: SANITIZE_BUILD_DIR (default build-sanitize), FUZZ_SECONDS.
+# directory, runs the test suite there (so a compiler-dependent result cannot hide behind gcc
+# either), then runs each libFuzzer harness in tests/fuzz for FUZZ_SECONDS (default 60) from its
+# seed corpus. Fails on any test failure, crash, sanitizer report, timeout (over 10 s on one
+# input) or out-of-memory (over 2 GB).
+# The sanitized suite leaves out the tests labelled slow or extract (tests/CMakeLists.txt): the
+# farm and Blender only run the programs through Slurm and Blender, and the real extracts run the
+# code the fixtures and the parse fuzzer already reach under the sanitizers, many times slower
+# at -O1 (the gcc build runs them all). SANITIZE_ALL=1 runs them too.
+# Usage: scripts/check-sanitizers.sh [build|test|fuzz|all]   (default all; test.sh times each)
+# Environment: SANITIZE_BUILD_DIR (default build-sanitize), FUZZ_SECONDS, SANITIZE_ALL.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+what=${1:-all}
+case $what in build|test|fuzz|all) ;; *) echo "usage: $0 [build|test|fuzz|all]" >&2; exit 2 ;; esac
 start=$(date +%s)
 dir=${SANITIZE_BUILD_DIR:-build-sanitize}
 seconds=${FUZZ_SECONDS:-60}
@@ -18,13 +25,14 @@ sanitize="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame
 sanitize="$sanitize -fsanitize-ignorelist=$PWD/tests/fuzz/ubsan_ignore.txt"
 # Coverage instrumentation for the fuzzers' benefit; harmless in the other binaries.
 coverage="-fsanitize=fuzzer-no-link"
-cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_COMPILER=clang++ \
-    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g $sanitize $coverage" \
-    -DCMAKE_EXE_LINKER_FLAGS="$sanitize" \
-    -DCITYGEN_FUZZ=ON > /dev/null
-cmake --build "$dir" -j"$jobs"
-built=$(date +%s)
+build() {
+    cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+        -DCMAKE_CXX_COMPILER=clang++ \
+        -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g $sanitize $coverage" \
+        -DCMAKE_EXE_LINKER_FLAGS="$sanitize" \
+        -DCITYGEN_FUZZ=ON > /dev/null
+    cmake --build "$dir" -j"$jobs"
+}
 
 # Third-party libraries (TBB, Embree, OpenImageIO) keep some memory until exit on purpose.
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1
@@ -32,8 +40,11 @@ export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # ASan reserves terabytes of address space for its shadow: no ulimit -v in the hostile set.
 export HOSTILE_MEMORY_KB=unlimited
-(cd "$dir" && ctest --output-on-failure -j"$jobs")
-tested=$(date +%s)
+run_tests() {
+    local select=(-LE 'slow|extract')
+    [ "${SANITIZE_ALL:-0}" = 1 ] && select=()
+    (cd "$dir" && ctest --output-on-failure -j"$jobs" "${select[@]}")
+}
 
 # Each fuzzer: a scratch corpus (where libFuzzer adds what it finds) seeded from the repository.
 run_fuzzer() {
@@ -53,9 +64,21 @@ run_fuzzer() {
     echo "$name: $runs runs, $cov, corpus $(ls "$work" | wc -l) new inputs" >&2
     rm -rf "$work"
 }
-run_fuzzer scene_loader_fuzz tests/fuzz/corpus/scene_loader tests/golden
-run_fuzzer parse_pipeline_fuzz -max_len=65536 tests/fuzz/corpus/parse_pipeline
-run_fuzzer cli_values_fuzz -max_len=256 tests/fuzz/corpus/cli_values
-rm -f /tmp/citygen-fuzz-*.osm
-end=$(date +%s)
-echo "check-sanitizers: build $((built - start)) s, sanitized tests $((tested - built)) s, fuzzing $((end - tested)) s, total $((end - start)) s" >&2
+fuzz() {
+    run_fuzzer scene_loader_fuzz tests/fuzz/corpus/scene_loader tests/golden
+    run_fuzzer parse_pipeline_fuzz -max_len=65536 tests/fuzz/corpus/parse_pipeline
+    run_fuzzer cli_values_fuzz -max_len=256 tests/fuzz/corpus/cli_values
+    rm -f /tmp/citygen-fuzz-*.osm
+}
+
+case $what in
+    build) build ;;
+    test) run_tests ;;
+    fuzz) fuzz ;;
+    all)
+        build; built=$(date +%s)
+        run_tests; tested=$(date +%s)
+        fuzz; end=$(date +%s)
+        echo "check-sanitizers: build $((built - start)) s, sanitized tests $((tested - built)) s, fuzzing $((end - tested)) s, total $((end - start)) s" >&2
+        ;;
+esac

@@ -30,11 +30,8 @@ Ring project_ring(const std::vector<LatLon>& points, const Projection& projectio
 // are mapping mistakes (a node moved across the map); their cost must not reach later stages.
 const char* ring_beyond_limits(const Ring& ring) {
     if (ring.size() > kMaxRingPoints + 1) return kTooManyPoints;
-    const Box2 box = bounds_of(ring);
-    if (box.empty()) return nullptr;
-    if (std::max(box.max.x - box.min.x, box.max.y - box.min.y) > kMaxObjectExtent) return kTooLarge;
-    if (std::max({-box.min.x, -box.min.y, box.max.x, box.max.y}) > kMaxCoordinate)
-        return kTooFarOut;
+    if (!extent_within_limit(ring, kMaxObjectExtent)) return kTooLarge;
+    if (!std::all_of(ring.begin(), ring.end(), [](Vec2 p) { return point_within_limit(p); })) return kTooFarOut;
     return nullptr;
 }
 

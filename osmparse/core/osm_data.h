@@ -68,7 +68,7 @@ struct OsmData {
     std::vector<OsmWay> highways;       // every way with a highway=* tag
     std::vector<OsmArea> building_areas;  // building=* and building:part=*, tags without addr:*
     LatLon min{90, 180}, max{-90, -180};  // bounds of every kept location
-    // The map beyond roads and buildings (DESIGN 6b).
+    // The map beyond roads and buildings.
     std::vector<OsmArea> land_cover_areas;  // areas with a land cover class (build_land_cover.h)
     std::vector<OsmWay> coastlines;         // natural=coastline ways, cut into runs of present nodes
     std::vector<OsmNode> trees;             // natural=tree nodes

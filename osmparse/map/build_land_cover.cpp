@@ -1,6 +1,7 @@
 #include "osmparse/map/build_land_cover.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "common/scene_limits.h"
 #include "osmparse/polygons/clean_footprint.h"
@@ -52,19 +53,80 @@ std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& pr
     return out;
 }
 
+namespace {
+
+constexpr char kClippedAtSceneLimits[] = "clipped to the scene limits (1000 km from the origin)";
+
+// The ring cut to the square of coordinates the scene limits allow (Sutherland-Hodgman: the
+// square is convex), its new points at stored precision. Empty when nothing of it is inside.
+Ring clip_to_coordinate_limit(const Ring& ring) {
+    constexpr double kLimit = kMaxCoordinate;
+    Ring cur = ring, next;
+    for (int side = 0; side < 4 && !cur.empty(); ++side) {
+        const bool along_x = side < 2;
+        const double bound = side % 2 ? kLimit : -kLimit;
+        auto value = [&](Vec2 p) { return along_x ? p.x : p.y; };
+        auto inside = [&](Vec2 p) { return side % 2 ? value(p) <= bound : value(p) >= bound; };
+        next.clear();
+        for (size_t i = 0; i < cur.size(); ++i) {
+            const Vec2 a = cur[i], b = cur[(i + 1) % cur.size()];
+            if (inside(a)) next.push_back(a);
+            if (inside(a) != inside(b)) {
+                const double t = (bound - value(a)) / (value(b) - value(a));
+                const Vec2 c = a + (b - a) * t;
+                next.push_back(round_to_stored_precision(along_x ? Vec2{bound, c.y} : Vec2{c.x, bound}));
+            }
+        }
+        std::swap(cur, next);
+    }
+    cur.erase(std::unique(cur.begin(), cur.end()), cur.end());
+    while (cur.size() > 1 && cur.front() == cur.back()) cur.pop_back();
+    return cur;
+}
+
+bool within_land_cover_limits(const Ring& ring) {
+    return ring.size() <= kMaxLandCoverPoints && extent_within_limit(ring, kMaxLandCoverExtent) &&
+           std::all_of(ring.begin(), ring.end(), [](Vec2 p) { return point_within_limit(p); });
+}
+
+bool finite_points(const Ring& ring) {
+    return std::all_of(ring.begin(), ring.end(), [](Vec2 p) { return std::isfinite(p.x) && std::isfinite(p.y); });
+}
+
+// A ring the loader takes as an area: 3 points or more, not all on one line.
+bool is_area(const Ring& ring) { return ring.size() >= 3 && std::fabs(signed_area(ring)) > 0; }
+
+}  // namespace
+
+// (Declared as dropping: it also clips, to the coordinate limit, what reaches beyond it.)
 std::vector<LandCover> drop_land_cover_beyond_limits(std::vector<LandCover> cover, ParseReport& report) {
-    auto beyond = [](const Ring& ring) {
-        const Box2 box = bounds_of(ring);
-        return ring.size() > kMaxLandCoverPoints ||
-               (!box.empty() && std::max(box.max.x - box.min.x, box.max.y - box.min.y) > kMaxLandCoverExtent);
-    };
     std::vector<LandCover> kept;
     kept.reserve(cover.size());
     for (LandCover& c : cover) {
-        if (beyond(c.outer) || std::any_of(c.holes.begin(), c.holes.end(), beyond))
-            report.dropped(kLandCoverAreas, kBeyondSceneLimits);
-        else
-            kept.push_back(std::move(c));
+        const bool within = within_land_cover_limits(c.outer) &&
+                            std::all_of(c.holes.begin(), c.holes.end(), within_land_cover_limits);
+        if (!within) {
+            // Too many points is a mapping accident: dropped. Beyond the coordinate limit (a
+            // region reaching a thousand km out, an extract box of the whole world): the part
+            // within is kept.
+            bool ok = finite_points(c.outer) && c.outer.size() <= kMaxLandCoverPoints;
+            for (const Ring& h : c.holes) ok = ok && finite_points(h) && h.size() <= kMaxLandCoverPoints;
+            if (ok) {
+                c.outer = clip_to_coordinate_limit(c.outer);
+                std::vector<Ring> holes;
+                for (const Ring& h : c.holes)
+                    if (Ring clipped = clip_to_coordinate_limit(h); is_area(clipped)) holes.push_back(std::move(clipped));
+                c.holes = std::move(holes);
+                ok = is_area(c.outer) && within_land_cover_limits(c.outer) &&
+                     std::all_of(c.holes.begin(), c.holes.end(), within_land_cover_limits);
+            }
+            if (!ok) {
+                report.dropped(kLandCoverAreas, kBeyondSceneLimits);
+                continue;
+            }
+            report.note(kLandCoverAreas, kClippedAtSceneLimits);
+        }
+        kept.push_back(std::move(c));
     }
     return kept;
 }

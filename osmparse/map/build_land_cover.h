@@ -1,6 +1,6 @@
 // Stage 14: land cover (with the sea, assemble_sea.h). OSM areas (closed ways and
 // multipolygons, assembled by libosmium as buildings are) -> cleaned polygons with holes and
-// one class each (DESIGN 6b).
+// one class each.
 #pragma once
 
 #include <optional>

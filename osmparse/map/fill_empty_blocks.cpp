@@ -222,7 +222,8 @@ Building generated_building(Ring footprint, size_t index, const BuildingParams& 
 }  // namespace
 
 std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams& buildings,
-                                        const BlockParams& params, double sidewalk_width, ParseReport& report) {
+                                        const BlockParams& params, double sidewalk_width,
+                                        const RoofEvidence& roof_evidence, ParseReport& report) {
     std::vector<Building> generated;
     if (!params.enabled) return generated;
     const Occupied occupied(scene);
@@ -248,7 +249,7 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
     // Roofs, colours and materials by the same default rules as untagged mapped buildings.
     const OsmData no_tags;
     const BuildingTagIndex tags(no_tags);
-    build_roofs(generated, tags, buildings, report);
+    build_roofs(generated, tags, buildings, report, &roof_evidence);
     choose_colours_and_materials(generated, tags, buildings, report);
     report.kept(kGeneratedBuildings, static_cast<int64_t>(generated.size()));
     return generated;

@@ -7,6 +7,7 @@
 #include "common/scene.h"
 #include "osmparse/core/params.h"
 #include "osmparse/core/report.h"
+#include "osmparse/roofs/build_roofs.h"
 
 namespace citygen {
 
@@ -29,8 +30,10 @@ inline constexpr char kLotOverlaps[] = "would overlap a road, sidewalk or buildi
 // of the type-and-area rule for `yes` (seeded jitter), default roof, colours and materials.
 // Footprints that would overlap a road, joint, sidewalk or mapped building are dropped.
 // Generated buildings have `generated` set and OSM identity w-1, w-2, ... (none in the map).
+// Their roofs follow `roof_evidence`, what the map's tagged roofs say of the region (build_roofs.h).
 // Counts go to "generated buildings" in the report.
 std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams& buildings,
-                                        const BlockParams& params, double sidewalk_width, ParseReport& report);
+                                        const BlockParams& params, double sidewalk_width,
+                                        const RoofEvidence& roof_evidence, ParseReport& report);
 
 }  // namespace citygen

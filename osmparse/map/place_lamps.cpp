@@ -65,7 +65,7 @@ std::vector<Lamp> place_tagged_lamps(const OsmData& osm, const Projection& proje
     std::vector<Lamp> lamps;
     for (const OsmNode& node : osm.street_lamps) {
         Vec2 p = projection.to_local(node.location.lat, node.location.lon);
-        if (std::max(std::fabs(p.x), std::fabs(p.y)) > kMaxCoordinate) {
+        if (!point_within_limit(p)) {
             report.dropped(kTaggedStreetLamps, kTooFarOut);
             continue;
         }

@@ -5,6 +5,8 @@
 #include <cstring>
 
 #include "common/rng.h"
+#include "common/scene_limits.h"
+#include "osmparse/buildings/build_buildings.h"
 #include "osmparse/core/osm_units.h"
 #include "osmparse/map/place_lamps.h"
 #include "osmparse/map/point_placement.h"
@@ -16,7 +18,7 @@ namespace citygen {
 
 namespace {
 
-constexpr double kMinHeight = 1, kMaxHeight = 80, kMinCrown = 0.5, kMaxCrown = 40;
+constexpr double kMinHeight = 1, kMaxTreeHeight = 80, kMinCrown = 0.5, kMaxCrown = 40;
 constexpr double kTrunkClearance = 0.75;  // metres a trunk keeps from roads and buildings
 
 }  // namespace
@@ -32,7 +34,7 @@ Tree tree_from_tags(const OsmTags& tags, ParseReport& report, const char* kind) 
         const char* text = tags.get(key);
         if (!text) continue;
         const std::optional<double> h = parse_osm_length(text);
-        if (h && *h >= kMinHeight && *h <= kMaxHeight) {
+        if (h && *h >= kMinHeight && *h <= kMaxTreeHeight) {
             t.height = *h;
             break;
         }
@@ -97,6 +99,10 @@ void place_mapped_trees(const OsmData& osm, const Projection& projection, const 
         t.osm = {OsmType::Node, node.id};
         t.source = TreeSource::Mapped;
         Vec2 p = round_to_stored_precision(projection.to_local(node.location.lat, node.location.lon));
+        if (!point_within_limit(p)) {  // a stray node: the scene loader would refuse it
+            report.dropped(kMappedTrees, kTooFarOut);
+            continue;
+        }
         if (const Ring* ring = ground.surface_containing(p)) {
             p = push_out_of(*ring, p, kTrunkClearance + 0.05);
             report.note(kMappedTrees, kMovedOffRoad);
@@ -129,6 +135,10 @@ void place_row_trees(const OsmData& osm, const Projection& projection, const Tre
             for (; s <= len; s += params.row_spacing) {
                 const Vec2 p = round_to_stored_precision(a + (b - a) * (s / len));
                 report.read(kTreeRowTrees);
+                if (!point_within_limit(p)) {
+                    report.dropped(kTreeRowTrees, kTooFarOut);
+                    continue;
+                }
                 if (!ground.free(p)) {
                     report.dropped(kTreeRowTrees, kOnRoadBuildingOrWater);
                     continue;

@@ -1,5 +1,5 @@
 // Stage 15: trees. natural=tree nodes, natural=tree_row ways (spaced along the way) and forests
-// (land cover class Forest) filled with a seeded Poisson-disk scatter (DESIGN 6b).
+// (land cover class Forest) filled with a seeded Poisson-disk scatter.
 #pragma once
 
 #include <vector>

@@ -252,6 +252,14 @@ double overlap_area_exact(const Ring& piece, const Ring& outer, const std::vecto
 }
 
 bool polygon_is_valid_exact(const Ring& outer, const std::vector<Ring>& holes) {
+    if (holes.empty()) {
+        // The same check for the common case, on exact predicates without the exact-construction
+        // kernel the general check needs (which took 30x the whole clean-up on every footprint).
+        if (outer.size() < 3) return false;
+        const auto points = points_of<Inexact>(outer);
+        return CGAL::is_simple_2(points.begin(), points.end(), Inexact()) &&
+               CGAL::orientation_2(points.begin(), points.end(), Inexact()) == CGAL::COUNTERCLOCKWISE;
+    }
     // As given: no reorienting, the check covers orientation too.
     auto as_is = [](const Ring& ring) {
         const auto points = points_of<Exact>(ring);

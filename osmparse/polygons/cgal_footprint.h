@@ -34,7 +34,8 @@ std::vector<Ring> simplify_keeping_topology(const std::vector<Ring>& rings, doub
 double overlap_area_exact(const Ring& piece, const Ring& outer, const std::vector<Ring>& holes);
 
 // CGAL's own check of a polygon with holes (CGAL::is_valid_polygon_with_holes): simple
-// rings, outer counter-clockwise, holes clockwise, inside the outer, no crossings.
+// rings, outer counter-clockwise, holes clockwise, inside the outer, no crossings. clean_footprint
+// checks its output with it.
 bool polygon_is_valid_exact(const Ring& outer, const std::vector<Ring>& holes);
 
 }  // namespace citygen

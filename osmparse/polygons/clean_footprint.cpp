@@ -1,6 +1,7 @@
 #include "osmparse/polygons/clean_footprint.h"
 
 #include "osmparse/polygons/cgal_footprint.h"
+#include "osmparse/polygons/exact_predicates.h"
 #include "osmparse/polygons/ring_is_simple.h"
 
 #include <algorithm>
@@ -12,6 +13,30 @@ namespace citygen {
 
 namespace {
 
+// What the clean-up reports, and the one table of their texts.
+enum class Reason {
+    Degenerate,
+    Unrepairable,
+    Repaired,
+    HoleBelowMinArea,
+    HoleOutside,
+    HoleOverlaps,
+    SliverBelowMinArea,
+    InvalidAtOutput,
+};
+const char* text_of(Reason reason) {
+    static constexpr const char* kTexts[] = {
+        "degenerate (fewer than 3 distinct points)",
+        "self-intersecting, could not repair",
+        "self-intersection repaired by splitting",
+        "below min area",
+        "outside or touching the outline",
+        "overlaps another hole",
+        "sliver below min area",
+        "not a valid polygon (CGAL's exact check)",
+    };
+    return kTexts[static_cast<int>(reason)];
+}
 
 // Angle in radians between two directions, in [0, pi]; pi for a zero vector.
 double angle_between(Vec2 a, Vec2 b) {
@@ -19,6 +44,7 @@ double angle_between(Vec2 a, Vec2 b) {
     return std::atan2(std::fabs(cross(a, b)), dot(a, b));
 }
 
+// How deep a point lies behind a line (interior_point's choice of a vertex, not a decision).
 double distance_to_line(Vec2 p, Vec2 a, Vec2 b) {
     const double len = length(b - a);
     return len == 0 ? length(p - a) : std::fabs(cross(b - a, p - a)) / len;
@@ -37,7 +63,7 @@ bool rings_disjoint_boundaries(const Ring& a, const Ring& b) {
             Box2 other;
             other.extend(r);
             other.extend(s);
-            if (edge.overlaps(other) && segments_intersect(p, q, r, s)) return false;
+            if (edge.overlaps(other) && exact_segments_touch(p, q, r, s)) return false;
         }
     }
     return true;
@@ -45,7 +71,7 @@ bool rings_disjoint_boundaries(const Ring& a, const Ring& b) {
 
 // `inner` lies strictly inside `outer`: boundaries apart and a point of inner inside outer.
 bool ring_strictly_inside(const Ring& inner, const Ring& outer) {
-    return rings_disjoint_boundaries(inner, outer) && point_in_ring(inner[0], outer);
+    return rings_disjoint_boundaries(inner, outer) && exact_point_in_ring(inner[0], outer);
 }
 
 Ring oriented(Ring ring, bool counter_clockwise) {
@@ -90,8 +116,8 @@ bool holes_inside_and_apart(const std::vector<Ring>& rings) {
     for (size_t i = 1; i < rings.size(); ++i) {
         if (!ring_strictly_inside(rings[i], rings[0])) return false;
         for (size_t j = 1; j < i; ++j)
-            if (!rings_disjoint_boundaries(rings[i], rings[j]) || point_in_ring(rings[i][0], rings[j]) ||
-                point_in_ring(rings[j][0], rings[i]))
+            if (!rings_disjoint_boundaries(rings[i], rings[j]) || exact_point_in_ring(rings[i][0], rings[j]) ||
+                exact_point_in_ring(rings[j][0], rings[i]))
                 return false;
     }
     return true;
@@ -116,6 +142,12 @@ std::vector<Piece> clean_ring(const Ring& input, double simplify_angle_deg, Ring
     std::vector<Piece> out;
     for (size_t i = 0; i < pieces.size(); ++i) out.push_back({pieces[i], simplified[i]});
     return out;
+}
+
+void report_outcome(RingOutcome outcome, const std::string& kind, ParseReport& report) {
+    if (outcome == RingOutcome::Degenerate) report.dropped(kind, text_of(Reason::Degenerate));
+    if (outcome == RingOutcome::Unrepairable) report.dropped(kind, text_of(Reason::Unrepairable));
+    if (outcome == RingOutcome::Repaired) report.note(kind, text_of(Reason::Repaired));
 }
 
 enum class HoleFate { Kept, BelowMinArea, Outside, Overlaps };
@@ -147,8 +179,8 @@ HoleAssignment assign_holes(const std::vector<Piece>& holes, const std::vector<P
         }
         bool overlaps = false;
         for (const Ring* other : accepted[home])
-            overlaps |= !rings_disjoint_boundaries(hole, *other) || point_in_ring(hole[0], *other) ||
-                        point_in_ring((*other)[0], hole);
+            overlaps |= !rings_disjoint_boundaries(hole, *other) || exact_point_in_ring(hole[0], *other) ||
+                        exact_point_in_ring((*other)[0], hole);
         if (overlaps) {
             out.fate[i] = HoleFate::Overlaps;
             continue;
@@ -157,6 +189,41 @@ HoleAssignment assign_holes(const std::vector<Piece>& holes, const std::vector<P
         accepted[home].push_back(&hole);
     }
     return out;
+}
+
+// CGAL's check for an outline alone; with holes, the same rules on the exact predicates (CGAL's
+// general check builds exact constructions and took 10x the land-cover stage on Malta's).
+bool polygon_is_valid(const Footprint& f) {
+    if (f.holes.empty()) return polygon_is_valid_exact(f.outer, {});
+    std::vector<Ring> rings{f.outer};
+    if (!ring_is_simple(f.outer) || ring_orientation_exact(f.outer) <= 0) return false;
+    for (const Ring& h : f.holes) {
+        if (!ring_is_simple(h) || ring_orientation_exact(h) >= 0) return false;
+        rings.push_back(h);
+    }
+    return holes_inside_and_apart(rings);
+}
+
+// The polygons worth storing: not slivers, and valid by CGAL's check of the stage's output.
+std::vector<Footprint> keep_valid(std::vector<Footprint> polygons, double min_area, ParseReport& report,
+                                  const std::string& kind, const std::string& hole_kind) {
+    std::vector<Footprint> kept;
+    for (Footprint& f : polygons) {
+        double area = signed_area(f.outer);
+        for (const Ring& h : f.holes) area += signed_area(h);  // holes are CW: negative
+        if (area < min_area) {
+            report.dropped(kind, text_of(Reason::SliverBelowMinArea));
+            continue;
+        }
+        // The stage's output checked again: a polygon that fails is counted and never stored.
+        if (!polygon_is_valid(f)) {
+            report.dropped(kind, text_of(Reason::InvalidAtOutput));
+            continue;
+        }
+        report.kept(hole_kind, static_cast<int64_t>(f.holes.size()));
+        kept.push_back(std::move(f));
+    }
+    return kept;
 }
 
 }  // namespace
@@ -168,8 +235,8 @@ Ring remove_repeated_and_collinear(Ring ring, double tolerance) {
         Ring kept;
         kept.reserve(ring.size());
         for (Vec2 p : ring)
-            if (kept.empty() || length(p - kept.back()) > tolerance) kept.push_back(p);
-        while (kept.size() >= 2 && length(kept.back() - kept.front()) <= tolerance) kept.pop_back();
+            if (kept.empty() || !exact_within_distance(p, kept.back(), tolerance)) kept.push_back(p);
+        while (kept.size() >= 2 && exact_within_distance(kept.back(), kept.front(), tolerance)) kept.pop_back();
         changed |= kept.size() != ring.size();
         ring.swap(kept);
         if (ring.size() < 3) break;
@@ -180,7 +247,7 @@ Ring remove_repeated_and_collinear(Ring ring, double tolerance) {
         size_t removed = 0;
         for (size_t i = 0; i < n; ++i) {
             const bool neighbour_dropped = (i > 0 && drop[i - 1]) || (i == n - 1 && drop[0]);
-            if (!neighbour_dropped && distance_to_line(ring[i], ring[(i + n - 1) % n], ring[(i + 1) % n]) <= tolerance) {
+            if (!neighbour_dropped && exact_near_line(ring[i], ring[(i + n - 1) % n], ring[(i + 1) % n], tolerance)) {
                 drop[i] = true;
                 ++removed;
             }
@@ -254,14 +321,14 @@ Vec2 interior_point(const Ring& ring) {
     for (size_t i = 1; i < n; ++i)
         if (ring[i].x < ring[v].x || (ring[i].x == ring[v].x && ring[i].y < ring[v].y)) v = i;
     const Vec2 a = ring[(v + n - 1) % n], b = ring[v], c = ring[(v + 1) % n];
-    const double sign = cross(b - a, c - b) > 0 ? 1 : -1;
+    const int sign = exact_orientation(a, b, c) > 0 ? 1 : -1;
     size_t deepest = n;
     double best = -1;
     for (size_t i = 0; i < n; ++i) {
         if (i == v || i == (v + 1) % n || i == (v + n - 1) % n) continue;
         const Vec2 p = ring[i];
-        const bool inside = sign * cross(b - a, p - a) >= 0 && sign * cross(c - b, p - b) >= 0 &&
-                            sign * cross(a - c, p - c) >= 0;
+        const bool inside = sign * exact_orientation(a, b, p) >= 0 && sign * exact_orientation(b, c, p) >= 0 &&
+                            sign * exact_orientation(c, a, p) >= 0;
         if (!inside) continue;
         const double depth = distance_to_line(p, a, c);
         if (depth > best) {
@@ -273,42 +340,11 @@ Vec2 interior_point(const Ring& ring) {
     return (b + ring[deepest]) * 0.5;
 }
 
-std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring>& holes,
-                                       const BuildingParams& params, ParseReport& report,
-                                       const std::string& kind) {
-    // Buildings count their holes under "building holes" (as they always did), others under "<kind> holes".
-    const std::string hole_kind = kind.rfind("building", 0) == 0 ? std::string("building holes") : kind + " (holes)";
-    RingOutcome outcome = RingOutcome::Clean;
-    std::vector<Piece> pieces = clean_ring(outer, params.simplify_angle_deg, outcome);
-    if (outcome == RingOutcome::Degenerate) report.dropped(kind, "degenerate (fewer than 3 distinct points)");
-    if (outcome == RingOutcome::Unrepairable) report.dropped(kind, "self-intersecting, could not repair");
-    if (outcome == RingOutcome::Repaired) report.note(kind, "self-intersection repaired by splitting");
-
-    // Pieces of a split outline: biggest first; a piece inside another is its hole.
-    std::sort(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) {
-        return std::fabs(signed_area(x.ring)) > std::fabs(signed_area(y.ring));
-    });
-    std::vector<Piece> outers, hole_candidates;
-    for (Piece& piece : pieces) {
-        bool nested = false;
-        for (const Piece& o : outers) nested |= point_in_ring(interior_point(piece.ring), o.ring);
-        (nested ? hole_candidates : outers).push_back(std::move(piece));
-    }
-    for (const Ring& hole : holes) {
-        report.read(hole_kind);
-        RingOutcome hole_outcome = RingOutcome::Clean;
-        std::vector<Piece> hole_pieces = clean_ring(hole, params.simplify_angle_deg, hole_outcome);
-        if (hole_outcome == RingOutcome::Degenerate) report.dropped(hole_kind, "degenerate (fewer than 3 distinct points)");
-        if (hole_outcome == RingOutcome::Unrepairable) report.dropped(hole_kind, "self-intersecting, could not repair");
-        if (hole_outcome == RingOutcome::Repaired) report.note(hole_kind, "self-intersection repaired by splitting");
-        for (Piece& piece : hole_pieces) hole_candidates.push_back(std::move(piece));
-    }
-
-    // Holes go where the simplified rings say. Simplifying each ring on its own can make a
-    // hole meet its outline or another hole that the map kept apart: a polygon where that
-    // cost a hole assigns its holes again on the unsimplified rings, then simplifies all its
-    // rings together (CGAL), which keeps them apart.
-    HoleAssignment assignment = assign_holes(hole_candidates, outers, false, params.min_area);
+// Where simplifying each ring on its own cost a polygon a hole, its holes assigned again on the
+// unsimplified rings, if that keeps more of them; true for the polygons whose rings are then
+// simplified together.
+std::vector<bool> assign_lost_holes_again(const std::vector<Piece>& hole_candidates, const std::vector<Piece>& outers,
+                                          double min_area, HoleAssignment& assignment) {
     std::vector<bool> together(outers.size(), false);
     for (size_t p = 0; p < outers.size(); ++p) {
         std::vector<Piece> mine;  // the holes that could be this polygon's, in order
@@ -326,7 +362,7 @@ std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring
             }
         }
         if (!lost_any) continue;  // the common case: nothing to win
-        const HoleAssignment again = assign_holes(mine, {outers[p]}, true, params.min_area);
+        const HoleAssignment again = assign_holes(mine, {outers[p]}, true, min_area);
         size_t kept_before = 0, kept_again = 0;
         for (size_t k = 0; k < mine.size(); ++k) {
             kept_before += assignment.fate[index[k]] == HoleFate::Kept;
@@ -339,7 +375,13 @@ std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring
             assignment.home[index[k]] = again.fate[k] == HoleFate::Kept ? static_cast<int>(p) : -1;
         }
     }
+    return together;
+}
 
+// The polygons: each outline with the holes assigned to it, oriented.
+std::vector<Footprint> assemble_polygons(const std::vector<Piece>& outers, const std::vector<Piece>& hole_candidates,
+                                         const HoleAssignment& assignment, const std::vector<bool>& together,
+                                         double simplify_angle_deg) {
     std::vector<Footprint> polygons;
     for (size_t p = 0; p < outers.size(); ++p) {
         std::vector<Ring> rings{together[p] ? outers[p].unsimplified : outers[p].ring};
@@ -349,31 +391,58 @@ std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring
         if (together[p]) {
             // CGAL keeps the rings apart, but the 1 cm clean-up after it may drop an outline
             // vertex a hole was kept clear of: then the unsimplified rings.
-            std::vector<Ring> simplified = simplified_together(rings, params.simplify_angle_deg);
+            std::vector<Ring> simplified = simplified_together(rings, simplify_angle_deg);
             if (holes_inside_and_apart(simplified)) rings = std::move(simplified);
         }
         Footprint f{oriented(std::move(rings[0]), true), {}};
         for (size_t k = 1; k < rings.size(); ++k) f.holes.push_back(oriented(std::move(rings[k]), false));
         polygons.push_back(std::move(f));
     }
-    for (HoleFate fate : assignment.fate) {
-        if (fate == HoleFate::BelowMinArea) report.dropped(hole_kind, "below min area");
-        if (fate == HoleFate::Outside) report.dropped(hole_kind, "outside or touching the outline");
-        if (fate == HoleFate::Overlaps) report.dropped(hole_kind, "overlaps another hole");
+    return polygons;
+}
+
+std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring>& holes,
+                                       const BuildingParams& params, ParseReport& report,
+                                       const std::string& kind) {
+    // Buildings count their holes under "building holes" (as they always did), others under "<kind> holes".
+    const std::string hole_kind = kind.rfind("building", 0) == 0 ? std::string("building holes") : kind + " (holes)";
+    RingOutcome outcome = RingOutcome::Clean;
+    std::vector<Piece> pieces = clean_ring(outer, params.simplify_angle_deg, outcome);
+    report_outcome(outcome, kind, report);
+
+    // Pieces of a split outline: biggest first; a piece inside another is its hole.
+    std::sort(pieces.begin(), pieces.end(), [](const Piece& x, const Piece& y) {
+        return std::fabs(signed_area(x.ring)) > std::fabs(signed_area(y.ring));
+    });
+    std::vector<Piece> outers, hole_candidates;
+    for (Piece& piece : pieces) {
+        bool nested = false;
+        for (const Piece& o : outers) nested |= exact_point_in_ring(interior_point(piece.ring), o.ring);
+        (nested ? hole_candidates : outers).push_back(std::move(piece));
+    }
+    for (const Ring& hole : holes) {
+        report.read(hole_kind);
+        RingOutcome hole_outcome = RingOutcome::Clean;
+        std::vector<Piece> hole_pieces = clean_ring(hole, params.simplify_angle_deg, hole_outcome);
+        report_outcome(hole_outcome, hole_kind, report);
+        for (Piece& piece : hole_pieces) hole_candidates.push_back(std::move(piece));
     }
 
-    std::vector<Footprint> kept;
-    for (Footprint& f : polygons) {
-        double area = signed_area(f.outer);
-        for (const Ring& h : f.holes) area += signed_area(h);  // holes are CW: negative
-        if (area < params.min_area) {
-            report.dropped(kind, "sliver below min area");
-            continue;
-        }
-        report.kept(hole_kind, static_cast<int64_t>(f.holes.size()));
-        kept.push_back(std::move(f));
+    // Holes go where the simplified rings say. Simplifying each ring on its own can make a
+    // hole meet its outline or another hole that the map kept apart: a polygon where that
+    // cost a hole assigns its holes again on the unsimplified rings, then simplifies all its
+    // rings together (CGAL), which keeps them apart.
+    HoleAssignment assignment = assign_holes(hole_candidates, outers, false, params.min_area);
+    const std::vector<bool> together = assign_lost_holes_again(hole_candidates, outers, params.min_area, assignment);
+    std::vector<Footprint> polygons =
+        assemble_polygons(outers, hole_candidates, assignment, together, params.simplify_angle_deg);
+    for (HoleFate fate : assignment.fate) {
+        if (fate == HoleFate::BelowMinArea) report.dropped(hole_kind, text_of(Reason::HoleBelowMinArea));
+        if (fate == HoleFate::Outside) report.dropped(hole_kind, text_of(Reason::HoleOutside));
+        if (fate == HoleFate::Overlaps) report.dropped(hole_kind, text_of(Reason::HoleOverlaps));
     }
-    return kept;
+
+    return keep_valid(std::move(polygons), params.min_area, report, kind, hole_kind);
 }
 
 }  // namespace citygen

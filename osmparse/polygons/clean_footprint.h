@@ -21,8 +21,7 @@ struct Footprint {
 constexpr double kFootprintTolerance = 0.01;
 
 // The scene stores float32 coordinates. Cleaning works on values already rounded to
-// float, so the rings that were checked are exactly the rings that are stored (and the
-// double-precision predicates in geometry.h are exact on them).
+// float, so the rings that were checked are exactly the rings that are stored.
 // The float goes through a volatile store: gcc 12.2 at -O2 drops a paired
 // double->float->double conversion when it vectorizes the pair, so release builds skipped the
 // rounding and gave other scenes than -O1, sanitizer or clang builds. A volatile float must be
@@ -46,8 +45,10 @@ inline Vec2 round_to_stored_precision(Vec2 p) { return {round_to_float(p.x), rou
 //     overlapping another hole; drop polygons whose area is below min_area. A polygon that
 //     loses a hole only because step 2 merged its rings one by one assigns its holes again
 //     on the unmerged rings and merges them all together with CGAL, which keeps them apart.
-// Returns zero or more polygons (usually one). Every drop is counted in `report` under
-// `kind` (outer rings) or "building holes".
+//  6. check every polygon with CGAL (is_valid_polygon_with_holes) and drop any that fails.
+// Every decision above is exact (osmparse/polygons/exact_predicates.h) but for the angle
+// threshold of step 2, whose result is checked exactly. Returns zero or more polygons
+// (usually one). Every drop is counted in `report` under `kind` (outer rings) or "building holes".
 std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring>& holes,
                                        const BuildingParams& params, ParseReport& report,
                                        const std::string& kind);

@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "osmparse/polygons/exact_predicates.h"
+
 namespace citygen {
 
 namespace {
-// One Sutherland-Hodgman step: the part of `poly` left of the line a->b, into `out`.
+// One Sutherland-Hodgman step: the part of `poly` left of the line a->b, into `out`. The float
+// side test stays: it builds an area, and a point within rounding of the line adds nothing to
+// it whichever side it goes (the exact sign could disagree with dp's and put t outside [0, 1]).
 void clip_to_left_of(const Ring& poly, Vec2 a, Vec2 b, Ring& out) {
     out.clear();
     for (size_t j = 0, m = poly.size(); j < m; ++j) {
@@ -32,7 +36,7 @@ double clipped_area(const Ring& subject, const Ring& clip) {
         edge(i, a, b);
         bool all_outside = true;
         for (Vec2 p : subject)
-            if (cross(b - a, p - a) > 0) {
+            if (exact_orientation(a, b, p) > 0) {
                 all_outside = false;
                 break;
             }
@@ -70,12 +74,13 @@ std::vector<Ring> triangulate(const Ring& polygon) {
         bool clipped = false;
         for (size_t i = 0; i < n; ++i) {
             const Vec2 a = p[(i + n - 1) % n], b = p[i], c = p[(i + 1) % n];
-            if (cross(b - a, c - b) <= 0) continue;  // reflex or flat: not an ear
+            if (exact_orientation(a, b, c) <= 0) continue;  // reflex or flat: not an ear
             bool empty = true;
             for (size_t j = 0; j < n && empty; ++j) {
                 if (j == i || j == (i + 1) % n || j == (i + n - 1) % n) continue;
                 const Vec2 q = p[j];
-                if (cross(b - a, q - a) >= 0 && cross(c - b, q - b) >= 0 && cross(a - c, q - c) >= 0) empty = false;
+                if (exact_orientation(a, b, q) >= 0 && exact_orientation(b, c, q) >= 0 && exact_orientation(c, a, q) >= 0)
+                    empty = false;
             }
             if (!empty) continue;
             out.push_back({a, b, c});
@@ -185,10 +190,10 @@ bool BuildingIndex::contains(Vec2 p) const {
     bool inside = false;
     for_each_near(box, [&](uint32_t i) {
         const PolygonRef& b = polygons_[i];
-        if (inside || !point_in_ring(p, *b.outer)) return;
+        if (inside || !exact_point_in_ring(p, *b.outer)) return;
         bool in_hole = false;
         if (b.holes)
-            for (const Ring& h : *b.holes) in_hole = in_hole || point_in_ring(p, h);
+            for (const Ring& h : *b.holes) in_hole = in_hole || exact_point_in_ring(p, h);
         inside = !in_hole;
     });
     return inside;

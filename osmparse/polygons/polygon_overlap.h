@@ -1,7 +1,8 @@
 // Overlap areas between road pieces and building footprints, and a grid to find the
-// buildings near a polygon fast. Exact up to floating point: convex pieces clip the
-// footprint directly (Sutherland-Hodgman gives the right area even for a non-convex
-// footprint); other simple polygons are ear-clipped into triangles first.
+// buildings near a polygon fast. Convex pieces clip the footprint directly (Sutherland-Hodgman
+// gives the right area even for a non-convex footprint); other simple polygons are ear-clipped
+// into triangles first. The decisions (which side, which ear, which building holds a point) are
+// exact (exact_predicates.h); the areas are float constructions.
 // Hand-written for speed: CGAL's Boolean intersection on exact constructions
 // (overlap_area_exact in cgal_footprint.h) took 100-180x as long (3.2-4.5 s against 18-47 ms) for
 // one road-sized quad across each Kaiserslautern footprint; the areas differed by at most 1e-9 m²

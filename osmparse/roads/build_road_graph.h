@@ -30,10 +30,10 @@ inline constexpr char kDuplicatePiece[] = "duplicate of another way's piece";
 inline constexpr char kNoPieceLeft[] = "no piece left";
 inline constexpr char kMergedCollinear[] = "merged collinear pieces";
 
-// One straight piece of carriageway between two OSM nodes. As in the thesis every edge
-// is a single straight segment: a way with many nodes yields many edges that meet at
-// degree-2 joins; only nearly collinear runs are merged into one edge (the skipped
-// nodes then lie within a few centimetres of the straight piece).
+// One straight piece of carriageway between two OSM nodes. As in the thesis the project started
+// from (see README), every edge is a single straight segment: a way with many nodes yields many
+// edges that meet at degree-2 joins; only nearly collinear runs are merged into one edge (the
+// skipped nodes then lie within a few centimetres of the straight piece).
 struct RoadGraphEdge {
     int64_t way_id = 0;
     int64_t from_node = 0, to_node = 0;
@@ -79,7 +79,7 @@ struct SidewalkSides {
 SidewalkSides sidewalk_sides(const OsmTags& tags);
 
 // Splits included highway ways at every node shared with another included way (and at
-// every node, as the thesis does), then merges consecutive pieces of the same way at
+// every node), then merges consecutive pieces of the same way at
 // degree-2 nodes where the direction changes by less than params.merge_angle_deg.
 RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
                            const RoadParams& params, ParseReport& report);

@@ -1,5 +1,5 @@
 // Junction: the general case (osm2streets' general case), a node of degree >= 3 or a
-// degree-2 turn too sharp for a miter. As in the thesis the ends are sorted by angle and
+// degree-2 turn too sharp for a miter. The ends are sorted by angle and
 // the offset lines of neighbours intersected; those corners form the joint polygon, and
 // each quad starts where the joint ends. finish_joint.cpp later cuts the quads out of it.
 #include <algorithm>

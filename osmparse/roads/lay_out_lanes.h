@@ -1,5 +1,5 @@
 // Stage 9 (lanes, in the road section) and stage 16 (crossings): lanes and road markings
-// (DESIGN 6b): a lane layout per road from the tags osm2lanes reads
+//: a lane layout per road from the tags osm2lanes reads
 // (lanes, lanes:forward|backward, turn:lanes*, cycleway*, busway*, parking:*), and where
 // markings go: centre line, lane dividers and edge lines per road, zebra crossings and
 // stop lines per node. A few numbers each; render paints them at shading time.

@@ -93,7 +93,7 @@ NarrowedRoads narrow_roads(RoadGraph graph, const std::vector<Building>& buildin
         if (graph.edges[e].width < std::max(params.min_width, kNarrowestRoad)) keep[e] = false;
     };
 
-    // 1. The edge's whole rectangle, as in the thesis. Edges are independent here.
+    // 1. The edge's whole rectangle. Edges are independent here.
     tbb::parallel_for(tbb::blocked_range<size_t>(0, graph.edges.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t e = r.begin(); e != r.end(); ++e) {
             const RoadGraphEdge& edge = graph.edges[e];

@@ -1,6 +1,6 @@
 // Stage 7: roads against buildings. OSM centrelines and guessed widths often put a road
-// surface into a building; as in the thesis such a road is narrowed step by step, and
-// dropped once it would be narrower than params.min_width.
+// surface into a building; as in the thesis the project started from (see README), such a road is
+// narrowed step by step, and dropped once it would be narrower than params.min_width.
 #pragma once
 
 #include <vector>

@@ -88,27 +88,60 @@ bool parse_compass_direction(const char* text, double* degrees) {
     return true;
 }
 
-RoofShape default_roof(const Building& b, double area, uint64_t seed, double* pitch_deg) {
+RoofGroup roof_group(const Building& b, double area) {
+    if (b.is_part || b.min_height > 0) return RoofGroup::Flat;
+    const std::string& t = b.type;
+    if (is_one_of(t, {"church", "chapel", "cathedral", "barn", "farm_auxiliary", "stable", "cowshed"}))
+        return RoofGroup::Sacred;
+    if (is_one_of(t, {"house", "detached", "semidetached_house", "terrace", "bungalow", "farm", "villa",
+                      "cabin", "hut", "static_caravan", "dormitory"}))
+        return RoofGroup::Houses;
+    if (is_one_of(t, {"garage", "garages", "shed", "carport"})) return RoofGroup::Sheds;
+    if (is_one_of(t, {"yes", "residential"}) && area < 250 && b.height <= 13) return RoofGroup::SmallBlocks;
+    if (t == "apartments" && area < 600 && b.height <= 20) return RoofGroup::SmallFlats;
+    return RoofGroup::Flat;
+}
+
+RoofEvidence roof_evidence(const std::vector<Building>& buildings, const BuildingTagIndex& index) {
+    RoofEvidence e;
+    for (const Building& b : buildings) {
+        const char* text = index.find(b.osm).get("roof:shape");
+        RoofShape shape;
+        if (!text || !parse_roof_shape(text, &shape)) continue;
+        const int g = static_cast<int>(roof_group(b, std::fabs(signed_area(b.outer))));
+        ++e.tagged[g];
+        e.pitched[g] += shape != RoofShape::Flat;
+    }
+    return e;
+}
+
+double pitched_share(const RoofEvidence& e, RoofGroup group) {
+    // Pseudo-counts of the prior: a handful of tagged roofs already says which way a region
+    // builds (flat or pitched is regional: Malta's flat roofs, Germany's gabled ones), and with
+    // none the share is the prior's.
+    constexpr double kWeight = 4;
+    const int g = static_cast<int>(group);
+    if (group == RoofGroup::Flat) return 0;
+    if (group == RoofGroup::Sacred) return (e.pitched[g] + kWeight) / (e.tagged[g] + kWeight);
+    double tagged = 0, pitched = 0;
+    for (RoofGroup h : {RoofGroup::Houses, RoofGroup::Sheds, RoofGroup::SmallBlocks, RoofGroup::SmallFlats}) {
+        tagged += e.tagged[static_cast<int>(h)];
+        pitched += e.pitched[static_cast<int>(h)];
+    }
+    const double region = pitched / (tagged + kWeight);
+    return (e.pitched[g] + kWeight * region) / (e.tagged[g] + kWeight);
+}
+
+RoofShape default_roof(const Building& b, double area, uint64_t seed, double* pitch_deg, const RoofEvidence& evidence) {
     const uint64_t key = hash_keys(seed, static_cast<uint64_t>(b.osm.type), static_cast<uint64_t>(b.osm.id));
     const double u = hash_to_unit(hash_keys(key, kPitchedOrFlat));
     const double which = hash_to_unit(hash_keys(key, kWhichPitched));
     *pitch_deg = 25 + 20 * hash_to_unit(hash_keys(key, kPitch));
-    auto pitched = [&] {
-        return which < 0.65 ? RoofShape::Gabled : which < 0.9 ? RoofShape::Hipped : RoofShape::HalfHipped;
-    };
-    if (b.is_part || b.min_height > 0) return RoofShape::Flat;
-    const std::string& t = b.type;
-    const double h = b.height;
-    if (is_one_of(t, {"church", "chapel", "cathedral", "barn", "farm_auxiliary", "stable", "cowshed"}))
-        return RoofShape::Gabled;
-    if (is_one_of(t, {"house", "detached", "semidetached_house", "terrace", "bungalow", "farm", "villa",
-                      "cabin", "hut", "static_caravan", "dormitory"}))
-        return pitched();
-    if (is_one_of(t, {"garage", "garages", "shed", "carport"}))
-        return u < 0.5 ? RoofShape::Flat : u < 0.8 ? RoofShape::Gabled : RoofShape::Skillion;
-    if (is_one_of(t, {"yes", "residential"}) && area < 250 && h <= 13) return u < 0.6 ? pitched() : RoofShape::Flat;
-    if (t == "apartments" && area < 600 && h <= 20) return u < 0.3 ? pitched() : RoofShape::Flat;
-    return RoofShape::Flat;
+    const RoofGroup group = roof_group(b, area);
+    if (u >= pitched_share(evidence, group)) return RoofShape::Flat;
+    if (group == RoofGroup::Sacred) return RoofShape::Gabled;
+    if (group == RoofGroup::Sheds) return which < 0.6 ? RoofShape::Gabled : RoofShape::Skillion;
+    return which < 0.65 ? RoofShape::Gabled : which < 0.9 ? RoofShape::Hipped : RoofShape::HalfHipped;
 }
 
 bool roof_face_is_valid(const RoofFace& face, const Building& b, double z_min, double z_max) {
@@ -128,40 +161,33 @@ bool roof_face_is_valid(const RoofFace& face, const Building& b, double z_min, d
 namespace {
 
 // One building's roof; what the report should count goes to `notes`.
-void build_roof(Building& b, const BuildingTagIndex& index, const BuildingParams& params,
-                std::vector<std::string>& notes) {
-    b.roof_faces.clear();
-    b.roof_height = 0;
-    b.roof_shape = RoofShape::Flat;
-    if (!has_volume(b)) return;
-    const OsmTags& tags = index.find(b.osm);
-    const double area = std::fabs(signed_area(b.outer));
-
-    // Shape.
+// The roof's shape: tagged, or by the default rules (b.roof_inferred); its pitch: the shape's
+// default or roof:angle.
+RoofShape roof_shape_and_pitch(Building& b, const OsmTags& tags, double area, const RoofEvidence& evidence,
+                               const BuildingParams& params, double* pitch, std::vector<std::string>& notes) {
     RoofShape shape = RoofShape::Flat;
-    double pitch = 0;
     b.roof_inferred = false;
     if (const char* text = tags.get("roof:shape")) {
         if (!parse_roof_shape(text, &shape)) {
             notes.push_back("unknown roof:shape: flat");
             shape = RoofShape::Flat;
         }
-        pitch = default_pitch(shape);
+        *pitch = default_pitch(shape);
     } else {
-        shape = default_roof(b, area, params.seed, &pitch);
+        shape = default_roof(b, area, params.seed, pitch, evidence);
         b.roof_inferred = true;
     }
     if (const char* text = tags.get("roof:angle")) {
         char* end = nullptr;
         const double angle = std::strtod(text, &end);
-        if (end != text && *end == '\0' && angle > 0 && angle <= 85) pitch = angle;
+        if (end != text && *end == '\0' && angle > 0 && angle <= 85) *pitch = angle;
         else notes.push_back("bad roof:angle ignored");
     }
-    if (shape == RoofShape::Flat) {
-        notes.push_back(b.roof_inferred ? "flat (default)" : "flat (tagged)");
-        return;
-    }
+    return shape;
+}
 
+// The shape with its ridge direction and orientation from the tags.
+RoofSpec roof_spec(RoofShape shape, const OsmTags& tags, std::vector<std::string>& notes) {
     RoofSpec spec;
     spec.shape = shape;
     if (const char* text = tags.get("roof:direction")) {
@@ -174,8 +200,14 @@ void build_roof(Building& b, const BuildingTagIndex& index, const BuildingParams
         }
     }
     spec.across = tags.has("roof:orientation", "across");
+    return spec;
+}
 
-    // Height.
+// The roof's height: roof:height, else roof:levels, else from the pitch over the footprint (at
+// most three quarters of the building). building:levels counts the storeys under the roof, so
+// there the roof goes on top (b.height grows); a tagged height above the building is clamped.
+double roof_height(Building& b, const OsmTags& tags, const RoofSpec& spec, double pitch,
+                   const BuildingParams& params, std::vector<std::string>& notes) {
     const double budget = b.height - b.min_height;
     double height = 0;
     bool derived = false;
@@ -192,17 +224,38 @@ void build_roof(Building& b, const BuildingTagIndex& index, const BuildingParams
     } else if (levels && *levels > 0 && *levels < 100) {
         height = *levels * params.level_height;
     } else {
-        height = height_from_pitch(shape, pitch, roof_frame(b.outer, spec));
+        height = height_from_pitch(spec.shape, pitch, roof_frame(b.outer, spec));
         derived = true;
     }
     if (b.height_source == HeightSource::Levels) {
-        b.height += height;  // building:levels counts the storeys under the roof
+        b.height += height;
     } else if (derived) {
         height = std::min(height, 0.75 * budget);
     } else if (height > budget) {
         notes.push_back("roof:height above the building: clamped");
         height = budget;
     }
+    return height;
+}
+
+void build_roof(Building& b, const BuildingTagIndex& index, const RoofEvidence& evidence, const BuildingParams& params,
+                std::vector<std::string>& notes) {
+    b.roof_faces.clear();
+    b.roof_height = 0;
+    b.roof_shape = RoofShape::Flat;
+    if (!has_volume(b)) return;
+    const OsmTags& tags = index.find(b.osm);
+    const double area = std::fabs(signed_area(b.outer));
+
+    double pitch = 0;
+    const RoofShape shape = roof_shape_and_pitch(b, tags, area, evidence, params, &pitch, notes);
+    if (shape == RoofShape::Flat) {
+        notes.push_back(b.roof_inferred ? "flat (default)" : "flat (tagged)");
+        return;
+    }
+
+    RoofSpec spec = roof_spec(shape, tags, notes);
+    const double height = roof_height(b, tags, spec, pitch, params, notes);
     if (height < kMinRoofHeight) {
         notes.push_back("roof too low: flat");
         return;
@@ -237,12 +290,13 @@ void build_roof(Building& b, const BuildingTagIndex& index, const BuildingParams
 }  // namespace
 
 void build_roofs(std::vector<Building>& buildings, const BuildingTagIndex& index, const BuildingParams& params,
-                 ParseReport& report) {
+                 ParseReport& report, const RoofEvidence* given) {
     // Buildings are independent (the straight skeleton is most of the stage's time): in parallel,
     // with the notes counted afterwards in building order, so the report does not depend on threads.
+    const RoofEvidence evidence = given ? *given : roof_evidence(buildings, index);
     std::vector<std::vector<std::string>> notes(buildings.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, buildings.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) build_roof(buildings[i], index, params, notes[i]);
+        for (size_t i = r.begin(); i != r.end(); ++i) build_roof(buildings[i], index, evidence, params, notes[i]);
     });
     for (const auto& list : notes)
         for (const std::string& note : list) report.note(kRoofs, note);

@@ -14,7 +14,7 @@ namespace citygen {
 // Sets roof_shape, roof_height, roof_inferred and roof_faces of every building:
 //  - shape: roof:shape (flat, skillion, gabled, hipped, half-hipped, pyramidal, gambrel, mansard,
 //    dome, onion, round, and a few synonyms); an unknown value gives a flat roof (counted);
-//    untagged: default_roof() below (roof_inferred = true);
+//    untagged: default_roof() below, from the extract's roof_evidence (roof_inferred = true);
 //  - height: roof:height, else roof:levels x level_height, else from the pitch (roof:angle, else
 //    the shape's default pitch) and the footprint's width. A tagged height includes the roof; a
 //    height from building:levels gets the roof on top of its storeys. A roof:height above the
@@ -23,16 +23,41 @@ namespace citygen {
 //  - faces: make_roof_faces() plus gable_walls(); a shape that cannot be built, or whose faces
 //    fail the checks (planar, between eaves and height, over the footprint), gives a flat roof
 //    (counted under "roofs").
+// `evidence`: the extract's roof_evidence when `buildings` is only a part of it (a slice, the
+// empty blocks' buildings); by default that of `buildings` and `tags`.
+struct RoofEvidence;
 void build_roofs(std::vector<Building>& buildings, const BuildingTagIndex& tags, const BuildingParams& params,
-                 ParseReport& report);
+                 ParseReport& report, const RoofEvidence* evidence = nullptr);
 
-// The documented default for untagged roofs, by building type, footprint area and height
-// (seeded per building): houses, farms, churches, huts pitched (mostly gabled, some hipped or
-// half-hipped); garages and sheds flat, gabled or skillion; small `yes`/`residential` buildings
-// up to 13 m pitched six times in ten, small apartment blocks up to 20 m three in ten; everything
-// else (commercial, industrial, large or tall buildings, building parts, raised parts) flat.
-// Also returns the pitch in degrees for pitched shapes.
-RoofShape default_roof(const Building& building, double area, uint64_t seed, double* pitch_deg);
+// The groups of buildings whose untagged roofs may be pitched: churches and farm buildings
+// (church, chapel, cathedral, barn, farm_auxiliary, stable, cowshed); houses (house, detached,
+// semidetached_house, terrace, bungalow, farm, villa, cabin, hut, static_caravan, dormitory);
+// sheds (garage, garages, shed, carport); small blocks (`yes`/`residential` under 250 m2 and up
+// to 13 m); small flats (`apartments` under 600 m2 and up to 20 m). Everything else
+// (commercial, industrial, large or tall buildings, building parts, raised parts) is flat.
+enum class RoofGroup : uint8_t { Sacred, Houses, Sheds, SmallBlocks, SmallFlats, Flat, Count };
+RoofGroup roof_group(const Building& building, double area);
+
+// What the extract's own roof:shape tags say: per group, how many whole ground-standing
+// buildings carry one and how many of those are pitched (any shape but flat).
+struct RoofEvidence {
+    int tagged[static_cast<int>(RoofGroup::Count)] = {};
+    int pitched[static_cast<int>(RoofGroup::Count)] = {};
+};
+RoofEvidence roof_evidence(const std::vector<Building>& buildings, const BuildingTagIndex& tags);
+
+// The share of a group's untagged roofs that are pitched: churches and farm buildings pitched
+// unless the extract's tags say otherwise; the other groups flat (the OSM default roof:shape)
+// unless the extract's tagged roofs say otherwise: their pitched share, of the group's own tags
+// (shrunk by count towards the share of all the homes' and sheds' tags, itself shrunk towards
+// flat), so a region of flat roofs keeps them and one of pitched roofs gets them.
+double pitched_share(const RoofEvidence& evidence, RoofGroup group);
+
+// The default for untagged roofs (seeded per building): pitched (mostly gabled, some hipped or
+// half-hipped; sheds gabled or skillion) with the group's pitched_share, else flat. Also returns
+// the pitch in degrees for pitched shapes.
+RoofShape default_roof(const Building& building, double area, uint64_t seed, double* pitch_deg,
+                       const RoofEvidence& evidence = {});
 
 // roof:shape text -> shape; false for unknown values.
 bool parse_roof_shape(const char* text, RoofShape* shape);

@@ -47,14 +47,23 @@ bool Camera::project(Vec3 p, double* px, double* py) const {
     return true;
 }
 
-Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, int height) {
-    // Frame the buildings (roads may run far out of town); failing that the roads, then the
-    // header bounds.
+namespace {
+
+// What the automatic view frames: the buildings (roads may run far out of town); failing that
+// the roads, then the header bounds. The corners are every building corner, foot and top (road
+// corners when there are no buildings): a diagonal town leaves its bounding box's corners empty.
+struct TownExtent {
     Box2 box;
-    double top = 0;
+    double top = 0, radius = 0;
+    std::vector<Vec3> corners;
+};
+
+TownExtent town_extent(const Scene& scene) {
+    TownExtent town;
+    Box2& box = town.box;
     for (const Building& b : scene.buildings) {
         for (Vec2 p : b.outer) box.extend(p);
-        top = std::max(top, b.height);
+        town.top = std::max(town.top, b.height);
     }
     if (box.empty())
         for (const RoadEdge& r : scene.roads)
@@ -63,35 +72,33 @@ Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, in
         box.extend(scene.header.bounds_min);
         box.extend(scene.header.bounds_max);
     }
-    const Vec2 centre = (box.min + box.max) * 0.5;
-    const double radius = std::max(20.0, 0.5 * std::hypot(box.max.x - box.min.x, box.max.y - box.min.y));
-    // Look down 20 degrees, less when the field of view is narrow, so the top of the image
-    // always shows some sky above the horizon.
-    const double half_fov = 0.5 * vertical_fov_deg * kPi / 180;
-    const double pitch = std::clamp(half_fov - 5 * kPi / 180, 3 * kPi / 180, 20 * kPi / 180);
-    Vec3 target{centre.x, centre.y, scene.ground.z + 0.15 * std::min(top, radius)};
-    const Vec2 from_south_west = normalize(Vec2{-1, -1.6});
-    const Vec3 back{from_south_west.x * std::cos(pitch), from_south_west.y * std::cos(pitch), std::sin(pitch)};
-    // The nearest distance at which every building corner (foot and top; road corners when
-    // there are no buildings) falls inside 90% of the frame; found by bisection (fitting gets
-    // easier with distance). Corners, not the bounding box: a diagonal town leaves the box's
-    // corners empty.
-    std::vector<Vec3> corners;
+    town.radius = std::max(20.0, 0.5 * std::hypot(box.max.x - box.min.x, box.max.y - box.min.y));
     for (const Building& b : scene.buildings)
         for (Vec2 p : b.outer) {
-            corners.push_back({p.x, p.y, scene.ground.z});
-            corners.push_back({p.x, p.y, scene.ground.z + std::min(b.height, 2 * radius)});
+            town.corners.push_back({p.x, p.y, scene.ground.z});
+            town.corners.push_back({p.x, p.y, scene.ground.z + std::min(b.height, 2 * town.radius)});
         }
-    if (corners.empty())
+    if (town.corners.empty())
         for (double x : {box.min.x, box.max.x})
-            for (double y : {box.min.y, box.max.y}) corners.push_back({x, y, scene.ground.z});
-    const double tan_v = 0.9 * std::tan(half_fov), tan_h = tan_v * width / height;
-    const Vec3 forward = -back;
-    const Vec3 right = normalize(cross(forward, Vec3{0, 0, 1}));
-    const Vec3 up = cross(right, forward);
-    // A lone building far out of town may fall outside: 0.3% of the corners are allowed to.
-    const size_t allowed_outside = corners.size() * 3 / 1000;
-    auto fits = [&](double distance) {
+            for (double y : {box.min.y, box.max.y}) town.corners.push_back({x, y, scene.ground.z});
+    return town;
+}
+
+double quantile(std::vector<double>& values, double q) {
+    const size_t k = std::min(values.size() - 1, static_cast<size_t>(q * values.size()));
+    std::nth_element(values.begin(), values.begin() + k, values.end());
+    return values[k];
+}
+
+// A view direction and frame size, and the corners it must show: every corner inside 90% of
+// the frame, but for a lone building far out of town (0.3% of the corners may fall outside).
+struct FramingView {
+    Vec3 back, forward, right, up;
+    double tan_v, tan_h;
+    const std::vector<Vec3>& corners;
+
+    bool fits(Vec3 target, double distance) const {
+        const size_t allowed_outside = corners.size() * 3 / 1000;
         const Vec3 eye = target + back * distance;
         size_t outside = 0;
         for (const Vec3& c : corners) {
@@ -101,23 +108,19 @@ Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, in
                 if (++outside > allowed_outside) return false;
         }
         return true;
-    };
-    auto quantile = [](std::vector<double>& values, double q) {
-        const size_t k = std::min(values.size() - 1, static_cast<size_t>(q * values.size()));
-        std::nth_element(values.begin(), values.begin() + k, values.end());
-        return values[k];
-    };
-    double distance = 100 * radius;
-    // A few rounds of: fit the distance, then re-aim at the middle of what the town covers in
-    // the image (a town seen from above fills the lower half otherwise). The direction, and so
-    // the strip of sky at the top, stays the same.
-    for (int round = 0; round < 8; ++round) {
+    }
+    // The nearest distance that fits, by bisection (fitting gets easier with distance).
+    double nearest_fit(Vec3 target, double radius) const {
         double near = 0.01 * radius, far = 100 * radius;
         for (int i = 0; i < 60; ++i) {
             const double mid = 0.5 * (near + far);
-            (fits(mid) ? far : near) = mid;
+            (fits(target, mid) ? far : near) = mid;
         }
-        distance = far;
+        return far;
+    }
+    // The target moved towards the middle of what the corners cover in the image, damped:
+    // perspective shifts too.
+    Vec3 recentred(Vec3 target, double distance) const {
         const Vec3 eye = target + back * distance;
         std::vector<double> u, v;
         for (const Vec3& c : corners) {
@@ -128,14 +131,31 @@ Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, in
         }
         const double u_mid = 0.5 * (quantile(u, 0.0015) + quantile(u, 0.9985));
         const double v_mid = 0.5 * (quantile(v, 0.0015) + quantile(v, 0.9985));
-        target = target + (right * u_mid + up * v_mid) * (0.5 * distance);  // damped: perspective shifts too
+        return target + (right * u_mid + up * v_mid) * (0.5 * distance);
     }
-    double near = 0.01 * radius, far = 100 * radius;
-    for (int i = 0; i < 60; ++i) {
-        const double mid = 0.5 * (near + far);
-        (fits(mid) ? far : near) = mid;
-    }
-    const Vec3 position = target + back * far;
+};
+
+}  // namespace
+
+Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, int height) {
+    const TownExtent town = town_extent(scene);
+    const Vec2 centre = (town.box.min + town.box.max) * 0.5;
+    // Look down 20 degrees, less when the field of view is narrow, so the top of the image
+    // always shows some sky above the horizon.
+    const double half_fov = 0.5 * vertical_fov_deg * kPi / 180;
+    const double pitch = std::clamp(half_fov - 5 * kPi / 180, 3 * kPi / 180, 20 * kPi / 180);
+    Vec3 target{centre.x, centre.y, scene.ground.z + 0.15 * std::min(town.top, town.radius)};
+    const Vec2 from_south_west = normalize(Vec2{-1, -1.6});
+    const Vec3 back{from_south_west.x * std::cos(pitch), from_south_west.y * std::cos(pitch), std::sin(pitch)};
+    const double tan_v = 0.9 * std::tan(half_fov), tan_h = tan_v * width / height;
+    const Vec3 forward = -back;
+    const Vec3 right = normalize(cross(forward, Vec3{0, 0, 1}));
+    const FramingView view{back, forward, right, cross(right, forward), tan_v, tan_h, town.corners};
+    // A few rounds of: fit the distance, then re-aim at the middle of what the town covers in
+    // the image (a town seen from above fills the lower half otherwise). The direction, and so
+    // the strip of sky at the top, stays the same.
+    for (int round = 0; round < 8; ++round) target = view.recentred(target, view.nearest_fit(target, town.radius));
+    const Vec3 position = target + back * view.nearest_fit(target, town.radius);
     return Camera::look_at(position, target, vertical_fov_deg, width, height);
 }
 

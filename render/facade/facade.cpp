@@ -42,29 +42,31 @@ constexpr double kMinRoomDepth = 0.2;  // even at the sharpest corner a window s
 
 }  // namespace
 
-WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall) {
-    // Per building: every wall of a building shares its style, so floors line up at corners.
-    auto building_unit = [&](Salt salt) { return hash_to_unit(hash_keys(options.seed, wall.building_key, salt)); };
-    // Per wall: choices that may differ between the sides of one building.
-    auto wall_unit = [&](Salt salt) {
+namespace {
+
+// The seeded choices of a facade: per building (every wall of a building shares its style, so
+// floors line up at corners) and per wall (choices that may differ between its sides).
+struct FacadeDice {
+    const FacadeOptions& options;
+    const WallInput& wall;
+    double building(Salt salt) const { return hash_to_unit(hash_keys(options.seed, wall.building_key, salt)); }
+    double of_wall(Salt salt) const {
         return hash_to_unit(hash_keys(options.seed, wall.building_key, wall.wall_index, salt));
-    };
+    }
+};
 
-    WallLayout layout;
-    layout.length = wall.length;
-    layout.height = wall.height;
-    if (!(wall.length > 0) || !(wall.height > 0)) return layout;
-    if (wall.style == FacadeStyle::Plain) return layout;
-
-    const double bottom_margin = 0.3 + 0.3 * building_unit(kBottomMargin);
-    const double top_margin = 0.4 + 0.6 * building_unit(kTopMargin);
-    const double edge_margin = 0.4 + 0.6 * building_unit(kEdgeMargin);
+// The grid of floors and window slots, with its margins, recess and room boxes; false when the
+// wall is too short or too narrow for one cell (a plain wall).
+bool lay_out_grid(const WallInput& wall, const FacadeDice& dice, WallLayout& layout) {
+    const double bottom_margin = 0.3 + 0.3 * dice.building(kBottomMargin);
+    const double top_margin = 0.4 + 0.6 * dice.building(kTopMargin);
+    const double edge_margin = 0.4 + 0.6 * dice.building(kEdgeMargin);
 
     // Storeys: houses low, offices and shops tall, the rest in between (tagged levels win).
     const bool offices = wall.style == FacadeStyle::Office || wall.style == FacadeStyle::CurtainWall;
-    double floor_target = wall.style == FacadeStyle::House ? 2.7 + 0.3 * building_unit(kFloorHeight)
-                          : offices                        ? 3.4 + 0.5 * building_unit(kFloorHeight)
-                                                           : 2.9 + 0.5 * building_unit(kFloorHeight);
+    double floor_target = wall.style == FacadeStyle::House ? 2.7 + 0.3 * dice.building(kFloorHeight)
+                          : offices                        ? 3.4 + 0.5 * dice.building(kFloorHeight)
+                                                           : 2.9 + 0.5 * dice.building(kFloorHeight);
     if (wall.levels > 0) {
         double tagged = wall.height / wall.levels;
         if (tagged >= kMinFloorHeight && tagged <= 5.0) floor_target = tagged;
@@ -76,14 +78,14 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     constexpr double kMaxCells = 1e6;
     const int floors = static_cast<int>(std::clamp(std::floor(usable_height / floor_target), 0.0, kMaxCells));
     // Window rhythm: offices in narrow, even bays (ribbon windows), houses in wide ones.
-    const double slot_target = wall.style == FacadeStyle::Office  ? 1.8 + 0.4 * building_unit(kSlotWidth)
-                               : wall.style == FacadeStyle::House ? 2.8 + 1.2 * building_unit(kSlotWidth)
-                                                                  : 2.4 + 1.4 * building_unit(kSlotWidth);
+    const double slot_target = wall.style == FacadeStyle::Office  ? 1.8 + 0.4 * dice.building(kSlotWidth)
+                               : wall.style == FacadeStyle::House ? 2.8 + 1.2 * dice.building(kSlotWidth)
+                                                                  : 2.4 + 1.4 * dice.building(kSlotWidth);
     const int slots = static_cast<int>(std::clamp(std::floor(usable_length / slot_target), 0.0, kMaxCells));
-    if (floors < 1 || slots < 1) return layout;  // too short or too narrow: plain wall
+    if (floors < 1 || slots < 1) return false;
     const double floor_height = usable_height / floors;
     const double slot_width = usable_length / slots;
-    if (floor_height < kMinFloorHeight || slot_width < kMinSlotWidth) return layout;
+    if (floor_height < kMinFloorHeight || slot_width < kMinSlotWidth) return false;
 
     layout.floors = floors;
     layout.slots = slots;
@@ -91,8 +93,8 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
     layout.grid_v0 = bottom_margin;
     layout.slot_width = slot_width;
     layout.floor_height = floor_height;
-    layout.recess = 0.12 + 0.13 * building_unit(kRecess);
-    layout.room_depth = 1.8 + 0.8 * building_unit(kRoomDepth);
+    layout.recess = 0.12 + 0.13 * dice.building(kRecess);
+    layout.room_depth = 1.8 + 0.8 * dice.building(kRoomDepth);
     layout.room_inset = kRoomInset;
     // At an acute corner the neighbouring wall runs in behind the end cells at w = u * tan(angle):
     // keep the room boxes (which start edge_margin + inset from the corner) in front of it.
@@ -101,47 +103,70 @@ WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall)
         const double deepest = 0.9 * (edge_margin + kRoomInset) * std::tan(corner);  // 10% to spare
         layout.room_depth = std::clamp(deepest - layout.recess, kMinRoomDepth, layout.room_depth);
     }
+    return true;
+}
 
-    // Window: centred in its slot, at least 0.25 m of wall either side and 0.35 m above.
-    const double window_width = std::min(1.0 + 0.6 * building_unit(kWindowWidth), slot_width - 0.5);
-    const double sill = std::min(0.8 + 0.2 * building_unit(kSill), floor_height - 1.2);
-    const double window_height = std::min(1.3 + 0.4 * building_unit(kWindowHeight), floor_height - 0.35 - sill);
+// The window of a slot: centred, at least 0.25 m of wall either side and 0.35 m above; ribbon
+// windows on offices, glass from floor to floor on curtain walls.
+void place_window(const WallInput& wall, const FacadeDice& dice, WallLayout& layout) {
+    const double slot_width = layout.slot_width, floor_height = layout.floor_height;
+    const double window_width = std::min(1.0 + 0.6 * dice.building(kWindowWidth), slot_width - 0.5);
+    const double sill = std::min(0.8 + 0.2 * dice.building(kSill), floor_height - 1.2);
+    const double window_height = std::min(1.3 + 0.4 * dice.building(kWindowHeight), floor_height - 0.35 - sill);
     layout.window = {0.5 * (slot_width - window_width), 0.5 * (slot_width + window_width), sill, sill + window_height};
-    if (wall.style == FacadeStyle::Office) {  // ribbon windows: nearly the whole bay, a band of wall between
-        const double ribbon = std::min(1.6 + 0.3 * building_unit(kWindowHeight), floor_height - 1.2);
+    if (wall.style == FacadeStyle::Office) {  // nearly the whole bay, a band of wall between
+        const double ribbon = std::min(1.6 + 0.3 * dice.building(kWindowHeight), floor_height - 1.2);
         layout.window = {0.08, slot_width - 0.08, 0.9, 0.9 + ribbon};
     }
-
-    // Curtain wall: glass from floor to floor, slim mullions, no balconies.
-    const bool curtain = wall.style == FacadeStyle::CurtainWall;
-    if (curtain) {
+    if (wall.style == FacadeStyle::CurtainWall) {  // slim mullions
         layout.window = {0.06, slot_width - 0.06, 0.08, floor_height - 0.08};
         layout.recess = 0.06;
     }
+}
 
-    // Balconies: per building, and then only on some of its walls, never on one-floor walls.
-    const bool no_balconies = curtain || wall.style == FacadeStyle::Office;
-    if (!no_balconies && floors >= 2 && building_unit(kHasBalconies) < 0.4 && wall_unit(kWallBalconies) < 0.7) {
-        layout.balconies = true;
-        layout.balcony_every = building_unit(kBalconyEvery) < 0.5 ? 1 : 2;
-        layout.balcony_depth = 1.0 + 0.4 * building_unit(kBalconyDepth);
-        layout.slab_thickness = 0.18;
-        layout.fence_height = std::min(1.0, floor_height - 1.0);
-        layout.balcony_margin = 0.1;
-        const double door_width = std::min(0.9 + 0.3 * building_unit(kDoorWidth), slot_width - 0.5);
-        const double door_top = std::min(layout.slab_thickness + 2.1, floor_height - 0.3);
-        layout.door = {0.5 * (slot_width - door_width), 0.5 * (slot_width + door_width), layout.slab_thickness,
-                       door_top};
-    }
+// Balconies: per building, and then only on some of its walls, never on one-floor walls, on
+// curtain walls or offices.
+void place_balconies(const WallInput& wall, const FacadeDice& dice, WallLayout& layout) {
+    const bool no_balconies = wall.style == FacadeStyle::CurtainWall || wall.style == FacadeStyle::Office;
+    if (no_balconies || layout.floors < 2 || dice.building(kHasBalconies) >= 0.4 || dice.of_wall(kWallBalconies) >= 0.7)
+        return;
+    const double slot_width = layout.slot_width, floor_height = layout.floor_height;
+    layout.balconies = true;
+    layout.balcony_every = dice.building(kBalconyEvery) < 0.5 ? 1 : 2;
+    layout.balcony_depth = 1.0 + 0.4 * dice.building(kBalconyDepth);
+    layout.slab_thickness = 0.18;
+    layout.fence_height = std::min(1.0, floor_height - 1.0);
+    layout.balcony_margin = 0.1;
+    const double door_width = std::min(0.9 + 0.3 * dice.building(kDoorWidth), slot_width - 0.5);
+    const double door_top = std::min(layout.slab_thickness + 2.1, floor_height - 0.3);
+    layout.door = {0.5 * (slot_width - door_width), 0.5 * (slot_width + door_width), layout.slab_thickness, door_top};
+}
 
-    // Shop front: a row of large panes on the ground floor of buildings that stand on the ground.
+// Shop front: a row of large panes on the ground floor of buildings that stand on the ground.
+void place_shop_front(const FacadeOptions& options, const WallInput& wall, const FacadeDice& dice,
+                      WallLayout& layout) {
     const double shop_probability = wall.style == FacadeStyle::Shops   ? 1.0
                                     : wall.style == FacadeStyle::House ? 0.0
                                                                        : options.shop_probability;
-    if (wall.bottom_z < 0.5 && floor_height >= 2.8 && building_unit(kShop) < shop_probability) {
+    if (wall.bottom_z < 0.5 && layout.floor_height >= 2.8 && dice.building(kShop) < shop_probability) {
         layout.shop = true;
-        layout.shop_window = {0.25, slot_width - 0.25, 0.4, floor_height - 0.5};
+        layout.shop_window = {0.25, layout.slot_width - 0.25, 0.4, layout.floor_height - 0.5};
     }
+}
+
+}  // namespace
+
+WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall) {
+    WallLayout layout;
+    layout.length = wall.length;
+    layout.height = wall.height;
+    if (!(wall.length > 0) || !(wall.height > 0)) return layout;
+    if (wall.style == FacadeStyle::Plain) return layout;
+    const FacadeDice dice{options, wall};
+    if (!lay_out_grid(wall, dice, layout)) return layout;
+    place_window(wall, dice, layout);
+    place_balconies(wall, dice, layout);
+    place_shop_front(options, wall, dice, layout);
     return layout;
 }
 

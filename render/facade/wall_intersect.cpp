@@ -66,6 +66,51 @@ struct Found {
 
 // The walk shared by the nearest-hit and any-hit queries. With any_hit it returns at the first
 // rectangle found; otherwise the nearest one, with *t_best its distance.
+// The margin rectangles around the grid; the nearest hit goes to `found` (the first with any_hit).
+inline bool hit_margins(const WallLayout& layout, const LocalRay& ray, double tmin, double* t_best, bool any_hit,
+                        Found* found, FacadeRect* rects, WallIntersectStats& stats) {
+    bool hit = false;
+    const int n = margin_rects(layout, rects);
+    stats.rects += static_cast<uint64_t>(n);
+    for (int i = 0; i < n; ++i) {
+        if (hit_rect(rects[i], ray, tmin, t_best)) {
+            hit = true;
+            found->copy = rects[i];
+            found->floor = found->slot = -1;
+            if (any_hit) return true;
+        }
+    }
+    return hit;
+}
+
+// The rectangles of one cell, layer by layer in the order the ray meets them: after a layer with
+// a hit, later layers can only be farther. A ray parallel to the wall plane has no order: test
+// everything.
+inline bool hit_cell(const WallLayout& layout, int floor, int slot, const LocalRay& ray, double tmin, double* t_best,
+                     bool any_hit, Found* found, FacadeRect* rects, WallIntersectStats& stats) {
+    ++stats.cells;
+    int layer_end[kCellLayers];
+    const int n = cell_rects(layout, floor, slot, rects, layer_end);
+    bool cell_hit = false;
+    for (int step = 0; step < kCellLayers && !cell_hit; ++step) {
+        const int layer = ray.d[2] < 0 ? kCellLayers - 1 - step : step;
+        const int begin = layer == 0 ? 0 : layer_end[layer - 1];
+        const int end = ray.d[2] == 0 ? n : layer_end[layer];
+        for (int i = begin; i < end; ++i) {
+            ++stats.rects;
+            if (hit_rect(rects[i], ray, tmin, t_best)) {
+                cell_hit = true;
+                found->copy = rects[i];
+                found->floor = floor;
+                found->slot = slot;
+                if (any_hit) return true;
+            }
+        }
+        if (ray.d[2] == 0) break;
+    }
+    return cell_hit;
+}
+
 bool walk_wall(const WallLayout& layout, const LocalRay& ray, double tmin, double* t_best, bool any_hit,
                Found* found) {
     WallIntersectStats& stats = wall_intersect_stats();
@@ -81,18 +126,8 @@ bool walk_wall(const WallLayout& layout, const LocalRay& ray, double tmin, doubl
     if (!clip_axis(ray, 1, -pad, layout.height + pad, &s0, &s1)) return false;
 
     // 2. The plain facade outside the grid: a handful of rectangles on the plane w = 0.
-    bool hit = false;
-    int n = margin_rects(layout, rects);
-    stats.rects += static_cast<uint64_t>(n);
-    for (int i = 0; i < n; ++i) {
-        if (hit_rect(rects[i], ray, tmin, t_best)) {
-            hit = true;
-            found->copy = rects[i];
-            found->floor = found->slot = -1;
-            if (any_hit) return true;
-        }
-    }
-    if (layout.plain()) return hit;
+    const bool hit = hit_margins(layout, ray, tmin, t_best, any_hit, found, rects, stats);
+    if ((hit && any_hit) || layout.plain()) return hit;
 
     // 3. Clip to the grid's box.
     double t0 = tmin, t1 = *t_best;
@@ -118,29 +153,7 @@ bool walk_wall(const WallLayout& layout, const LocalRay& ray, double tmin, doubl
     };
     double t_u = next_u(), t_v = next_v();
     for (;;) {
-        ++stats.cells;
-        int layer_end[kCellLayers];
-        n = cell_rects(layout, floor, slot, rects, layer_end);
-        // Layers in the order the ray meets them; after a layer with a hit, later layers can only
-        // be farther. A ray parallel to the wall plane has no order: test everything.
-        bool cell_hit = false;
-        for (int step = 0; step < kCellLayers && !cell_hit; ++step) {
-            const int layer = ray.d[2] < 0 ? kCellLayers - 1 - step : step;
-            const int begin = layer == 0 ? 0 : layer_end[layer - 1];
-            const int end = ray.d[2] == 0 ? n : layer_end[layer];
-            for (int i = begin; i < end; ++i) {
-                ++stats.rects;
-                if (hit_rect(rects[i], ray, tmin, t_best)) {
-                    cell_hit = true;
-                    found->copy = rects[i];
-                    found->floor = floor;
-                    found->slot = slot;
-                    if (any_hit) return true;
-                }
-            }
-            if (ray.d[2] == 0) break;
-        }
-        if (cell_hit) return true;
+        if (hit_cell(layout, floor, slot, ray, tmin, t_best, any_hit, found, rects, stats)) return true;
         if (std::min(t_u, t_v) > std::min(t1, *t_best)) return hit;
         if (t_u < t_v) {
             slot += slot_step;

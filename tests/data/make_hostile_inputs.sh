@@ -63,4 +63,18 @@ ring_osm 100000 0.004 0 > "$dir/ring_100k_nodes.osm"
 ring_osm 9999 0.004 0 > "$dir/ring_9999_nodes.osm"
 ring_osm 2999 0.004 1 > "$dir/star_2999_nodes.osm"
 
+# Located objects beyond the scene limits that no earlier stage dropped (issue 24): a mapped
+# tree 20 degrees from the town (dropped), a pond with one node 15 degrees away (clipped to the
+# limits), a coastline in a file whose bounds are the whole world (the sea is clipped to them).
+{ header; town_nodes; building_way; street_way
+  printf '  <node id="21" version="1" lat="32.5" lon="13.4"><tag k="natural" v="tree"/></node>\n'; footer; } > "$dir/far_tree.osm"
+{ header; town_nodes; node 30 52.50100 13.40100; node 31 52.50100 13.40200; node 32 37.50200 13.40200
+  building_way; street_way
+  printf '  <way id="400" version="1"><nd ref="30"/><nd ref="31"/><nd ref="32"/><nd ref="30"/><tag k="natural" v="water"/></way>\n'
+  footer; } > "$dir/far_pond_node.osm"
+{ header; printf '  <bounds minlat="-90" minlon="-180" maxlat="90" maxlon="180"/>\n'; town_nodes
+  node 40 52.49900 13.39900; node 41 52.49900 13.40200; building_way; street_way
+  printf '  <way id="500" version="1"><nd ref="40"/><nd ref="41"/><tag k="natural" v="coastline"/></way>\n'
+  footer; } > "$dir/world_bounds_coast.osm"
+
 "$bin/make_hostile_scenes" "$dir"

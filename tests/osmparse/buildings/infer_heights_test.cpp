@@ -182,10 +182,21 @@ void add_field(std::vector<Building>& v, int64_t first, double x0, int n, double
 }
 
 TEST(InferHeights, AnUntypedHouseInAVillageStandsTwoStoreys) {
-    // A detached 120 m2 building among houses of 120 m2: two storeys and a roof, 6 m or more.
+    // A detached 120 m2 building among houses of 120 m2: about two storeys (the prior is the
+    // median city's: the extract's own tagged houses raise it where they stand higher).
     BuildingParams params;
-    EXPECT_GE(params.level_height * levels_from_surroundings(120, 120, false), 6.0);
-    EXPECT_LT(params.level_height * levels_from_surroundings(120, 120, false), 7.5);
+    EXPECT_GE(params.level_height * levels_from_surroundings(120, 120, false), 5.0);
+    EXPECT_LT(params.level_height * levels_from_surroundings(120, 120, false), 7.0);
+}
+
+TEST(InferHeights, APriorCityOfBlocksIsNotStoodTooTall) {
+    // Attached blocks of 400 m2 in a fabric of 400 m2: about five storeys (16 m), the median
+    // city's, not the six (17.9 m) of a prior fitted to Monaco and Kaiserslautern; a larger
+    // block in it (1,200 m2) 22 m, not the 25 m of that prior.
+    BuildingParams params;
+    EXPECT_LT(params.level_height * levels_from_surroundings(400, 400, true), 17.0);
+    EXPECT_LT(params.level_height * levels_from_surroundings(1200, 400, true), 23.0);
+    EXPECT_GT(params.level_height * levels_from_surroundings(400, 400, true), 14.0);
 }
 
 // A suburb of 100 m2 houses and a town of 400 m2 blocks, 5 km apart, with the same 20 x 20 m
@@ -446,6 +457,68 @@ TEST(InferHeights, AHouseTypeOnABlocksFootprintIsABlock) {
         EXPECT_FALSE(sure) << type << ": tagged neighbours may say more";
         EXPECT_GT(height_by_type_and_area(type, 3000, &sure), 2 * 8);
     }
+}
+
+double median_height(const std::vector<Building>& v, int64_t from, int64_t to) {
+    std::vector<double> h;
+    for (const Building& b : v)
+        if (b.osm.id >= from && b.osm.id < to) h.push_back(b.height);
+    std::sort(h.begin(), h.end());
+    return h[h.size() / 2];
+}
+
+// A city of closed blocks: rows of attached 20 x 20 m blocks, `tagged` rows of them tagged five
+// storeys (15 m), and far from them (no tagged neighbour) rows of untagged blocks of 700 m2,
+// a footprint class none of the tagged ones is in.
+std::vector<Building> city_of_blocks(int tagged_rows) {
+    std::vector<Building> v;
+    for (int r = 0; r < tagged_rows; ++r)
+        for (int i = 0; i < 10; ++i)
+            v.push_back(building(100 + 10 * r + i, 20.0 * i, 30.0 * r, "yes", 15, HeightSource::Levels, 20));
+    for (int r = 0; r < 2; ++r)
+        for (int i = 0; i < 8; ++i) {
+            Building b = building(1000 + 10 * r + i, 400 + 26.4575 * i, 40.0 * r, "yes", 20, HeightSource::Random);
+            b.outer = square(b.outer[0].x, b.outer[0].y, 26.4575);  // 700 m2
+            v.push_back(b);
+        }
+    return v;
+}
+
+TEST(InferHeights, ACityOfTaggedBlocksCalibratesTheFabricRule) {
+    BuildingParams params;
+    ParseReport report;
+    std::vector<Building> v = city_of_blocks(3);
+    infer_heights(v, {}, params, report);
+    for (const Building& b : v)
+        if (b.osm.id >= 1000) EXPECT_EQ(b.height_rule, HeightRule::TypeAndArea) << b.osm.id;
+    // The prior would stand them 21 m (six storeys of a fabric of 400 m2 with shared walls); the
+    // city's own blocks are five storeys of 15 m, so its 700 m2 blocks stand about 15 x
+    // (700 / 400)^0.3 = 17.7 m, not 21.
+    const double learnt = median_height(v, 1000, 2000);
+    EXPECT_LT(learnt, 19.0);
+    EXPECT_GT(learnt, 15.0);
+    EXPECT_EQ(report.note_count(kBuildingHeights, kCalibrated), 16);
+    // With fewer than ten tagged, the prior stands (a handful of tagged are the notable ones).
+    std::vector<Building> few = city_of_blocks(0);
+    for (int i = 0; i < 9; ++i)
+        few.push_back(building(100 + i, 20.0 * i, 0, "yes", 15, HeightSource::Levels, 20));
+    ParseReport few_report;
+    infer_heights(few, {}, params, few_report);
+    EXPECT_EQ(few_report.note_count(kBuildingHeights, kCalibrated), 0);
+}
+
+TEST(InferHeights, TaggedHousesOfTheRegionCalibrateTheHouseRule) {
+    // A region of one-storey houses with a roof (5.5 m), twenty of them tagged far apart: the
+    // untagged houses learn the region's house, not the two storeys of 8 m of the prior.
+    BuildingParams params;
+    std::vector<Building> v;
+    for (int i = 0; i < 20; ++i) v.push_back(building(100 + i, 400.0 * i, 0, "house", 5.5, HeightSource::Tagged, 10));
+    for (int i = 0; i < 10; ++i) v.push_back(building(1000 + i, 400.0 * i, 2000, "house", 20, HeightSource::Random, 10));
+    ParseReport report;
+    infer_heights(v, {}, params, report);
+    const double learnt = median_height(v, 1000, 2000);
+    EXPECT_LT(learnt, 6.6);
+    EXPECT_GT(learnt, 5.0);
 }
 
 TEST(InferHeights, SameResultWhateverTheOrder) {

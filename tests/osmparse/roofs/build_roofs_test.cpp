@@ -186,13 +186,16 @@ TEST(Roofs, DefaultsByTypeAreSeededAndDocumented) {
     house.height = 8;
     double pitch = 0;
     int pitched = 0;
+    RoofEvidence gabled_houses;  // a region whose tagged houses are gabled
+    gabled_houses.tagged[static_cast<int>(RoofGroup::Houses)] = 200;
+    gabled_houses.pitched[static_cast<int>(RoofGroup::Houses)] = 200;
     for (int id = 1; id <= 100; ++id) {
         house.osm.id = id;
-        pitched += default_roof(house, 100, 1, &pitch) != RoofShape::Flat;
+        pitched += default_roof(house, 100, 1, &pitch, gabled_houses) != RoofShape::Flat;
         EXPECT_GE(pitch, 25);
         EXPECT_LE(pitch, 45);
     }
-    EXPECT_EQ(pitched, 100);
+    EXPECT_GE(pitched, 97);
     Building shop = house;
     shop.type = "commercial";
     EXPECT_EQ(default_roof(shop, 100, 1, &pitch), RoofShape::Flat);
@@ -202,6 +205,71 @@ TEST(Roofs, DefaultsByTypeAreSeededAndDocumented) {
     EXPECT_EQ(default_roof(block, 100, 1, &pitch), RoofShape::Flat);
     house.osm.id = 7;
     EXPECT_EQ(default_roof(house, 100, 1, &pitch), default_roof(house, 100, 1, &pitch));
+}
+
+// Hand-made buildings of one type and their OSM tags (roof:shape on the first `tagged`).
+struct RoofTown {
+    std::vector<Building> buildings;
+    OsmData osm;
+};
+RoofTown roof_town(const std::string& type, int count, int tagged, const char* shape) {
+    RoofTown t;
+    for (int i = 0; i < count; ++i) {
+        Building b;
+        b.osm = {OsmType::Way, 1000 + i};
+        const double x = 20.0 * i;
+        b.outer = {{x, 0}, {x + 10, 0}, {x + 10, 8}, {x, 8}};
+        b.type = type;
+        b.height = 7;
+        b.height_source = HeightSource::Tagged;
+        t.buildings.push_back(b);
+        OsmArea area;
+        area.ref = b.osm;
+        area.tags.entries.push_back({"building", type});
+        if (i < tagged) area.tags.entries.push_back({"roof:shape", shape});
+        t.osm.building_areas.push_back(area);
+    }
+    return t;
+}
+int pitched_untagged(const std::vector<Building>& v) {
+    int n = 0;
+    for (const Building& b : v) n += b.roof_inferred && b.roof_shape != RoofShape::Flat;
+    return n;
+}
+
+TEST(Roofs, AnExtractWhoseTaggedRoofsAreFlatGetsFlatDefaults) {
+    // Malta: flat roofs, and where a few are tagged, flat is what they say.
+    RoofTown town = roof_town("house", 60, 20, "flat");
+    ParseReport report;
+    build_roofs(town.buildings, BuildingTagIndex(town.osm), BuildingParams{}, report);
+    EXPECT_EQ(pitched_untagged(town.buildings), 0);
+}
+
+TEST(Roofs, AnExtractWhoseTaggedHousesArePitchedGetsPitchedHouses) {
+    RoofTown town = roof_town("house", 60, 20, "gabled");
+    ParseReport report;
+    build_roofs(town.buildings, BuildingTagIndex(town.osm), BuildingParams{}, report);
+    EXPECT_GE(pitched_untagged(town.buildings), 30) << "of 40 untagged houses";
+    // Small untyped buildings in that region: the houses' tags say pitched there too.
+    RoofTown yes = roof_town("yes", 60, 0, "");
+    for (int i = 0; i < 20; ++i) yes.osm.building_areas[i] = town.osm.building_areas[i], yes.buildings[i] = town.buildings[i];
+    build_roofs(yes.buildings, BuildingTagIndex(yes.osm), BuildingParams{}, report);
+    EXPECT_GE(pitched_untagged(yes.buildings), 20) << "of 40 untagged small buildings";
+}
+
+TEST(Roofs, WithoutTaggedRoofsHomesAreFlatAndChurchesPitched) {
+    // No evidence: the OSM default (flat) for homes and sheds, whatever the region; churches
+    // and barns stay pitched.
+    for (const char* type : {"house", "yes", "apartments", "garage"}) {
+        RoofTown town = roof_town(type, 40, 0, "");
+        ParseReport report;
+        build_roofs(town.buildings, BuildingTagIndex(town.osm), BuildingParams{}, report);
+        EXPECT_EQ(pitched_untagged(town.buildings), 0) << type;
+    }
+    RoofTown churches = roof_town("church", 10, 0, "");
+    ParseReport report;
+    build_roofs(churches.buildings, BuildingTagIndex(churches.osm), BuildingParams{}, report);
+    EXPECT_EQ(pitched_untagged(churches.buildings), 10);
 }
 
 TEST(Roofs, CompassDirections) {

@@ -9,11 +9,11 @@
 
 #include <gtest/gtest.h>
 
-#include "build_render_scene.h"
-#include "camera.h"
-#include "materials.h"
-#include "render_image.h"
-#include "sky.h"
+#include "render/camera/camera.h"
+#include "render/film/render_image.h"
+#include "render/geometry/build_render_scene.h"
+#include "render/lights/sky.h"
+#include "render/materials/materials.h"
 
 using namespace citygen;
 
