@@ -139,6 +139,11 @@ private:
         uint64_t building_key;
         uint32_t wall;
     };
+    // The constructor's parts: each adds its emitters and their bounds (in sampler order).
+    void gather_lamps(std::vector<LightBounds>& bounds);
+    void gather_window_strips(std::vector<LightBounds>& bounds);
+    void add_window_strip(const WallGeometry& g, uint32_t b, uint32_t w, int first, int first_slot,
+                          std::vector<LightBounds>& bounds);
     bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;  // cached per thread
     bool derive_wall_geometry(const BuildingWalls& walls, uint32_t building, uint32_t wall, WallGeometry* out) const;
     double window_weight(const WallGeometry& g, int floor, int slot) const;  // 0: dark
