@@ -30,22 +30,19 @@ enum Salt : uint64_t { kJitter = 201 };
 // Rule 5, storeys from the surroundings: levels = kBaseLevels * (grain / 100 m2)^kGrainExponent
 // * (area / grain)^kAreaExponent, times kAttachedFactor for a building that shares a wall, in
 // at least 1. The exponents are a least-absolute-error fit (on log storeys) to the tagged
-// buildings of Monaco and Kaiserslautern pooled, rounded. kBaseLevels is that fit's 1.6: a
+// buildings of two of our extracts, pooled, rounded. kBaseLevels is that fit's own value: a
 // prior for cities we do not have is the median of what the cities we hold say, one vote per
-// city, not a fit to the two that had most tags (1.8 was: it suited Monaco and Kaiserslautern
-// and stood a Nordic city of five-storey blocks 5 m too tall). With every tag hidden, the median
-// ratio tagged height / this rule at 1.8 was Kaiserslautern 1.16, Monaco 0.97, Neukolln 0.81,
-// Malta 0.78: median 0.88, 1.6 / 1.8 (tests/bench/height_bench.sh fits it leave-one-city-out).
-// The extract's own tagged buildings then calibrate it where they can (infer_heights).
-// Homes (residential, apartments, dormitory) keep the type table: the tagged homes of Monaco
-// and Kaiserslautern are mostly towers (mappers tag the notable ones), and a factor fitted to
-// them (x4.5) made the ordinary blocks of flats of the bundled Berlin example 4x worse.
+// city (tests/bench/height_bench.sh, leave-one-city-out), not a fit to the cities with most
+// tags. The extract's own tagged buildings then calibrate it where they can (infer_heights).
+// Figures: docs/bench/2026-12-heights.md and docs/bench/2026-11-heights.md.
+// Homes (residential, apartments, dormitory) keep the type table: the tagged homes of our
+// extracts are mostly towers (mappers tag the notable ones), and a factor fitted to them made
+// ordinary blocks of flats far worse.
 //  - grain, the median footprint of the buildings within kGrainRadius: the fabric of the town.
-//    A suburb or village of houses has a grain of 100-150 m2 (Kaiserslautern, 2013: 116 m2 over
-//    the whole extract), a city of blocks of flats 300-400 (Monaco: 277, 340 around its towers).
-//    Denser fabric is built higher: storeys grow about as grain^0.65 (1.8 at 100 m2, 4.0 at 340).
-//    A coarser grain than kMaxGrain is an estate of halls, not a taller city (Kaiserslautern's
-//    shopping centre stands in a grain of 1,650 m2);
+//    A suburb or village of houses has a grain of 100-150 m2, a city of blocks of flats 300-400.
+//    Denser fabric is built higher: storeys grow about as grain^0.65 (1.6 at 100 m2, 3.5 at 340).
+//    A coarser grain than kMaxGrain is an estate of halls (a shopping centre, a campus), not a
+//    taller city;
 //  - area / grain: within one fabric a footprint ten times the usual is twice as tall
 //    (10^0.3 = 2): large footprints are blocks and halls, not towers in proportion; beyond
 //    kMaxRelativeArea times the grain a footprint is a hall or a complex of wings, no taller;
@@ -64,43 +61,40 @@ constexpr double kAttachedGap = 0.5;       // metres
 
 // Residential towers, rule 1b. 15 storeys (kTowerLevels) is a common residential high-rise.
 // In a fabric denser than kPointBlockMinGrain a tower stands higher, as the rest of the town does
-// (levels_from_surroundings: storeys grow as grain^kGrainExponent): Monaco's tagged towers in
-// a grain of 335-380 m2 stand 78-111 m, those in 200-235 m2 27-36 m. Never lower than
-// kTowerLevels: Kaiserslautern's towers (43 and 53 m) stand in a grain of 120 m2; and no
-// higher in an estate of halls (a grain over kMaxGrain: a campus, not a denser city)
-// (tests/bench/height_bench.sh: a flat 20 storeys suits Monaco better, 15 Kaiserslautern; we
-// do not fit one city).
+// (levels_from_surroundings: storeys grow as grain^kGrainExponent, no constant of its own), as
+// the tagged towers of a dense city do. Never lower than kTowerLevels: towers in a town of
+// houses are high-rises too; and no higher in an estate of halls (a grain over kMaxGrain: a
+// campus, not a denser city). Not fitted to one city: our extracts ask for different storeys
+// per tower (docs/bench/2026-11-heights.md).
 constexpr double kTowerLevels = 15;
 // Point blocks: a home whose plan is deep in every direction is a residential tower. A flat is
-// daylit from one facade to about 12-13 m deep, so a slab of flats (Berlin's blocks, terraces)
+// daylit from one facade to about 12-13 m deep, so a slab of flats (blocks, terraces)
 // is at most two such depths across: its plan depth 2 * area / perimeter (half the side of a
 // square, the width of a long strip) stays under 13 m. A plan at least 26 m across both ways
 // (kPointBlockDepth) puts flats around a central core of lifts and stairs, and a core only pays
-// for itself on a tall building. Of the homes tagged in Monaco, Kaiserslautern and the Berlin
-// example, the nine this deep (all in Monaco) stand 27-111 m (median 90); no home of the other
-// two is this deep.
+// for itself on a tall building. The tagged homes this deep in our extracts are all tall
+// (docs/bench/2026-11-heights.md).
 constexpr double kPointBlockDepth = 13;    // metres
 // In a village fabric (houses, grain under kPointBlockMinGrain) a deep home is a farmstead or a
 // care home, not a tower.
 constexpr double kPointBlockMinGrain = 200;  // m2
 // Landmark homes: mappers name the homes that are landmarks (towers, halls of residence, large
-// estates: Monaco's Millefiori and Annonciade, Kaiserslautern's Wohnheim towers); an ordinary
-// block of flats carries only an address (none of the Berlin example's blocks has a name). A
-// name of fewer than kMinNameLength characters is a block's letter ("A", "B2"), and a named home
-// under kLandmarkMinArea a villa. Homes named and that large in the three extracts: Monaco 36-111 m
-// (7), Kaiserslautern 43 and 53 m; the rule was chosen on Monaco and checked on Kaiserslautern.
+// estates); an ordinary block of flats carries only an address. A name of fewer than
+// kMinNameLength characters is a block's letter ("A", "B2"), and a named home under
+// kLandmarkMinArea a villa. Chosen on one extract and checked on another
+// (docs/bench/2026-11-heights.md).
 constexpr size_t kMinNameLength = 3;       // characters
 constexpr double kLandmarkMinArea = 500;   // m2
 // Twins: an estate is built in series from one design (rows of identical slabs, pairs of towers,
 // a terrace of one builder's houses): a building of the same type and footprint, within
 // kTwinArea, standing within kTwinDistance has the same storeys. The nearest such tagged one
-// says more about it than any rule of type, footprint or fabric (12 half-hidden splits:
-// Monaco's pairs of towers and its row of 42 m blocks of flats).
+// says more about it than any rule of type, footprint or fabric (pairs of towers, rows of
+// blocks of flats; docs/bench/2026-11-heights.md).
 constexpr double kTwinDistance = 60;       // metres between centroids: the next building or the one after
 constexpr double kTwinArea = 1.1;
 // A house has a house-sized footprint: a "terrace" or "house" over kMaxHouseArea is a block
-// (Monaco's 44 m Les Eucalyptus, 2,965 m2, is tagged terrace) and gets the rules of a building
-// of flats instead of the two-storey house rule.
+// (mappers tag whole blocks of flats terrace) and gets the rules of a building of flats instead
+// of the two-storey house rule.
 constexpr double kMaxHouseArea = 1000;     // m2: ten row houses of 100 m2
 
 // The type-and-area rules whose storeys differ between regions, calibrated as a group: houses
@@ -243,8 +237,8 @@ public:
     }
     // Median footprint (the upper one of an even count) of the buildings within kGrainRadius of
     // the centre of the kGrainCell square holding p: the grain is a property of the quarter, and
-    // one median per square instead of per building keeps this stage fast (Kaiserslautern:
-    // 15,000 buildings, 2,000 within 400 m of the centre).
+    // one median per square instead of per building keeps this stage fast (a city centre has
+    // thousands of buildings within kGrainRadius).
     double grain(Vec2 p) {
         const int64_t cx = cell(p.x, kGrainCell), cy = cell(p.y, kGrainCell);
         auto [known, inserted] = grain_of_square_.try_emplace(grid_cell_key(cx, cy), 0.0);
@@ -344,11 +338,10 @@ double height_from_neighbours(const TaggedGrid& grid, const std::vector<std::pai
         if (size_alike) add(same_size, h, w);
         if (type_alike && size_alike) add(same_both, h, w);
     }
-    // Two of the same type say something (12 pooled half-hidden splits of Monaco: 6.6 m mean
-    // error on 146 buildings with two, 7.3 m on 83 with three); a mixed group needs three.
-    // A group that disagrees (its upper quartile over twice its lower: houses beside towers)
-    // says nothing about one more building; the footprint rules decide then (12 half-hidden
-    // splits: Kaiserslautern's campus 10.8 -> 8.3 m mean error, Monaco 9.20 -> 9.17 m).
+    // Two of the same type say something; a mixed group needs three. A group that disagrees
+    // (its upper quartile over twice its lower: houses beside towers) says nothing about one
+    // more building; the footprint rules decide then. Both chosen on the half-hidden splits of
+    // tests/bench/height_bench.sh (docs/bench/2026-11-heights.md).
     auto agreed = [&](const std::vector<std::pair<double, double>>& group) {
         std::vector<double> h;
         for (const auto& v : group) h.push_back(v.first);
@@ -515,7 +508,7 @@ double height_by_type_and_area(const std::string& type, double area, bool* sure,
     if (is_one_of(type, {"office", "hotel", "hospital"})) return 18;
     if (is_one_of(type, {"commercial", "civic", "public", "government"})) return 12;
     if (is_one_of(type, {"school", "university", "college", "kindergarten"})) return type == "kindergarten" ? 5 : 10;
-    // One storey (all nine retail buildings tagged with levels in Monaco and Kaiserslautern).
+    // One storey: so are the retail buildings tagged with levels in our extracts.
     if (is_one_of(type, {"retail", "supermarket"})) return 3;
     if (is_one_of(type, {"industrial", "warehouse", "manufacture", "hangar"})) return 8;
     if (is_untyped(type) || type == "residential") {

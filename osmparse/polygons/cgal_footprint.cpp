@@ -254,7 +254,8 @@ double overlap_area_exact(const Ring& piece, const Ring& outer, const std::vecto
 bool polygon_is_valid_exact(const Ring& outer, const std::vector<Ring>& holes) {
     if (holes.empty()) {
         // The same check for the common case, on exact predicates without the exact-construction
-        // kernel the general check needs (which took 30x the whole clean-up on every footprint).
+        // kernel the general check needs (which cost many times the whole clean-up:
+        // docs/bench/2026-11-buildings.md).
         if (outer.size() < 3) return false;
         const auto points = points_of<Inexact>(outer);
         return CGAL::is_simple_2(points.begin(), points.end(), Inexact()) &&

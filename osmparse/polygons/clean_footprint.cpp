@@ -65,11 +65,11 @@ struct Piece {
 };
 
 // merge_small_turns, kept only if the result is simple. The hand-written merge stays for the
-// common case, a ring on its own: CGAL's simplify_keeping_topology took 3-14x its time on
-// Kaiserslautern's footprints and 70-120x on Monaco's (tests/bench/footprint_bench, two runs),
-// and its greedy order keeps other vertices in 5% of the rings, which would change most
-// scenes. Where rings must be simplified together (pieces of a split ring, a hole the merged
-// outline would cross) CGAL's is used instead.
+// common case, a ring on its own: CGAL's simplify_keeping_topology costs several times as much
+// there, and its greedy order keeps other vertices in some rings, which would change most
+// scenes (tests/bench/footprint_bench; docs/bench/2026-11-buildings.md). Where rings must be
+// simplified together (pieces of a split ring, a hole the merged outline would cross) CGAL's is
+// used instead.
 Ring simplified_alone(const Ring& ring, double simplify_angle_deg) {
     Ring merged = remove_repeated_and_collinear(merge_small_turns(ring, simplify_angle_deg));
     return merged.size() >= 3 && ring_is_simple(merged) ? merged : ring;
@@ -169,7 +169,8 @@ HoleAssignment assign_holes(const std::vector<Piece>& holes, const std::vector<P
 }
 
 // CGAL's check for an outline alone; with holes, the same rules on the exact predicates (CGAL's
-// general check builds exact constructions and took 10x the land-cover stage on Malta's).
+// general check builds exact constructions, which cost many times the land-cover stage itself:
+// docs/bench/2026-11-buildings.md).
 bool polygon_is_valid(const Footprint& f) {
     if (f.holes.empty()) return polygon_is_valid_exact(f.outer, {});
     std::vector<Ring> rings{f.outer};

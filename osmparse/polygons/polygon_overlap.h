@@ -4,9 +4,9 @@
 // into triangles first. The decisions (which side, which ear, which building holds a point) are
 // exact (exact_predicates.h); the areas are float constructions.
 // Hand-written for speed: CGAL's Boolean intersection on exact constructions
-// (overlap_area_exact in cgal_footprint.h) took 100-180x as long (3.2-4.5 s against 18-47 ms) for
-// one road-sized quad across each Kaiserslautern footprint; the areas differed by at most 1e-9 m²
-// (tests/bench/footprint_bench); the road stages call this hundreds of thousands of times.
+// (overlap_area_exact in cgal_footprint.h) gives the same areas at many times the cost
+// (tests/bench/footprint_bench; docs/bench/2026-11-buildings.md), and the road stages call this
+// hundreds of thousands of times.
 #pragma once
 
 #include <algorithm>

@@ -1,8 +1,8 @@
 // ring_is_simple: a pairwise test for small rings, CGAL's sweep (is_simple_2, O(n log n)) for
-// the rest; a pairwise test took 48 s on a 100k-point outline. Both are exact and give the same
-// answer (tests/osmparse/polygons/ring_is_simple_test.cpp compares them). The pairwise test stays
-// for small rings for speed: the sweep for every ring took 1.7-2.6x as long on Kaiserslautern's
-// footprints (tests/bench/footprint_bench).
+// the rest: the pairwise test is quadratic, far too slow on an outline of many thousand points.
+// Both are exact and give the same answer (tests/osmparse/polygons/ring_is_simple_test.cpp
+// compares them). The pairwise test stays for small rings for speed: building the sweep costs
+// more there (tests/bench/footprint_bench; docs/bench/2026-11-buildings.md).
 // This file is also where exact_predicates.h falls back to CGAL (one translation unit with its headers).
 #include "osmparse/polygons/ring_is_simple.h"
 

@@ -24,8 +24,8 @@ namespace {
 LatLon to_latlon(osmium::Location l) { return {l.lat(), l.lon()}; }
 
 // A building's tags but its address (addr:*), which no stage reads: in a city extract the
-// address is most of what the buildings are tagged with (Kaiserslautern: 56,000 of 72,000
-// tags), and the building areas are held until the roofs and colours are done.
+// address is most of what the buildings are tagged with (docs/bench/2026-11-parse.md), and the
+// building areas are held until the roofs and colours are done.
 OsmTags copy_building_tags(const osmium::TagList& tags) {
     auto kept = [](const osmium::Tag& t) { return std::strncmp(t.key(), "addr:", 5) != 0; };
     OsmTags out;

@@ -41,7 +41,7 @@ RoadClass road_class_of(const std::string& highway);
 std::optional<ReportReason> carriageway_exclusion(const OsmTags& tags, const RoadParams& params);
 
 // Default carriageway width in metres per highway=* value, two-way or one-way: the one
-// table (see README).
+// table (docs/roads.md shows it).
 double default_road_width(const std::string& highway, bool oneway);
 
 // oneway=yes|true|1|-1, or implied (motorway, junction=roundabout|circular) unless

@@ -1,5 +1,5 @@
 // Stage 8: road polygons. Road graph -> one quadrangle per edge and one joint polygon per
-// junction (thesis ch. 3.2.3; the geometry itself is in road_layout.h).
+// junction, as in the thesis named in README (the geometry itself is in road_layout.h).
 #pragma once
 
 #include <vector>

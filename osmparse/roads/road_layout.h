@@ -1,6 +1,6 @@
 // The geometric core shared by carriageways and sidewalks: given straight edges with a
 // half width on each side, cut every edge to a quadrangle and build the polygon of every
-// junction (thesis ch. 3.2.3, made robust for real data).
+// junction (as in the thesis named in README, made robust for real data).
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 // The interior straight skeleton of a simple footprint without holes by direct wavefront
-// propagation (double precision), for the bent footprints of hipped roofs: CGAL's exact
-// predicates cost ~0.1-1 ms per small footprint, this a few microseconds.
+// propagation (double precision), for the bent footprints of hipped roofs: on a small footprint
+// CGAL's exact predicates cost far more (docs/bench/2026-11-buildings.md).
 #pragma once
 
 #include <vector>

@@ -108,8 +108,8 @@ private:
         }
         // The tolerance halves with each level, as the colour tolerance in Dammertz et al.: the
         // wide levels smooth what is flat but do not blur what the first levels kept (at a
-        // constant tolerance, tree crowns, windows and lamp pools lost 0.4 dB to the fourth
-        // level; two levels alone left walls blotchy).
+        // constant tolerance the fourth level blurred tree crowns, windows and lamp pools; two
+        // levels alone left walls blotchy; docs/bench/2026-11-denoise.md).
         const double lum_p = luminance3(&current[3 * p]);
         const double lum_tolerance = settings_.sigma_luminance / step * std::sqrt(variance_blurred[p]) + 1e-4;
         // Sums of w * (c_q - c_p): a constant image stays exactly constant.

@@ -101,7 +101,8 @@ void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, s
 // positions inside the pixel, so a window narrower than a pixel still shows (a fixed grid:
 // noise-free, and it takes nothing from the pixel's random stream). The direct light goes back
 // into the image unfiltered, so the grid must be fine enough for a shadow or window edge that
-// crosses the pixel: 6x6 gains 0.6 dB over 3x3 in tests/bench/denoise_bench.sh, 12x12 little more.
+// crosses the pixel: 6x6 is clearly better than 3x3 and a finer grid adds little
+// (tests/bench/denoise_bench.sh; docs/bench/2026-11-denoise.md).
 void fill_guides(const PathContext& context, const Camera& camera, int x, int y, size_t i, Film& film,
                  uint64_t& rays) {
     constexpr int kGrid = 6;

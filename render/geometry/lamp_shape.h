@@ -1,11 +1,11 @@
 // What a street lamp looks like: the one definition both geometry modes build (stored mode
 // tessellates it, procedural mode intersects it analytically) and the light sampler reads.
 //
-// A post-top lantern (thesis 3.3.2): a slim pole from the ground, an opal glass globe on top of
-// it whose frosted surface is the emitter (the bulb's light leaves the globe diffusely), and a
-// flat cap over the globe that shades the sky. All parts are surfaces of revolution around the
-// lamp's vertical axis: two cylinders (pole, cap rim), one sphere (globe) and two disks (cap top
-// and underside).
+// A post-top lantern (as in the thesis named in README): a slim pole from the ground, an opal
+// glass globe on top of it whose frosted surface is the emitter (the bulb's light leaves the
+// globe diffusely), and a flat cap over the globe that shades the sky. All parts are surfaces of
+// revolution around the lamp's vertical axis: two cylinders (pole, cap rim), one sphere (globe)
+// and two disks (cap top and underside).
 #pragma once
 
 #include <cstdint>

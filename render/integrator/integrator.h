@@ -31,17 +31,15 @@ struct IntegratorSettings {
     // such a vertex is weighted against that probability times the light's pdf (multiple
     // importance sampling with a stochastic strategy: unbiased). Deep, dim vertices then mostly
     // skip the light-tree descent, whose cost does not shrink with their share of the picture.
-    // 0: every vertex samples a light. Monaco at night (night_bench.sh, 640x360, 16 spp, CPU s
-    // and display MSE): street view 0: 14.3 s / 0.0100, 0.1: 14.5 / 0.0101, 0.3: 13.0 / 0.0106,
-    // 0.6: 12.0 / 0.0118, 1: 11.0 / 0.0136; 0.3 gave the highest 1 / (MSE x CPU s).
+    // 0: every vertex samples a light. 0.3 gave the least error per CPU second on the night
+    // street view of tests/bench/night_bench.sh (docs/bench/2026-11-night.md, third round).
     double light_sampling_throughput = 0.3;
 };
 
 // The shadow_roulette for a displayed image with this exposure: contributions below 0.03 of
 // the tone curve's input (white is near 10), a 300th of white, which at night are most of the
-// windows' and far lamps' samples (tests/bench/night_bench.sh street view, 640x360, 16 spp:
-// 0.01 cut CPU 8-15% at the same display error, 0.03 another 4% (error +0.5%), 0.1 another
-// 0.6% but the error +6%).
+// windows' and far lamps' samples. A lower threshold saves less CPU, a higher one adds visible
+// error (tests/bench/night_bench.sh; docs/bench/2026-11-night.md, cheaper night samples).
 double shadow_roulette_for(double exposure);
 
 class SceneLights;

@@ -268,10 +268,8 @@ double BVHLightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
 // The chance of each lane: a blend of its share of the lanes' `most` bounds and of their
 // `least` bounds (LightBounds4::importance; Cycles' light tree takes their mean): the
 // nearest-point bound alone would favour any big cluster around p, the farthest-point bound
-// alone any small one. Weighting the nearest-point share 3:1 gave the lowest error on the night
-// street of tests/bench/night_bench.sh at 320x180 (display MSE 0.020 with 1:1, 0.015 with 3:1,
-// 0.016 with 9:1, 0.025 with the nearest point alone, 0.041 with 1:3; measured with the binary
-// tree, whose two-child steps follow the same rule).
+// alone any small one. Weighting the nearest-point share 3:1 gave the lowest error of the blends
+// tried on the night street of tests/bench/night_bench.sh (docs/bench/2026-11-night.md).
 // Where no lane can light p (the bounds are loose enough that a cluster may pass the test
 // its children all fail), in proportion to power. So every descent ends at a light and the
 // probabilities of all lights sum to one; a light that cannot reach p then contributes nothing.

@@ -150,9 +150,9 @@ size_t SceneLights::bytes() const {
 }
 
 bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {
-    // Deriving a wall's layout and frame from the rules costs about a microsecond, and the walls
-    // a pixel's paths sample or hit repeat: each thread keeps the last few (values only, so the
-    // image cannot depend on the cache or the thread count).
+    // Deriving a wall's layout and frame from the rules is not cheap beside a shading step, and
+    // the walls a pixel's paths sample or hit repeat: each thread keeps the last few (values only,
+    // so the image cannot depend on the cache or the thread count).
     struct Cached {
         uint64_t owner = 0;
         uint32_t building = 0, wall = 0;
@@ -168,8 +168,8 @@ bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* 
     slot.owner = id_;
     slot.building = building;
     slot.wall = wall;
-    // The rings' orientation is found again on each miss (a few dozen flops beside the layout's
-    // microsecond) rather than kept per building (that cost about 1 MB on Monaco).
+    // The rings' orientation is found again on each miss (a few dozen flops beside deriving the
+    // layout) rather than kept per building (memory for every building: docs/bench/2026-11-night.md).
     slot.ok = false;
     if (options_.lit_windows > 0 && building < scene_->buildings.size()) {
         const auto kept = std::lower_bound(many_ring_buildings_.begin(), many_ring_buildings_.end(), building);

@@ -168,19 +168,18 @@ private:
     uint64_t lit_windows_ = 0, windows_ = 0;
     // With the tree, lamps and window strips have a light BVH each: in one tree over both, the
     // thousands of dim strips widened the clusters holding the lamps, and the lamp choice at the
-    // street's first hits was 5x further from proportional to the lamps' unshadowed light
-    // (tests/bench/night_bench.sh street view; see README). Uniform and power choose among all
-    // lights at once, as their names say.
+    // street's first hits strayed far from proportional to the lamps' unshadowed light
+    // (docs/bench/2026-11-night.md). Uniform and power choose among all lights at once, as their
+    // names say.
     std::unique_ptr<LightSampler> sampler_;        // all lights; with the tree, the lamps (null: no lights)
     std::unique_ptr<LightSampler> strip_sampler_;  // with the tree, the window strips (null unless split_)
-    // With the tree, the probability of choosing among the lamps. Not their share of the power
-    // (0.65 on Monaco): a window's light leaves a recessed pane, mostly sideways and upwards into
-    // other facades, and most window samples end in the shadow roulette, while a lamp lights the
-    // street below it. Measured (night_bench.sh, Monaco, 640x360, 16 spp, display MSE and CPU s):
-    // street view power share 0.0100 / 14.3 s, 0.8: 0.0081 / 14.3, 0.9: 0.0073 / 13.9; elevated
-    // power 0.00342 / 6.69, 0.8: 0.00342 / 6.38, 0.9: 0.00355 / 6.27. Choosing by the two trees'
-    // root importance instead (the rule of a node above both roots) gave 0.041 on the street:
-    // the lamps' box lies metres above the road, the strips' box holds every shading point.
+    // With the tree, the probability of choosing among the lamps. Not their share of the power:
+    // a window's light leaves a recessed pane, mostly sideways and upwards into other facades,
+    // and most window samples end in the shadow roulette, while a lamp lights the street below
+    // it. Nor the two trees' root importance (the rule of a node above both roots): the lamps'
+    // box lies metres above the road, the strips' box holds every shading point, so the windows
+    // would get most samples. 0.9 was chosen on tests/bench/night_bench.sh's street and elevated
+    // views (docs/bench/2026-11-night.md, third round).
     static constexpr double kLampShare = 0.9;
     bool split_ = false;
 };

@@ -1,5 +1,6 @@
-// How a lit window looks (thesis 3.6.2): each lit window its own warm colour and brightness,
-// its pane's emission varied by a per-window Perlin-noise pattern (curtains, lamps in the room).
+// How a lit window looks (as in the thesis named in README): each lit window its own warm colour
+// and brightness, its pane's emission varied by a per-window Perlin-noise pattern (curtains,
+// lamps in the room).
 // Pure functions of the window's hash, so both geometry modes and the light sampler agree.
 #pragma once
 

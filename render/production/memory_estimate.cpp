@@ -15,8 +15,9 @@ namespace citygen {
 
 namespace {
 
-// Measured on Monaco (README): about 108 bytes of Embree and our buffers per stored triangle,
-// 160 at the peak of the BVH build; about 230 bytes per procedural primitive.
+// Bytes of Embree and our buffers per stored triangle at the peak of the BVH build (more than
+// the built scene holds) and per procedural primitive: what a render of one of our extracts
+// held, rounded up (docs/bench/2026-11-render.md).
 constexpr double kBytesPerTriangle = 160;
 constexpr double kBytesPerPrimitive = 256;
 // Headroom for the program, its libraries and the scene itself.
