@@ -102,7 +102,7 @@ void add_road_and_map_options(CLI::App& app, ParseParams& p, Options& o) {
     app.add_option("--dem", p.terrain.dem_files,
                    "elevation raster for the terrain (SRTM .hgt or .hgt.zip, GeoTIFF, VRT; any CRS); repeat for "
                    "several, the first given wins where they overlap")
-        ->expected(1)->take_all();
+        ->allow_extra_args(false)->take_all();
     o.dem_resolution = app.add_option("--dem-resolution", p.terrain.resolution,
                                       "metres between the terrain's nodes (default: the finest DEM's own, at least 1)");
 }

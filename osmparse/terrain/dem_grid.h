@@ -15,7 +15,7 @@ struct DemGrid {
     double cell = 0;               // metres between nodes
     uint32_t nx = 0, ny = 0;
     std::vector<float> heights;    // nx * ny, i fastest, south to north; metres; NaN: no data
-    std::vector<uint8_t> covered;  // 1 where the node lies inside some DEM's raster
+    std::vector<uint8_t> covered;  // 1 where the node lies within some DEM's samples
 
     size_t index(uint32_t i, uint32_t j) const { return static_cast<size_t>(j) * nx + i; }
     size_t size() const { return static_cast<size_t>(nx) * ny; }

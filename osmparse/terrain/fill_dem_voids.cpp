@@ -25,6 +25,16 @@ void for_each_neighbour(const DemGrid& g, size_t k, F&& f) {
         }
 }
 
+// Calls f(neighbour index) for the up to 4 edge neighbours of node k.
+template <typename F>
+void for_each_edge_neighbour(const DemGrid& g, size_t k, F&& f) {
+    const size_t i = k % g.nx, j = k / g.nx;
+    if (i > 0) f(k - 1);
+    if (i + 1 < g.nx) f(k + 1);
+    if (j > 0) f(k - g.nx);
+    if (j + 1 < g.ny) f(k + g.nx);
+}
+
 // Known, void or outside; a void in the scene's sea is sea level at once.
 std::vector<NodeState> classify(DemGrid& g, const std::vector<uint8_t>& sea, VoidCounts& counts) {
     std::vector<NodeState> state(g.size());
@@ -118,14 +128,9 @@ void fill_from_rim(DemGrid& g, std::vector<NodeState>& state, const std::vector<
     for (int sweep = 0; sweep < kMaxSweeps; ++sweep) {
         double largest_change = 0;
         for (size_t k : region) {
-            const uint32_t i = static_cast<uint32_t>(k % g.nx), j = static_cast<uint32_t>(k / g.nx);
             double sum = 0;
             int n = 0;
-            auto add = [&](size_t m) { if (state[m] == NodeState::Known) sum += g.heights[m], ++n; };
-            if (i > 0) add(k - 1);
-            if (i + 1 < g.nx) add(k + 1);
-            if (j > 0) add(k - g.nx);
-            if (j + 1 < g.ny) add(k + g.nx);
+            for_each_edge_neighbour(g, k, [&](size_t m) { if (state[m] == NodeState::Known) sum += g.heights[m], ++n; });
             const float h = static_cast<float>(sum / n);
             largest_change = std::fmax(largest_change, std::fabs(h - g.heights[k]));
             g.heights[k] = h;
@@ -134,18 +139,18 @@ void fill_from_rim(DemGrid& g, std::vector<NodeState>& state, const std::vector<
     }
 }
 
-// Every node still without a height takes that of the nearest node with one (breadth first, 8
-// neighbours, in index order: the same result every run).
+// Every node still without a height takes that of the nearest node with one (breadth first over
+// edge neighbours: nearest in steps along the grid, ties to the lower index, every run the same).
 void extend_to_outside(DemGrid& g, std::vector<NodeState>& state) {
     std::deque<size_t> queue;
     for (size_t k = 0; k < g.size(); ++k)
         if (state[k] == NodeState::Known) {
             bool borders = false;
-            for_each_neighbour(g, k, [&](size_t m) { borders = borders || state[m] != NodeState::Known; });
+            for_each_edge_neighbour(g, k, [&](size_t m) { borders = borders || state[m] != NodeState::Known; });
             if (borders) queue.push_back(k);
         }
     for (; !queue.empty(); queue.pop_front())
-        for_each_neighbour(g, queue.front(), [&](size_t m) {
+        for_each_edge_neighbour(g, queue.front(), [&](size_t m) {
             if (state[m] == NodeState::Known) return;
             g.heights[m] = g.heights[queue.front()];
             state[m] = NodeState::Known;

@@ -31,7 +31,11 @@ class QuietGdal {
 public:
     QuietGdal() {
         static std::once_flag registered;
-        std::call_once(registered, [] { GDALAllRegister(); });
+        std::call_once(registered, [] {
+            GDALAllRegister();
+            // A GeoTIFF's vertical CRS (its datum and units) is reported only when asked for.
+            CPLSetConfigOption("GTIFF_REPORT_COMPD_CS", "YES");
+        });
         CPLPushErrorHandler(CPLQuietErrorHandler);
         CPLErrorReset();
     }
@@ -291,7 +295,8 @@ Dataset target_dataset(const DemGrid& g, const std::string& wkt) {
     return ds;
 }
 
-// Marks the nodes whose pixel centre falls inside the DEM's raster; returns how many.
+// Marks the nodes within the DEM's samples (between its outermost pixel centres, where bilinear
+// resampling has all four neighbours; the half pixel beyond is its edge); returns how many.
 size_t mark_coverage(const DemSource& s, void* transformer, const DemGrid& g, std::vector<uint8_t>& inside) {
     const double w = GDALGetRasterXSize(s.ds.get()), h = GDALGetRasterYSize(s.ds.get());
     std::vector<double> x(g.nx), y(g.nx), z(g.nx);
@@ -301,7 +306,7 @@ size_t mark_coverage(const DemSource& s, void* transformer, const DemGrid& g, st
         for (uint32_t i = 0; i < g.nx; ++i) x[i] = i + 0.5, y[i] = line + 0.5, z[i] = 0;
         GDALApproxTransform(transformer, TRUE, static_cast<int>(g.nx), x.data(), y.data(), z.data(), ok.data());
         for (uint32_t i = 0; i < g.nx; ++i)
-            if (ok[i] && x[i] >= 0 && x[i] <= w && y[i] >= 0 && y[i] <= h) {
+            if (ok[i] && x[i] >= 0.5 && x[i] <= w - 0.5 && y[i] >= 0.5 && y[i] <= h - 0.5) {
                 inside[g.index(i, g.ny - 1 - line)] = 1;
                 ++count;
             }
