@@ -1,7 +1,8 @@
-// Reading elevation rasters (DEMs) with GDAL into a grid over the scene: the one place osmparse
-// includes GDAL. Any raster GDAL reads: SRTM .hgt (also zipped, .hgt.zip), GeoTIFF in any CRS,
-// VRT mosaics. Each is warped into the scene's transverse Mercator over only the scene's window
-// (bilinear, no data kept as NaN), so a national DEM of many GB is never read whole.
+// Reading elevation rasters (DEMs) with GDAL into a grid over the scene. Any raster GDAL reads:
+// SRTM .hgt (also zipped, .hgt.zip), GeoTIFF in any CRS, VRT mosaics. Each is warped into the
+// scene's transverse Mercator over only the scene's window (bilinear, no data kept as NaN), so a
+// national DEM of many GB is never read whole. GDAL itself is in a module loaded on first use
+// (gdal/gdal_dem_reader.h says why).
 #pragma once
 
 #include <string>
@@ -26,15 +27,24 @@ struct DemRequest {
     double cell = 0;                 // metres between nodes; 0: the finest DEM's own resolution
 };
 
+// A DEM's extent in degrees, for the message when none overlaps the extract.
+struct DemExtent {
+    std::string path;
+    bool known = false;
+    double lat0 = 0, lon0 = 0, lat1 = 0, lon1 = 0;
+};
+
 struct DemRead {
     DemGrid grid;                     // heights in metres (feet converted), NaN where no DEM has one
     std::string vertical_datum;       // the first overlapping DEM's that names one, else kAssumedVerticalDatum
     size_t files_used = 0;            // the DEMs that overlap the bounds
-    std::vector<std::string> notes;   // one per finding: units converted, datum, a DEM not used
+    std::vector<DemExtent> unused;    // the others
+    std::vector<std::string> notes;   // one per finding: units converted, a DEM not used
 };
 
 // Opens each file as read_dem will (a .zip through /vsizip/), so a missing, unreadable or
-// unsupported file fails before a long parse. Throws Error with one line naming the file.
+// unsupported file fails before a long parse. Throws Error with one line naming the file. No
+// files: nothing is loaded.
 void check_dem_files(const std::vector<std::string>& paths);
 
 // Reads the DEMs over the bounds in `projection`. Throws Error with one line when a file cannot

@@ -134,3 +134,18 @@ TEST_F(TerrainCli, AbsurdResolutions) {
     expect_failure(dem + " --dem-resolution 0.001", "over the limit");
     expect_failure("--dem-resolution 10", "--dem-resolution needs --dem");
 }
+
+// GDAL is a module beside the program (osmparse_dem_reader.so), loaded only for --dem: a program
+// without it still parses, and says what is missing when asked for a DEM.
+TEST_F(TerrainCli, WithoutGdalsModuleOnlyTheDemFails) {
+    fs::copy_file(osmparse_binary(), dir_.file("osmparse"));
+    fs::permissions(dir_.file("osmparse"), fs::perms::owner_all);
+    const std::string program = quoted(dir_.file("osmparse")) + " " + quoted(dir_.file("town.osm"));
+    EXPECT_EQ(run_command(program + " -q -o " + quoted(dir_.file("flat.scene"))).exit_code, 0);
+    const CommandResult r = run_command(program + " --dem " + quoted(dir_.file("N49E008.hgt")) + " -o " +
+                                        quoted(dir_.file("hilly.scene")));
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("--dem needs GDAL's module beside the program"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_.file("hilly.scene")));
+}
