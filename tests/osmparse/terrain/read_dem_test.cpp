@@ -8,6 +8,7 @@
 #include <functional>
 
 #include <gdal.h>
+#include <gdal_utils.h>
 #include <ogr_srs_api.h>
 
 #include "common/error.h"
@@ -158,6 +159,23 @@ TEST(ReadDem, PlaneInUtm32NIsThePlaneWithinAFewCentimetres) {
     write_geotiff(dir.file("utm.tif"), utm);
     const DemRead dem = read({dir.file("utm.tif")}, 5);
     EXPECT_LT(largest_plane_error(dem.grid), 0.03);
+}
+
+// Two tiles side by side as one VRT mosaic: seamless, no node left out at the seam.
+TEST(ReadDem, AVrtMosaicOfTilesIsOneDem) {
+    TempDir dir;
+    Raster west = scene_raster(plane), east = scene_raster(plane);
+    west.width = east.width = 100;
+    east.west = 0;
+    write_geotiff(dir.file("west.tif"), west);
+    write_geotiff(dir.file("east.tif"), east);
+    const std::string tiles[] = {dir.file("west.tif"), dir.file("east.tif")};
+    const char* names[] = {tiles[0].c_str(), tiles[1].c_str()};
+    int usage_error = 0;
+    GDALDatasetH vrt = GDALBuildVRT(dir.file("mosaic.vrt").c_str(), 2, nullptr, names, nullptr, &usage_error);
+    ASSERT_NE(vrt, nullptr);
+    GDALClose(vrt);
+    EXPECT_LT(largest_plane_error(read({dir.file("mosaic.vrt")}, 5).grid), 0.01);
 }
 
 TEST(ReadDem, FeetAreConvertedAndNamed) {
