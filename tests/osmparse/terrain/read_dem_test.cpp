@@ -98,7 +98,10 @@ Vec2 utm_to_scene(double easting, double northing) {
         OSRImportFromEPSG(utm, 32632);
         OSRImportFromEPSG(wgs84, 4326);
         OSRSetAxisMappingStrategy(wgs84, OAMS_TRADITIONAL_GIS_ORDER);
-        return OCTNewCoordinateTransformation(utm, wgs84);
+        OGRCoordinateTransformationH ct = OCTNewCoordinateTransformation(utm, wgs84);
+        OSRDestroySpatialReference(utm);
+        OSRDestroySpatialReference(wgs84);
+        return ct;
     }();
     double x = easting, y = northing;
     EXPECT_TRUE(OCTTransform(to_wgs84, 1, &x, &y, nullptr));
