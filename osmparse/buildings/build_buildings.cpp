@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <iterator>
+#include <optional>
 
 #include <tbb/parallel_for.h>
 
@@ -26,13 +27,14 @@ Ring project_ring(const std::vector<LatLon>& points, const Projection& projectio
     return ring;
 }
 
-// Why a projected ring is beyond the scene limits (scene_limits.h), or nullptr. Such outlines
+// Why a projected ring is beyond the scene limits (scene_limits.h), or nullopt. Such outlines
 // are mapping mistakes (a node moved across the map); their cost must not reach later stages.
-const char* ring_beyond_limits(const Ring& ring) {
-    if (ring.size() > kMaxRingPoints + 1) return kTooManyPoints;
-    if (!extent_within_limit(ring, kMaxObjectExtent)) return kTooLarge;
-    if (!std::all_of(ring.begin(), ring.end(), [](Vec2 p) { return point_within_limit(p); })) return kTooFarOut;
-    return nullptr;
+std::optional<ReportReason> ring_beyond_limits(const Ring& ring) {
+    if (ring.size() > kMaxRingPoints + 1) return ReportReason::TooManyPoints;
+    if (!extent_within_limit(ring, kMaxObjectExtent)) return ReportReason::TooLarge;
+    if (!std::all_of(ring.begin(), ring.end(), [](Vec2 p) { return point_within_limit(p); }))
+        return ReportReason::FarFromOrigin;
+    return std::nullopt;
 }
 
 bool is_ignored(const std::string& type, const BuildingParams& params) {
@@ -68,10 +70,11 @@ std::vector<Building> replace_outlines_by_parts(std::vector<Building> buildings,
     kept.reserve(buildings.size());
     for (size_t i = 0; i < buildings.size(); ++i) {
         if (replaced[i]) {
-            report.dropped(kBuildings, kReplacedByParts);
+            report.dropped(ReportKind::Buildings, ReportReason::ReplacedByParts);
             continue;
         }
-        if (buildings[i].is_part && !part_has_outline[i]) report.note(kParts, kPartOutsideOutline);
+        if (buildings[i].is_part && !part_has_outline[i])
+            report.note(ReportKind::BuildingParts, ReportReason::PartOutsideOutline);
         kept.push_back(std::move(buildings[i]));
     }
     return kept;
@@ -83,12 +86,12 @@ std::vector<Building> build_area(const OsmArea& area, const Projection& projecti
     std::vector<Building> buildings;
     const char* part_value = area.tags.get("building:part");
     const bool is_part = part_value && std::strcmp(part_value, "no") != 0;
-    const char* kind = is_part ? kParts : kBuildings;
+    const ReportKind kind = is_part ? ReportKind::BuildingParts : ReportKind::Buildings;
     const char* building_value = area.tags.get("building");
     const std::string type = is_part ? part_value : (building_value ? building_value : "no");
     report.read(kind, static_cast<int64_t>(area.polygons.size()));
     if (is_ignored(type, params)) {
-        report.dropped(kind, kIgnoredType, static_cast<int64_t>(area.polygons.size()));
+        report.dropped(kind, ReportReason::IgnoredType, static_cast<int64_t>(area.polygons.size()));
         return buildings;
     }
     const BuildingHeight height = building_height(area.tags, area.ref, params, report, kind);
@@ -96,10 +99,10 @@ std::vector<Building> build_area(const OsmArea& area, const Projection& projecti
         std::vector<Ring> holes;
         for (const std::vector<LatLon>& inner : polygon.inners) holes.push_back(project_ring(inner, projection));
         Ring outer = project_ring(polygon.outer, projection);
-        const char* beyond = ring_beyond_limits(outer);
+        std::optional<ReportReason> beyond = ring_beyond_limits(outer);
         for (const Ring& hole : holes) beyond = beyond ? beyond : ring_beyond_limits(hole);
         if (beyond) {
-            report.dropped(kind, beyond);
+            report.dropped(kind, *beyond);
             continue;
         }
         for (Footprint& footprint : clean_footprint(outer, holes, params, report, kind)) {
@@ -146,7 +149,7 @@ std::vector<Building> build_buildings(const OsmData& osm, const Projection& proj
         return a.osm < b.osm;
     });
     buildings = replace_outlines_by_parts(std::move(buildings), report);
-    for (const Building& b : buildings) report.kept(b.is_part ? kParts : kBuildings);
+    for (const Building& b : buildings) report.kept(b.is_part ? ReportKind::BuildingParts : ReportKind::Buildings);
     return buildings;
 }
 

@@ -12,17 +12,6 @@
 
 namespace citygen {
 
-// Report rows and reasons of this stage (clean_footprint and building_height report under the
-// same rows).
-inline constexpr char kBuildings[] = "buildings";
-inline constexpr char kParts[] = "building parts";
-inline constexpr char kIgnoredType[] = "ignored type (--ignore-building-types)";
-inline constexpr char kReplacedByParts[] = "replaced by its building:part outlines";
-inline constexpr char kPartOutsideOutline[] = "part outside any building outline";
-inline constexpr char kTooManyPoints[] = "too many points (limit in scene_limits.h)";
-inline constexpr char kTooLarge[] = "over 10 km across";
-inline constexpr char kTooFarOut[] = "over 1000 km from the scene origin";
-
 // One Building per outer ring (with its holes) of every `building=*` or `building:part=*`
 // area whose type is not in params.ignore_types. Footprints are cleaned by
 // clean_footprint(), heights come from building_height(). A building outline that

@@ -9,8 +9,6 @@
 namespace citygen {
 
 namespace {
-
-const char* const kColours = "colours and materials";
 enum Salt : uint64_t { kWallMaterial = 301, kWallColour, kRoofMaterial, kRoofColour };
 
 bool is_one_of(const std::string& value, std::initializer_list<const char*> list) {
@@ -149,12 +147,12 @@ void choose_colours_and_materials(std::vector<Building>& buildings, const Buildi
         const char* wall_text = tags.get("building:material");
         if (!wall_text) wall_text = tags.get("building:facade:material");
         if (!wall_text || !parse_wall_material(wall_text, &b.wall_material)) {
-            if (wall_text) report.note(kColours, "unknown building:material: default");
+            if (wall_text) report.note(ReportKind::ColoursAndMaterials, ReportReason::UnknownWallMaterial);
             b.wall_material = default_wall_material(b, unit(kWallMaterial));
         }
         const char* roof_text = tags.get("roof:material");
         if (!roof_text || !parse_roof_material(roof_text, &b.roof_material)) {
-            if (roof_text) report.note(kColours, "unknown roof:material: default");
+            if (roof_text) report.note(ReportKind::ColoursAndMaterials, ReportReason::UnknownRoofMaterial);
             b.roof_material = default_roof_material(b, unit(kRoofMaterial));
         }
 
@@ -163,18 +161,18 @@ void choose_colours_and_materials(std::vector<Building>& buildings, const Buildi
         if (!wall_colour) wall_colour = tags.get("building:facade:colour");
         if (wall_colour && parse_colour(wall_colour, &rgb)) {
             b.wall_colour = 0xff000000u | rgb;
-            report.note(kColours, "wall colour tagged");
+            report.note(ReportKind::ColoursAndMaterials, ReportReason::WallColourTagged);
         } else {
-            if (wall_colour) report.note(kColours, "bad building:colour: default");
+            if (wall_colour) report.note(ReportKind::ColoursAndMaterials, ReportReason::BadWallColour);
             b.wall_colour = 0xff000000u | wall_palette(b.wall_material, unit(kWallColour));
             b.colour_inferred |= kWallColourInferred;
         }
         const char* roof_colour = tags.get("roof:colour");
         if (roof_colour && parse_colour(roof_colour, &rgb)) {
             b.roof_colour = 0xff000000u | rgb;
-            report.note(kColours, "roof colour tagged");
+            report.note(ReportKind::ColoursAndMaterials, ReportReason::RoofColourTagged);
         } else {
-            if (roof_colour) report.note(kColours, "bad roof:colour: default");
+            if (roof_colour) report.note(ReportKind::ColoursAndMaterials, ReportReason::BadRoofColour);
             b.roof_colour = 0xff000000u | roof_palette(b.roof_material, unit(kRoofColour));
             b.colour_inferred |= kRoofColourInferred;
         }

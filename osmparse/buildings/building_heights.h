@@ -24,6 +24,6 @@ struct BuildingHeight {
 // max_height, a bottom not below the top) is ignored as if absent and counted as a
 // note under `kind` in the report.
 BuildingHeight building_height(const OsmTags& tags, OsmRef ref, const BuildingParams& params,
-                               ParseReport& report, const std::string& kind);
+                               ParseReport& report, ReportKind kind);
 
 }  // namespace citygen

@@ -431,7 +431,7 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
             Box2 box;
             for (Vec2 p : a.outer) box.extend(p);
             if (std::max(box.max.x - box.min.x, box.max.y - box.min.y) > kMaxObjectExtent) {
-                report.note(kBuildingHeights, kLandUseTooLarge);
+                report.note(ReportKind::BuildingHeights, ReportReason::LandUseTooLarge);
                 continue;
             }
             out.push_back(std::move(a));
@@ -535,7 +535,7 @@ struct TypePrior {
     double height = 0;
     int group = kNotCalibrated;
     bool sure = false, tower = false;
-    const char* note = "from type and footprint area";
+    ReportReason note = ReportReason::FromTypeAndArea;
 };
 
 // The plan of one building or of the pieces of one: its footprint area, its area and perimeter
@@ -628,19 +628,19 @@ TypePrior HeightGuesser::type_prior(const std::string& type, const Plan& plan, b
     } else if (is_point_block(type, plan.plan_area, plan.plan_perimeter, surroundings_.grain(at))) {
         p.height = tower_height(surroundings_.grain(at), params_);
         p.tower = true;
-        p.note = kPointBlock;
+        p.note = ReportReason::PointBlock;
     } else if (is_landmark_home(type, area, is_named)) {
         p.height = tower_height(surroundings_.grain(at), params_);
         p.tower = true;
-        p.note = kLandmarkHome;
+        p.note = ReportReason::LandmarkHome;
     } else if (hall_by_land_use) {
         p.height = by_type;
         p.group = kOtherTypes;
-        p.note = "from type, footprint area and land use";
+        p.note = ReportReason::FromTypeAreaAndLandUse;
     } else if (is_untyped(type) || is_workplace(type)) {
         p.height = params_.level_height * levels_from_surroundings(area, surroundings_.grain(at), plan.attached);
         p.group = kFabric;
-        p.note = kFromSurroundings;
+        p.note = ReportReason::FromSurroundings;
     } else if (by_type > 0) {
         // Flats: the table's storeys are a town of blocks; a denser fabric builds them higher, as
         // it does its towers (fabric_factor).
@@ -712,34 +712,35 @@ void HeightGuesser::guess(const std::vector<size_t>& indices, ParseReport& repor
         return *near;
     };
     const TaggedGrid& grid = *grid_;
-    const char* note = prior.note;
+    ReportReason note = prior.note;
     if (prior.sure) {
         height = prior.height * calibration_[prior.group];
         rule = HeightRule::TypeAndArea;
     } else if (!is_untyped(type) && (height = twin_height(grid, nearby(), type, area)) > 0) {
         rule = HeightRule::Neighbours;
-        note = kTwin;
+        note = ReportReason::Twin;
     } else if (prior.tower) {
         // Before the neighbours: a tower says more about itself than the blocks around it.
         height = prior.height;
         rule = HeightRule::TypeAndArea;
     } else if ((height = height_from_neighbours(grid, nearby(), type, area, &disagreeing)) > 0) {
         rule = HeightRule::Neighbours;
-        note = "from tagged neighbours";
+        note = ReportReason::FromTaggedNeighbours;
     } else if ((height = extract_median(type, area)) > 0) {
         rule = HeightRule::Neighbours;
-        note = "from tagged buildings of its type and size in the extract";
+        note = ReportReason::FromExtractMedian;
     } else if (prior.height > 0) {
         height = prior.height * calibration_[prior.group];
         rule = HeightRule::TypeAndArea;
     } else if ((height = disagreeing) > 0) {
         rule = HeightRule::Neighbours;
-        note = "from tagged neighbours that disagree";
+        note = ReportReason::FromDisagreeingNeighbours;
     }
     if (rule == HeightRule::TypeAndArea && calibration_[prior.group] != 1.0)
-        for (size_t n = indices.size(); n > 0; --n) report.note(kBuildingHeights, kCalibrated);
+        for (size_t n = indices.size(); n > 0; --n) report.note(ReportKind::BuildingHeights, ReportReason::Calibrated);
     if (rule == HeightRule::Random) {
-        for (size_t n = indices.size(); n > 0; --n) report.note(kBuildingHeights, "random (no rule applied)");
+        for (size_t n = indices.size(); n > 0; --n)
+            report.note(ReportKind::BuildingHeights, ReportReason::NoHeightRule);
         return;
     }
     const double u = hash_to_unit(hash_keys(params_.seed, static_cast<uint64_t>(b.osm.type),
@@ -749,7 +750,7 @@ void HeightGuesser::guess(const std::vector<size_t>& indices, ParseReport& repor
         buildings_[i].height = jittered;
         buildings_[i].height_rule = rule;
         buildings_[i].levels = std::max(1, static_cast<int>(std::lround(jittered / params_.level_height)));
-        report.note(kBuildingHeights, note);
+        report.note(ReportKind::BuildingHeights, note);
     }
 }
 

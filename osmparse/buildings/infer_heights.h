@@ -14,8 +14,6 @@
 
 namespace citygen {
 
-inline constexpr char kBuildingHeights[] = "building heights";
-
 // What the land around a building is used for (OSM landuse=*), as far as heights care.
 enum class LandUse : uint8_t { None, Residential, Commercial, Retail, Industrial };
 
@@ -25,16 +23,10 @@ struct LandUseArea {
     LandUse use = LandUse::None;
 };
 
-inline constexpr char kLandUseTooLarge[] = "land use area over 10 km across: not used";
-inline constexpr char kFromSurroundings[] = "from type, footprint area and surroundings";
-inline constexpr char kPointBlock[] = "point block: a home with a deep plan in a town of blocks";
-inline constexpr char kTwin[] = "twin: a tagged building of the same type and footprint next door";
-inline constexpr char kLandmarkHome[] = "landmark home: a named home of a block's footprint";
-inline constexpr char kCalibrated[] = "type-and-area rule calibrated on the extract's tagged buildings";
-
 // The landuse=residential|commercial|retail|industrial areas of the map, projected (the same
 // OSM areas build_land_cover paints as built-up ground). Areas over kMaxObjectExtent across
-// (a stray node) are left out and noted as kLandUseTooLarge under kBuildingHeights.
+// (a stray node) are left out and noted as ReportReason::LandUseTooLarge under
+// ReportKind::BuildingHeights.
 std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection, ParseReport& report);
 
 // Replaces the random height of every ground-standing building with nothing tagged
@@ -49,9 +41,9 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //     dormitory) whose plan is deep in every direction in a town of blocks (is_point_block), or
 //     a named one of a block's footprint (is_landmark_home; `named`, from named_buildings);
 //     before the neighbours: a tower among blocks is not their height;
-//  1c. Neighbours, a twin (kTwin): the nearest tagged building within 60 m of the same type
-//     (not `yes`) and a footprint within 10% of its own: an estate built in series from one
-//     design; before the towers, whose rule only guesses what a twin knows;
+//  1c. Neighbours, a twin (ReportReason::Twin): the nearest tagged building within 60 m of the
+//     same type (not `yes`) and a footprint within 10% of its own: an estate built in series from
+//     one design; before the towers, whose rule only guesses what a twin knows;
 //  2. Neighbours: the distance-weighted median height of the nearest (up to 8) tagged buildings
 //     (height or building:levels) within 150 m that are most like it: the same type and a
 //     footprint within 3x of its own (at least 2), else the same type when it is not `yes`
@@ -61,7 +53,7 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //  3. Neighbours, extract-wide: the median height of the tagged buildings of the same type and
 //     footprint class (under 80, 200, 600, 1500 m2, larger) anywhere in the data (at least 3).
 //     The scene format has one value for rules 2 and 3 (a new one would change its schema);
-//     the report's notes under kBuildingHeights tell them apart;
+//     the report's notes under ReportKind::BuildingHeights tell them apart;
 //  4. TypeAndArea: an untyped building of hall size on industrial or retail land is an
 //     industrial or retail hall (the land use of `land_use`, at the footprint's centroid);
 //  5. TypeAndArea from the surroundings, for untyped buildings and workplaces (`office`,
@@ -73,8 +65,8 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 // The type-and-area rules (1 for houses, 4, 5, 6) are calibrated on the extract's own tagged
 // buildings, in four groups (houses, untyped buildings and workplaces, flats, other types): when
 // a group has at least 10 tagged buildings, its guesses are multiplied by their median ratio
-// tagged height / rule (in logs, shrunk towards 1 by count; noted as kCalibrated), so a city of
-// five-storey blocks learns its blocks from its tagged ones;
+// tagged height / rule (in logs, shrunk towards 1 by count; noted as ReportReason::Calibrated), so
+// a city of five-storey blocks learns its blocks from its tagged ones;
 //  8. Random: the seeded random height in [random_min_height, random_max_height] stays (only
 //     reached for types the table does not know, with nothing tagged like it).
 // Only buildings whose height comes from their own tags are ever used, so a building whose tags
@@ -82,8 +74,8 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 // guess is jittered by up to +-10% (seeded per building) so a street is not one height. The
 // pieces of one OSM building (a repaired bow-tie, a multipolygon's outers) get one guess from
 // their joint footprint (its area, its area-weighted centroid, a wall shared by any). Levels
-// are recomputed from the new height. Counts go to kBuildingHeights in the report. The result
-// does not depend on the order of `buildings` beyond ties in distance.
+// are recomputed from the new height. Counts go to ReportKind::BuildingHeights in the report. The
+// result does not depend on the order of `buildings` beyond ties in distance.
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
                    const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named = {},
                    const std::set<OsmRef>& homes = {});

@@ -160,7 +160,7 @@ bool clip_chains(const std::vector<CoastlineChain>& chains, const Boundary& boun
                 continue;
             }
             if (!piece.start_on_edge || !piece.end_on_edge) {
-                report.dropped(kSeaPolygons, kCoastlineEndsInside);
+                report.dropped(ReportKind::SeaPolygons, ReportReason::CoastlineEndsInside);
                 return false;
             }
             if (piece.points.size() >= 2) open_pieces.push_back(std::move(piece));
@@ -202,14 +202,14 @@ bool walk_water_rings(const std::vector<Piece>& open_pieces, const Boundary& bou
             const Event& here = events[event_of_start[k]];
             const Event& next = events[(event_of_start[k] + 1) % events.size()];
             if (next.is_start) {
-                report.dropped(kSeaPolygons, kCoastlineDirectionsDisagree);
+                report.dropped(ReportKind::SeaPolygons, ReportReason::CoastlineDirectionsDisagree);
                 return false;
             }
             for (Vec2 c : boundary.corners_between(here.position, next.position)) ring.push_back(c);
             k = next.piece;
             if (k == first) break;
             if (used[k]) {
-                report.dropped(kSeaPolygons, kCoastlineDoesNotClose);
+                report.dropped(ReportKind::SeaPolygons, ReportReason::CoastlineDoesNotClose);
                 return false;
             }
         }
@@ -225,7 +225,7 @@ std::vector<LandCover> sea_with_islands(TaggedRings& water, TaggedRings& islands
     clean.min_area = 1;
     std::vector<LandCover> out;
     for (auto& [ring, id] : water)
-        for (Footprint& f : clean_footprint(ring, {}, clean, report, kSeaPolygons)) {
+        for (Footprint& f : clean_footprint(ring, {}, clean, report, ReportKind::SeaPolygons)) {
             LandCover c;
             c.osm = {OsmType::Way, id};
             c.cover = LandCoverClass::Sea;
@@ -233,7 +233,7 @@ std::vector<LandCover> sea_with_islands(TaggedRings& water, TaggedRings& islands
             out.push_back(std::move(c));
         }
     for (auto& [ring, id] : islands) {
-        std::vector<Footprint> cleaned = clean_footprint(ring, {}, clean, report, kCoastlineIslands);
+        std::vector<Footprint> cleaned = clean_footprint(ring, {}, clean, report, ReportKind::CoastlineIslands);
         for (Footprint& f : cleaned) {
             const Vec2 p = interior_point(f.outer);
             bool placed = false;
@@ -244,7 +244,7 @@ std::vector<LandCover> sea_with_islands(TaggedRings& water, TaggedRings& islands
                     placed = true;
                     break;
                 }
-            if (!placed) report.dropped(kCoastlineIslands, kIslandNotInSea);
+            if (!placed) report.dropped(ReportKind::CoastlineIslands, ReportReason::IslandNotInSea);
         }
     }
     // Holes must stay simple and apart: clean once more with them.
@@ -254,7 +254,7 @@ std::vector<LandCover> sea_with_islands(TaggedRings& water, TaggedRings& islands
             final.push_back(std::move(c));
             continue;
         }
-        for (Footprint& f : clean_footprint(c.outer, c.holes, clean, report, kSeaPolygons))
+        for (Footprint& f : clean_footprint(c.outer, c.holes, clean, report, ReportKind::SeaPolygons))
             final.push_back({c.osm, LandCoverClass::Sea, std::move(f.outer), std::move(f.holes)});
     }
     return final;
@@ -300,7 +300,7 @@ std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projec
     std::set<int64_t> ends;
     for (size_t i = 0; i < osm.coastlines.size(); ++i) {
         if (!by_start.emplace(osm.coastlines[i].nodes.front(), i).second)
-            report.note(kCoastlineWays, kTwoWaysStartAtOneNode);
+            report.note(ReportKind::CoastlineWays, ReportReason::TwoWaysStartAtOneNode);
         ends.insert(osm.coastlines[i].nodes.back());
     }
     std::vector<bool> used(osm.coastlines.size(), false);
@@ -329,12 +329,12 @@ std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projec
         if (!used[i] && !ends.count(osm.coastlines[i].nodes.front())) follow(i);
     for (size_t i = 0; i < osm.coastlines.size(); ++i)
         if (!used[i]) follow(i);
-    report.kept(kCoastlineWays, static_cast<int64_t>(osm.coastlines.size()));
+    report.kept(ReportKind::CoastlineWays, static_cast<int64_t>(osm.coastlines.size()));
     for (const CoastlineChain& c : chains) {
-        if (c.cut_before) report.note(kCoastlineWays, kCutByExtract);
-        if (c.cut_after) report.note(kCoastlineWays, kCutByExtract);
+        if (c.cut_before) report.note(ReportKind::CoastlineWays, ReportReason::CutByExtract);
+        if (c.cut_after) report.note(ReportKind::CoastlineWays, ReportReason::CutByExtract);
     }
-    report.read(kSeaPolygons, static_cast<int64_t>(chains.size()));
+    report.read(ReportKind::SeaPolygons, static_cast<int64_t>(chains.size()));
 
     std::vector<LandCover> sea = sea_from_chains(chains, box, report);
     // Never a flooded city: a "sea" holding most buildings is land seen the wrong way round.
@@ -349,13 +349,13 @@ std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projec
             wet += !in_hole;
         }
         if (wet >= 10 && 2 * wet > buildings.size()) {
-            report.dropped(kSeaPolygons, kWouldFloodCity);
+            report.dropped(ReportKind::SeaPolygons, ReportReason::WouldFloodCity);
             continue;
         }
-        if (wet) report.note(kSeaPolygons, kBuildingsInSea, static_cast<int64_t>(wet));
+        if (wet) report.note(ReportKind::SeaPolygons, ReportReason::BuildingsInSea, static_cast<int64_t>(wet));
         kept.push_back(std::move(c));
     }
-    report.kept(kSeaPolygons, static_cast<int64_t>(kept.size()));
+    report.kept(ReportKind::SeaPolygons, static_cast<int64_t>(kept.size()));
     return kept;
 }
 

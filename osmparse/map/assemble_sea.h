@@ -13,18 +13,6 @@
 
 namespace citygen {
 
-// Report rows and reasons of this stage (coastline ways are counted under read_osm.h's kCoastlineWays).
-inline constexpr char kSeaPolygons[] = "sea polygons";
-inline constexpr char kCoastlineIslands[] = "coastline islands";
-inline constexpr char kCoastlineEndsInside[] = "coastline ends inside the extract (broken or partial): no sea drawn";
-inline constexpr char kCoastlineDirectionsDisagree[] = "coastline directions disagree along the extract edge: no sea drawn";
-inline constexpr char kCoastlineDoesNotClose[] = "coastline pieces do not close into rings: no sea drawn";
-inline constexpr char kIslandNotInSea[] = "not inside any sea polygon";
-inline constexpr char kTwoWaysStartAtOneNode[] = "two ways start at the same node";
-inline constexpr char kCutByExtract[] = "cut by the extract: end carried to its edge";
-inline constexpr char kWouldFloodCity[] = "would flood the city (holds most buildings)";
-inline constexpr char kBuildingsInSea[] = "buildings with a corner in the sea (piers, breakwaters)";
-
 // The rectangle (local metres) the sea is clipped to: the file header's bounds when given,
 // else the bounds of the data read.
 Box2 extract_box(const OsmData& osm, const Projection& projection);

@@ -22,9 +22,18 @@ Ring project_ring(const std::vector<LatLon>& points, const Projection& projectio
 
 }  // namespace
 
+ReportKind land_cover_row(LandCoverClass c) {
+    using K = ReportKind;
+    static const ReportKind kRows[kLandCoverClassCount] = {  // in LandCoverClass order
+        K::LandCoverWater, K::LandCoverSea,  K::LandCoverGreen,    K::LandCoverForest,
+        K::LandCoverPaved, K::LandCoverSand, K::LandCoverFarmland, K::LandCoverBuiltUp,
+    };
+    return kRows[static_cast<int>(c)];
+}
+
 std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& projection,
                                         const BuildingParams& params, ParseReport& report) {
-    const char* const kind = kLandCoverAreas;
+    const ReportKind kind = ReportKind::LandCoverAreas;
     std::vector<LandCover> out;
     // Land cover keeps its shape: only edges turning by less than a degree are merged.
     BuildingParams clean = params;
@@ -48,14 +57,12 @@ std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& pr
     std::stable_sort(out.begin(), out.end(), [](const LandCover& a, const LandCover& b) {
         return a.cover != b.cover ? a.cover < b.cover : a.osm < b.osm;
     });
-    for (const LandCover& c : out) report.kept(std::string(kLandCoverClassPrefix) + to_string(c.cover));
+    for (const LandCover& c : out) report.kept(land_cover_row(c.cover));
     report.kept(kind, static_cast<int64_t>(out.size()));
     return out;
 }
 
 namespace {
-
-constexpr char kClippedAtSceneLimits[] = "clipped to the scene limits (1000 km from the origin)";
 
 // The ring cut to the square of coordinates the scene limits allow (Sutherland-Hodgman: the
 // square is convex), its new points at stored precision. Empty when nothing of it is inside.
@@ -121,10 +128,10 @@ std::vector<LandCover> drop_land_cover_beyond_limits(std::vector<LandCover> cove
                      std::all_of(c.holes.begin(), c.holes.end(), within_land_cover_limits);
             }
             if (!ok) {
-                report.dropped(kLandCoverAreas, kBeyondSceneLimits);
+                report.dropped(ReportKind::LandCoverAreas, ReportReason::BeyondSceneLimits);
                 continue;
             }
-            report.note(kLandCoverAreas, kClippedAtSceneLimits);
+            report.note(ReportKind::LandCoverAreas, ReportReason::ClippedAtSceneLimits);
         }
         kept.push_back(std::move(c));
     }

@@ -14,15 +14,15 @@
 
 namespace citygen {
 
-// Report rows and reasons of this stage (areas are counted under read_osm.h's kLandCoverAreas).
-inline constexpr char kLandCoverClassPrefix[] = "land cover: ";
-inline constexpr char kBeyondSceneLimits[] = "beyond the scene limits (points or extent)";
-
 // Projects and cleans every land cover area (the footprint clean-up: repeated and collinear
 // points, self-intersections, orientation, holes; slivers below params.min_area dropped),
-// sorted by (class, OSM identity). Counted under "land cover areas".
+// sorted by (class, OSM identity). Counted under ReportKind::LandCoverAreas, the kept ones also
+// under their class's land_cover_row.
 std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& projection,
                                         const BuildingParams& params, ParseReport& report);
+
+// The report row that counts the kept land cover of a class ("land cover: water", ...).
+ReportKind land_cover_row(LandCoverClass c);
 
 // Drops (and counts) polygons beyond the land cover limits of scene_limits.h, which the
 // scene loader would refuse: a ring with too many points or wider than a region.

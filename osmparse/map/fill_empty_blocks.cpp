@@ -166,7 +166,7 @@ bool block_wants_buildings(const Block& block, const Occupied& occupied, const B
     box.extend(box.min - Vec2{params.near_distance, params.near_distance});
     box.extend(box.max + Vec2{params.near_distance, params.near_distance});
     if (static_cast<int>(occupied.buildings.near(box).size()) < params.min_buildings_near) {
-        report.note(kGeneratedBuildings, kBlockNotBuiltUp);
+        report.note(ReportKind::GeneratedBuildings, ReportReason::BlockNotBuiltUp);
         return false;
     }
     return true;
@@ -176,26 +176,26 @@ bool block_wants_buildings(const Block& block, const Occupied& occupied, const B
 // and overlaps nothing (counted when not).
 std::optional<Ring> lot_footprint(const Ring& lot, const Ring& inside, const Occupied& occupied,
                                   const BlockParams& params, ParseReport& report) {
-    report.read(kGeneratedBuildings);
+    report.read(ReportKind::GeneratedBuildings);
     if (!has_street_access(lot, inside)) {
-        report.dropped(kGeneratedBuildings, kLotWithoutAccess);
+        report.dropped(ReportKind::GeneratedBuildings, ReportReason::LotWithoutAccess);
         return std::nullopt;
     }
     std::vector<Ring> shrunk;
     if (!inset_polygon(lot, params.setback, &shrunk) || shrunk.empty()) {
-        report.dropped(kGeneratedBuildings, kLotTooSmall);
+        report.dropped(ReportKind::GeneratedBuildings, ReportReason::LotTooSmall);
         return std::nullopt;
     }
     const Ring footprint = *std::max_element(shrunk.begin(), shrunk.end(), [](const Ring& a, const Ring& b) {
         return signed_area(a) < signed_area(b);
     });
     if (signed_area(footprint) < params.min_footprint_area || !ring_is_simple(footprint)) {
-        report.dropped(kGeneratedBuildings, kLotTooSmall);
+        report.dropped(ReportKind::GeneratedBuildings, ReportReason::LotTooSmall);
         return std::nullopt;
     }
     // Never on a road, joint, sidewalk or mapped building (the setbacks should see to it).
     if (occupied.overlap(footprint) > 1e-3) {
-        report.dropped(kGeneratedBuildings, kLotOverlaps);
+        report.dropped(ReportKind::GeneratedBuildings, ReportReason::LotOverlaps);
         return std::nullopt;
     }
     return footprint;
@@ -228,17 +228,17 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
     if (!params.enabled) return generated;
     const Occupied occupied(scene);
     for (const Block& block : road_blocks(scene)) {
-        report.read(kGeneratedBuildings, 0);
+        report.read(ReportKind::GeneratedBuildings, 0);
         if (!block_wants_buildings(block, occupied, params, report)) continue;
         std::vector<Ring> insides;
         if (!inset_polygon(block.ring, 0.5 * block.widest + sidewalk_width + params.setback, &insides)) continue;
         for (const Ring& inside : insides) {
             const double area = signed_area(inside);
             if (area < params.min_block_area || area > params.max_block_area) {
-                report.note(kGeneratedBuildings, kBlockSizeOutOfRange);
+                report.note(ReportKind::GeneratedBuildings, ReportReason::BlockSizeOutOfRange);
                 continue;
             }
-            report.note(kGeneratedBuildings, kBlockFilled);
+            report.note(ReportKind::GeneratedBuildings, ReportReason::BlockFilled);
             std::vector<Ring> lots;
             split_into_lots(inside, params.max_lot_area, 0, lots);
             for (const Ring& lot : lots)
@@ -251,7 +251,7 @@ std::vector<Building> fill_empty_blocks(const Scene& scene, const BuildingParams
     const BuildingTagIndex tags(no_tags);
     build_roofs(generated, tags, buildings, report, &roof_evidence);
     choose_colours_and_materials(generated, tags, buildings, report);
-    report.kept(kGeneratedBuildings, static_cast<int64_t>(generated.size()));
+    report.kept(ReportKind::GeneratedBuildings, static_cast<int64_t>(generated.size()));
     return generated;
 }
 

@@ -11,15 +11,6 @@
 
 namespace citygen {
 
-// Report rows and reasons of this stage.
-inline constexpr char kGeneratedBuildings[] = "generated buildings";
-inline constexpr char kBlockNotBuiltUp[] = "empty block not built-up: left empty";
-inline constexpr char kBlockSizeOutOfRange[] = "empty block too small or too large: left empty";
-inline constexpr char kBlockFilled[] = "empty built-up block filled";
-inline constexpr char kLotWithoutAccess[] = "lot without street access";
-inline constexpr char kLotTooSmall[] = "lot too small";
-inline constexpr char kLotOverlaps[] = "would overlap a road, sidewalk or building";
-
 // The blocks are the bounded faces of the road graph (dead ends pruned). A block is filled when
 // no mapped building lies in it, it is built-up (at least min_buildings_near mapped buildings
 // within near_distance of it: a stand-in for built-up land use, which the scene does not carry

@@ -66,15 +66,15 @@ std::vector<Lamp> place_tagged_lamps(const OsmData& osm, const Projection& proje
     for (const OsmNode& node : osm.street_lamps) {
         Vec2 p = projection.to_local(node.location.lat, node.location.lon);
         if (!point_within_limit(p)) {
-            report.dropped(kTaggedStreetLamps, kTooFarOut);
+            report.dropped(ReportKind::TaggedStreetLamps, ReportReason::FarFromOrigin);
             continue;
         }
         if (const Ring* ring = obstacles.surface_containing(p)) {
             p = push_out_of(*ring, p, kKerbOffset);
-            report.note(kTaggedStreetLamps, kMovedOffRoad);
+            report.note(ReportKind::TaggedStreetLamps, ReportReason::MovedOffRoad);
         }
         if (obstacles.blocked(p)) {
-            report.dropped(kTaggedStreetLamps, kInsideRoadOrBuilding);
+            report.dropped(ReportKind::TaggedStreetLamps, ReportReason::InsideRoadOrBuilding);
             continue;
         }
         Lamp lamp;
@@ -88,7 +88,7 @@ std::vector<Lamp> place_tagged_lamps(const OsmData& osm, const Projection& proje
         lamps.push_back(lamp);
         tagged.add(p);
     }
-    report.kept(kTaggedStreetLamps, static_cast<int64_t>(lamps.size()));
+    report.kept(ReportKind::TaggedStreetLamps, static_cast<int64_t>(lamps.size()));
     return lamps;
 }
 
@@ -195,7 +195,7 @@ std::vector<Lamp> place_lamps(const OsmData& osm, const Projection& projection, 
     const LampObstacles obstacles(scene);
     PointGrid tagged(std::max(params.min_distance_to_tagged, 1.0));
     std::vector<Lamp> lamps = place_tagged_lamps(osm, projection, obstacles, params, tagged, report);
-    report.kept(kGeneratedStreetLamps, place_generated_lamps(scene, obstacles, params, seed, tagged, lamps));
+    report.kept(ReportKind::GeneratedStreetLamps, place_generated_lamps(scene, obstacles, params, seed, tagged, lamps));
     return lamps;
 }
 

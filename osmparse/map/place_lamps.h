@@ -15,11 +15,6 @@
 
 namespace citygen {
 
-// Report rows and reasons of this stage (tagged lamps are counted under read_osm.h's kTaggedStreetLamps).
-inline constexpr char kGeneratedStreetLamps[] = "generated street lamps";
-inline constexpr char kMovedOffRoad[] = "moved off the road surface";
-inline constexpr char kInsideRoadOrBuilding[] = "inside a road or building";
-
 // Generated lamps carry the OSM way of the road they stand beside. Tagged lamps that
 // fall on our (wider than mapped) road surface are moved just off it; those inside a
 // building are dropped. Uses scene.roads, joints, sidewalks and buildings.

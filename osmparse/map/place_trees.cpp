@@ -21,29 +21,37 @@ namespace {
 constexpr double kMinHeight = 1, kMaxTreeHeight = 80, kMinCrown = 0.5, kMaxCrown = 40;
 constexpr double kTrunkClearance = 0.75;  // metres a trunk keeps from roads and buildings
 
+// The height tags, in the order they are read, with the note that counts each when unusable.
+struct HeightTag {
+    const char* key;
+    ReportReason unusable;
+};
+constexpr HeightTag kHeightTags[] = {{"height", ReportReason::TreeHeightUnusable},
+                                     {"est_height", ReportReason::TreeEstHeightUnusable}};
+
 }  // namespace
 
-Tree tree_from_tags(const OsmTags& tags, ParseReport& report, const char* kind) {
+Tree tree_from_tags(const OsmTags& tags, ParseReport& report, ReportKind kind) {
     Tree t;
     const char* leaf = tags.get("leaf_type");
     t.leaf_type = leaf && !std::strcmp(leaf, "needleleaved") ? LeafType::Needleleaved : LeafType::Broadleaved;
     const bool needle = t.leaf_type == LeafType::Needleleaved;
     t.height = needle ? 14 : 10;
     t.crown_diameter = needle ? 5 : 7;
-    for (const char* key : {"height", "est_height"}) {
-        const char* text = tags.get(key);
+    for (const HeightTag& tag : kHeightTags) {
+        const char* text = tags.get(tag.key);
         if (!text) continue;
         const std::optional<double> h = parse_osm_length(text);
         if (h && *h >= kMinHeight && *h <= kMaxTreeHeight) {
             t.height = *h;
             break;
         }
-        report.note(kind, std::string(key) + kUnusableSuffix);
+        report.note(kind, tag.unusable);
     }
     if (const char* text = tags.get("diameter_crown")) {
         const std::optional<double> d = parse_osm_length(text);
         if (d && *d >= kMinCrown && *d <= kMaxCrown) t.crown_diameter = *d;
-        else report.note(kind, std::string("diameter_crown") + kUnusableSuffix);
+        else report.note(kind, ReportReason::CrownDiameterUnusable);
     }
     // A crown wider than the tree is tall reads as a bush: keep it in proportion.
     t.crown_diameter = std::min(t.crown_diameter, 1.2 * t.height);
@@ -95,26 +103,26 @@ void place_mapped_trees(const OsmData& osm, const Projection& projection, const 
                         std::vector<Tree>& trees, ParseReport& report) {
     const size_t before = trees.size();
     for (const OsmNode& node : osm.trees) {
-        Tree t = tree_from_tags(node.tags, report, kMappedTrees);
+        Tree t = tree_from_tags(node.tags, report, ReportKind::MappedTrees);
         t.osm = {OsmType::Node, node.id};
         t.source = TreeSource::Mapped;
         Vec2 p = round_to_stored_precision(projection.to_local(node.location.lat, node.location.lon));
         if (!point_within_limit(p)) {  // a stray node: the scene loader would refuse it
-            report.dropped(kMappedTrees, kTooFarOut);
+            report.dropped(ReportKind::MappedTrees, ReportReason::FarFromOrigin);
             continue;
         }
         if (const Ring* ring = ground.surface_containing(p)) {
             p = push_out_of(*ring, p, kTrunkClearance + 0.05);
-            report.note(kMappedTrees, kMovedOffRoad);
+            report.note(ReportKind::MappedTrees, ReportReason::MovedOffRoad);
         }
         if (!ground.takes_mapped(p)) {
-            report.dropped(kMappedTrees, kInBuildingRoadOrWater);
+            report.dropped(ReportKind::MappedTrees, ReportReason::InBuildingRoadOrWater);
             continue;
         }
         t.position = p;
         trees.push_back(t);
     }
-    report.kept(kMappedTrees, static_cast<int64_t>(trees.size() - before));
+    report.kept(ReportKind::MappedTrees, static_cast<int64_t>(trees.size() - before));
 }
 
 // Tree rows: one tree every row_spacing metres along the way, half a step in from its ends.
@@ -122,7 +130,7 @@ void place_row_trees(const OsmData& osm, const Projection& projection, const Tre
                      const TreeParams& params, std::vector<Tree>& trees, ParseReport& report) {
     size_t row_trees = 0;
     for (const OsmWay& way : osm.tree_rows) {
-        Tree proto = tree_from_tags(way.tags, report, kTreeRowTrees);
+        Tree proto = tree_from_tags(way.tags, report, ReportKind::TreeRowTrees);
         proto.osm = {OsmType::Way, way.id};
         proto.source = TreeSource::Row;
         std::vector<Vec2> pts;
@@ -134,13 +142,13 @@ void place_row_trees(const OsmData& osm, const Projection& projection, const Tre
             double s = carried;
             for (; s <= len; s += params.row_spacing) {
                 const Vec2 p = round_to_stored_precision(a + (b - a) * (s / len));
-                report.read(kTreeRowTrees);
+                report.read(ReportKind::TreeRowTrees);
                 if (!point_within_limit(p)) {
-                    report.dropped(kTreeRowTrees, kTooFarOut);
+                    report.dropped(ReportKind::TreeRowTrees, ReportReason::FarFromOrigin);
                     continue;
                 }
                 if (!ground.free(p)) {
-                    report.dropped(kTreeRowTrees, kOnRoadBuildingOrWater);
+                    report.dropped(ReportKind::TreeRowTrees, ReportReason::OnRoadBuildingOrWater);
                     continue;
                 }
                 Tree t = proto;
@@ -151,7 +159,7 @@ void place_row_trees(const OsmData& osm, const Projection& projection, const Tre
             carried = s - len;
         }
     }
-    report.kept(kTreeRowTrees, static_cast<int64_t>(row_trees));
+    report.kept(ReportKind::TreeRowTrees, static_cast<int64_t>(row_trees));
 }
 
 // Trees scattered in one forest polygon by dart throwing with a least distance (Poisson-disk),
@@ -198,11 +206,11 @@ void place_forest_trees(const Scene& scene, const TreeGround& ground, const Tree
         scattered += scatter_in_forest(forest, index, ground, params, seed, params.max_scattered - scattered,
                                        placed, trees);
         if (scattered >= params.max_scattered) {
-            report.note(kForestTrees, kForestCapReached);
+            report.note(ReportKind::ForestTrees, ReportReason::ForestCapReached);
             break;
         }
     }
-    report.kept(kForestTrees, static_cast<int64_t>(scattered));
+    report.kept(ReportKind::ForestTrees, static_cast<int64_t>(scattered));
 }
 
 }  // namespace

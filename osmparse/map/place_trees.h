@@ -12,20 +12,12 @@
 
 namespace citygen {
 
-// Report rows and reasons of this stage (mapped trees are counted under read_osm.h's kMappedTrees).
-inline constexpr char kTreeRowTrees[] = "tree row trees";
-inline constexpr char kForestTrees[] = "forest trees";
-inline constexpr char kInBuildingRoadOrWater[] = "in a building, on a road or in water";
-inline constexpr char kOnRoadBuildingOrWater[] = "on a road, in a building or in water";
-inline constexpr char kForestCapReached[] = "cap reached: forests only partly filled";
-inline constexpr char kUnusableSuffix[] = " unusable, default used";  // after the tag key
-
 // Size of a tree from its tags: height from `height`, else `est_height`; crown from
 // `diameter_crown`; leaf type from `leaf_type` (needleleaved, else broadleaved). Missing or
 // absurd values (height outside [1, 80] m, crown outside [0.5, 40] m) fall back to the
 // defaults of the leaf type (broadleaved 10 m high, crown 7 m; needleleaved 14 m, crown
 // 5 m) and are noted in `report` under `kind`.
-Tree tree_from_tags(const OsmTags& tags, ParseReport& report, const char* kind);
+Tree tree_from_tags(const OsmTags& tags, ParseReport& report, ReportKind kind);
 
 // Every tree of the scene, in order: mapped, rows, scattered. No tree stands in a building,
 // on a road or joint, or in water; a mapped tree on our (often wider than mapped) road

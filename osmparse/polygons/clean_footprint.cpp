@@ -7,36 +7,13 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace citygen {
 
 namespace {
-
-// What the clean-up reports, and the one table of their texts.
-enum class Reason {
-    Degenerate,
-    Unrepairable,
-    Repaired,
-    HoleBelowMinArea,
-    HoleOutside,
-    HoleOverlaps,
-    SliverBelowMinArea,
-    InvalidAtOutput,
-};
-const char* text_of(Reason reason) {
-    static constexpr const char* kTexts[] = {
-        "degenerate (fewer than 3 distinct points)",
-        "self-intersecting, could not repair",
-        "self-intersection repaired by splitting",
-        "below min area",
-        "outside or touching the outline",
-        "overlaps another hole",
-        "sliver below min area",
-        "not a valid polygon (CGAL's exact check)",
-    };
-    return kTexts[static_cast<int>(reason)];
-}
 
 // Angle in radians between two directions, in [0, pi]; pi for a zero vector.
 double angle_between(Vec2 a, Vec2 b) {
@@ -144,10 +121,10 @@ std::vector<Piece> clean_ring(const Ring& input, double simplify_angle_deg, Ring
     return out;
 }
 
-void report_outcome(RingOutcome outcome, const std::string& kind, ParseReport& report) {
-    if (outcome == RingOutcome::Degenerate) report.dropped(kind, text_of(Reason::Degenerate));
-    if (outcome == RingOutcome::Unrepairable) report.dropped(kind, text_of(Reason::Unrepairable));
-    if (outcome == RingOutcome::Repaired) report.note(kind, text_of(Reason::Repaired));
+void report_outcome(RingOutcome outcome, ReportKind kind, ParseReport& report) {
+    if (outcome == RingOutcome::Degenerate) report.dropped(kind, ReportReason::Degenerate);
+    if (outcome == RingOutcome::Unrepairable) report.dropped(kind, ReportReason::Unrepairable);
+    if (outcome == RingOutcome::Repaired) report.note(kind, ReportReason::Repaired);
 }
 
 enum class HoleFate { Kept, BelowMinArea, Outside, Overlaps };
@@ -206,18 +183,18 @@ bool polygon_is_valid(const Footprint& f) {
 
 // The polygons worth storing: not slivers, and valid by CGAL's check of the stage's output.
 std::vector<Footprint> keep_valid(std::vector<Footprint> polygons, double min_area, ParseReport& report,
-                                  const std::string& kind, const std::string& hole_kind) {
+                                  ReportKind kind, ReportKind hole_kind) {
     std::vector<Footprint> kept;
     for (Footprint& f : polygons) {
         double area = signed_area(f.outer);
         for (const Ring& h : f.holes) area += signed_area(h);  // holes are CW: negative
         if (area < min_area) {
-            report.dropped(kind, text_of(Reason::SliverBelowMinArea));
+            report.dropped(kind, ReportReason::SliverBelowMinArea);
             continue;
         }
         // The stage's output checked again: a polygon that fails is counted and never stored.
         if (!polygon_is_valid(f)) {
-            report.dropped(kind, text_of(Reason::InvalidAtOutput));
+            report.dropped(kind, ReportReason::InvalidAtOutput);
             continue;
         }
         report.kept(hole_kind, static_cast<int64_t>(f.holes.size()));
@@ -401,11 +378,21 @@ std::vector<Footprint> assemble_polygons(const std::vector<Piece>& outers, const
     return polygons;
 }
 
+ReportKind holes_row(ReportKind kind) {
+    switch (kind) {
+        case ReportKind::Buildings:
+        case ReportKind::BuildingParts: return ReportKind::BuildingHoles;
+        case ReportKind::LandCoverAreas: return ReportKind::LandCoverAreaHoles;
+        case ReportKind::SeaPolygons: return ReportKind::SeaPolygonHoles;
+        case ReportKind::CoastlineIslands: return ReportKind::CoastlineIslandHoles;
+        default: throw std::invalid_argument(std::string("no holes row for ") + text_of(kind));
+    }
+}
+
 std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring>& holes,
                                        const BuildingParams& params, ParseReport& report,
-                                       const std::string& kind) {
-    // Buildings count their holes under "building holes" (as they always did), others under "<kind> holes".
-    const std::string hole_kind = kind.rfind("building", 0) == 0 ? std::string("building holes") : kind + " (holes)";
+                                       ReportKind kind) {
+    const ReportKind hole_kind = holes_row(kind);
     RingOutcome outcome = RingOutcome::Clean;
     std::vector<Piece> pieces = clean_ring(outer, params.simplify_angle_deg, outcome);
     report_outcome(outcome, kind, report);
@@ -437,9 +424,9 @@ std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring
     std::vector<Footprint> polygons =
         assemble_polygons(outers, hole_candidates, assignment, together, params.simplify_angle_deg);
     for (HoleFate fate : assignment.fate) {
-        if (fate == HoleFate::BelowMinArea) report.dropped(hole_kind, text_of(Reason::HoleBelowMinArea));
-        if (fate == HoleFate::Outside) report.dropped(hole_kind, text_of(Reason::HoleOutside));
-        if (fate == HoleFate::Overlaps) report.dropped(hole_kind, text_of(Reason::HoleOverlaps));
+        if (fate == HoleFate::BelowMinArea) report.dropped(hole_kind, ReportReason::HoleBelowMinArea);
+        if (fate == HoleFate::Outside) report.dropped(hole_kind, ReportReason::HoleOutside);
+        if (fate == HoleFate::Overlaps) report.dropped(hole_kind, ReportReason::HoleOverlaps);
     }
 
     return keep_valid(std::move(polygons), params.min_area, report, kind, hole_kind);

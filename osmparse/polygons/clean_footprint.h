@@ -2,7 +2,6 @@
 // simple, correctly oriented polygons that later stages can extrude and triangulate.
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include "common/geometry.h"
@@ -48,10 +47,13 @@ inline Vec2 round_to_stored_precision(Vec2 p) { return {round_to_float(p.x), rou
 //  6. check every polygon with CGAL (is_valid_polygon_with_holes) and drop any that fails.
 // Every decision above is exact (osmparse/polygons/exact_predicates.h) but for the angle
 // threshold of step 2, whose result is checked exactly. Returns zero or more polygons
-// (usually one). Every drop is counted in `report` under `kind` (outer rings) or "building holes".
+// (usually one). Every drop is counted in `report` under `kind` (outer rings) or holes_row(kind).
 std::vector<Footprint> clean_footprint(const Ring& outer, const std::vector<Ring>& holes,
-                                       const BuildingParams& params, ParseReport& report,
-                                       const std::string& kind);
+                                       const BuildingParams& params, ParseReport& report, ReportKind kind);
+
+// The report row of the holes of `kind`'s outlines: buildings and their parts count theirs
+// under building holes. Throws std::invalid_argument for a kind clean_footprint is not given.
+ReportKind holes_row(ReportKind kind);
 
 // The steps, exposed for tests.
 Ring remove_repeated_and_collinear(Ring ring, double tolerance = kFootprintTolerance);

@@ -142,8 +142,9 @@ void count_incomplete_relations(osmium::area::MultipolygonManager<DeferringAssem
         if (is_building_tags(handle->tags())) ++incomplete;
         else if (land_cover_class(copy_tags(handle->tags()))) ++incomplete_cover;
     });
-    if (incomplete) report.dropped(kBuildingRelations, kMembersMissing, incomplete);
-    if (incomplete_cover) report.dropped(kLandCoverAreas, kRelationMembersMissing, incomplete_cover);
+    if (incomplete) report.dropped(ReportKind::BuildingRelations, ReportReason::MembersMissing, incomplete);
+    if (incomplete_cover)
+        report.dropped(ReportKind::LandCoverAreas, ReportReason::RelationMembersMissing, incomplete_cover);
 }
 
 }  // namespace
@@ -213,7 +214,7 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
         }
 
         count_incomplete_relations(multipolygons, report);
-        report.read(kBuildingAreas, static_cast<int64_t>(data.building_areas.size()));
+        report.read(ReportKind::BuildingAreas, static_cast<int64_t>(data.building_areas.size()));
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {

@@ -79,9 +79,9 @@ size_t keep_runs(const osmium::Way& way, std::vector<OsmWay>& out, OsmData* data
 }
 
 // The node, when it has a location (else counted as dropped under `kind`).
-bool keep_node(const osmium::Node& node, std::vector<OsmNode>& out, ParseReport& report, const char* kind) {
+bool keep_node(const osmium::Node& node, std::vector<OsmNode>& out, ParseReport& report, ReportKind kind) {
     if (!node.location().valid()) {
-        report.dropped(kind, kInvalidLocation);
+        report.dropped(kind, ReportReason::InvalidLocation);
         return false;
     }
     out.push_back({node.id(), to_latlon(node.location()), copy_tags(node.tags())});
@@ -111,26 +111,26 @@ OsmRef area_ref(const osmium::Area& area) {
 
 void StreetLampHandler::node(const osmium::Node& node) {
     if (!node.tags().has_tag("highway", "street_lamp")) return;
-    report_.read(kTaggedStreetLamps);
-    if (keep_node(node, data_.street_lamps, report_, kTaggedStreetLamps))
+    report_.read(ReportKind::TaggedStreetLamps);
+    if (keep_node(node, data_.street_lamps, report_, ReportKind::TaggedStreetLamps))
         extend_bounds(data_, data_.street_lamps.back().location);
 }
 
 void TreeHandler::node(const osmium::Node& node) {
     if (!node.tags().has_tag("natural", "tree")) return;
-    report_.read(kMappedTrees);
-    keep_node(node, data_.trees, report_, kMappedTrees);
+    report_.read(ReportKind::MappedTrees);
+    keep_node(node, data_.trees, report_, ReportKind::MappedTrees);
 }
 
 void TreeHandler::way(const osmium::Way& way) {
     if (!way.tags().has_tag("natural", "tree_row")) return;
-    report_.read(kTreeRows);
-    if (keep_runs(way, data_.tree_rows, &data_) == 0) report_.dropped(kTreeRows, kNodesMissing);
+    report_.read(ReportKind::TreeRows);
+    if (keep_runs(way, data_.tree_rows, &data_) == 0) report_.dropped(ReportKind::TreeRows, ReportReason::NodesMissing);
 }
 
 void RoadMarkHandler::node(const osmium::Node& node) {
     if (!node.tags().has_tag("highway", "crossing") && !node.tags().has_tag("highway", "traffic_signals")) return;
-    report_.read(kRoadMarkNodes);
+    report_.read(ReportKind::RoadMarkNodes);
     // Not counted as dropped when unlocated: the row counts what the file maps.
     if (node.location().valid())
         data_.road_marks.push_back({node.id(), to_latlon(node.location()), copy_tags(node.tags())});
@@ -138,17 +138,18 @@ void RoadMarkHandler::node(const osmium::Node& node) {
 
 void HighwayHandler::way(const osmium::Way& way) {
     if (!way.tags().has_key("highway")) return;
-    report_.read(kHighwayWays);
+    report_.read(ReportKind::HighwayWays);
     const size_t before = data_.highways.size();
     const bool clipped = keep_runs(way, data_.highways, &data_) != way.nodes().size();
-    if (data_.highways.size() == before) report_.dropped(kHighwayWays, kNodesMissing);
-    else if (clipped) report_.note(kHighwayWays, kClippedAtEdge);
+    if (data_.highways.size() == before) report_.dropped(ReportKind::HighwayWays, ReportReason::NodesMissing);
+    else if (clipped) report_.note(ReportKind::HighwayWays, ReportReason::ClippedAtEdge);
 }
 
 void CoastlineHandler::way(const osmium::Way& way) {
     if (!way.tags().has_tag("natural", "coastline")) return;
-    report_.read(kCoastlineWays);
-    if (keep_runs(way, data_.coastlines, nullptr) == 0) report_.dropped(kCoastlineWays, kNodesMissing);
+    report_.read(ReportKind::CoastlineWays);
+    if (keep_runs(way, data_.coastlines, nullptr) == 0)
+        report_.dropped(ReportKind::CoastlineWays, ReportReason::NodesMissing);
 }
 
 void RailwayHandler::way(const osmium::Way& way) {
@@ -157,22 +158,23 @@ void RailwayHandler::way(const osmium::Way& way) {
     if (std::strcmp(railway, "rail") && std::strcmp(railway, "tram") && std::strcmp(railway, "light_rail") &&
         std::strcmp(railway, "subway"))
         return;
-    report_.read(kRailwayWays);
-    if (keep_runs(way, data_.railways, nullptr) == 0) report_.dropped(kRailwayWays, kNodesMissing);
+    report_.read(ReportKind::RailwayWays);
+    if (keep_runs(way, data_.railways, nullptr) == 0)
+        report_.dropped(ReportKind::RailwayWays, ReportReason::NodesMissing);
 }
 
 void BuildingAreaHandler::way(const osmium::Way& way) {
     if (!is_building_tags(way.tags())) return;
-    report_.read(kBuildingWays);
+    report_.read(ReportKind::BuildingWays);
     if (!way.is_closed()) {
-        report_.dropped(kBuildingWays, kNotClosed);
+        report_.dropped(ReportKind::BuildingWays, ReportReason::NotClosed);
         return;
     }
     std::vector<LatLon> outline;
     outline.reserve(way.nodes().size());
     for (const osmium::NodeRef& ref : way.nodes()) {
         if (!ref.location().valid()) {
-            report_.dropped(kBuildingWays, kNodesMissing);
+            report_.dropped(ReportKind::BuildingWays, ReportReason::NodesMissing);
             return;
         }
         outline.push_back(to_latlon(ref.location()));
@@ -182,7 +184,7 @@ void BuildingAreaHandler::way(const osmium::Way& way) {
 
 void BuildingAreaHandler::relation(const osmium::Relation& relation) {
     if (is_building_tags(relation.tags()) && relation.tags().has_tag("type", "multipolygon"))
-        report_.read(kBuildingRelations);
+        report_.read(ReportKind::BuildingRelations);
 }
 
 void BuildingAreaHandler::area(const osmium::Area& area) {
@@ -196,13 +198,13 @@ void BuildingAreaHandler::area(const osmium::Area& area) {
         if (outline != way_outlines_.end()) {
             if (out.polygons.empty()) {
                 out.polygons.push_back({std::move(outline->second), {}});
-                report_.note(kBuildingAreas, kOutlinePassedForRepair);
+                report_.note(ReportKind::BuildingAreas, ReportReason::OutlinePassedForRepair);
             }
             way_outlines_.erase(outline);
         }
     }
     if (out.polygons.empty()) {
-        report_.dropped(kBuildingAreas, kCouldNotAssemble);
+        report_.dropped(ReportKind::BuildingAreas, ReportReason::CouldNotAssemble);
         return;
     }
     for (const OsmPolygon& p : out.polygons)
@@ -216,10 +218,10 @@ void LandCoverHandler::area(const osmium::Area& area) {
     out.tags = copy_tags(area.tags());
     if (!land_cover_class(out.tags)) return;
     out.ref = area_ref(area);
-    report_.read(kLandCoverAreas);
+    report_.read(ReportKind::LandCoverAreas);
     out.polygons = area_polygons(area);
     if (out.polygons.empty()) {
-        report_.dropped(kLandCoverAreas, kCouldNotAssemble);
+        report_.dropped(ReportKind::LandCoverAreas, ReportReason::CouldNotAssemble);
         return;
     }
     data_.land_cover_areas.push_back(std::move(out));

@@ -57,9 +57,10 @@ void lay_out(std::vector<OsmWay> ways, const Projection& projection, const RoadP
     out.joints.reserve(out.joints.size() + joint_count(layout));
     std::vector<int> path_of_edge(graph.edges.size(), -1);
     for (size_t e = 0; e < graph.edges.size(); ++e) {
-        report.read(kPathEdges);
+        report.read(ReportKind::PathEdges);
         if (layout.absorbed[e] || layout.quads[e].empty()) {
-            report.dropped(kPathEdges, layout.absorbed[e] ? kAbsorbedIntoMergedJunction : kPathTooShort);
+            report.dropped(ReportKind::PathEdges, layout.absorbed[e] ? ReportReason::AbsorbedIntoMergedJunction
+                                                                     : ReportReason::TooShortForJunctions);
             continue;
         }
         const RoadGraphEdge& g = graph.edges[e];
@@ -94,6 +95,15 @@ void lay_out(std::vector<OsmWay> ways, const Projection& projection, const RoadP
 
 }  // namespace
 
+ReportKind path_class_row(PathClass c) {
+    using K = ReportKind;
+    static const ReportKind kRows[kPathClassCount] = {  // in PathClass order
+        K::PathFootway, K::PathPath, K::PathCycleway, K::PathPedestrian, K::PathSteps,   K::PathTrack,
+        K::PathBridleway, K::PathRail, K::PathTram,   K::PathLightRail,  K::PathSubway,
+    };
+    return kRows[static_cast<int>(c)];
+}
+
 std::optional<PathClass> path_class_of(const OsmTags& tags) {
     const char* highway = tags.get("highway");
     const char* railway = tags.get("railway");
@@ -108,7 +118,7 @@ double path_width(const OsmTags& tags, PathClass c, ParseReport* report) {
     if (const char* w = tags.get("width")) {
         const std::optional<double> width = parse_osm_length(w);
         if (width && *width >= 1 && *width <= 20) return *width;
-        if (report) report->note(kPathEdges, "width tag unusable, fell back");
+        if (report) report->note(ReportKind::PathEdges, ReportReason::WidthTagUnusable);
     }
     for (const ClassInfo& info : kTable)
         if (info.cls == c) return info.width;
@@ -148,10 +158,10 @@ PathSurface build_paths(const OsmData& osm, const Projection& projection, const 
         const char* tunnel = way.tags.get("tunnel");
         if ((tunnel && std::strcmp(tunnel, "no") != 0) || way.tags.has("area", "yes") ||
             way.tags.has("indoor", "yes")) {
-            report.dropped(kPathWays, tunnel ? kPathTunnel : kPathAreaOrIndoor);
+            report.dropped(ReportKind::PathWays, tunnel ? ReportReason::Tunnel : ReportReason::AreaOrIndoor);
             return;
         }
-        report.read(kPathWays);
+        report.read(ReportKind::PathWays);
         if (!info.count(way.id)) info[way.id] = {*c, path_width(way.tags, *c, &report)};
         sidewalk[way.id] = way.tags.has("footway", "sidewalk");
         OsmWay copy = way;
@@ -163,9 +173,9 @@ PathSurface build_paths(const OsmData& osm, const Projection& projection, const 
     PathSurface out;
     lay_out(std::move(paths), projection, roads, info, sidewalk, out, report);
     lay_out(std::move(rails), projection, roads, info, sidewalk, out, report);
-    report.kept(kPathEdges, static_cast<int64_t>(out.paths.size()));
-    for (const PathEdge& p : out.paths) report.kept(std::string(kPathClassPrefix) + to_string(p.path_class));
-    report.kept(kPathJoints, static_cast<int64_t>(out.joints.size()));
+    report.kept(ReportKind::PathEdges, static_cast<int64_t>(out.paths.size()));
+    for (const PathEdge& p : out.paths) report.kept(path_class_row(p.path_class));
+    report.kept(ReportKind::PathJoints, static_cast<int64_t>(out.joints.size()));
     return out;
 }
 
@@ -190,8 +200,9 @@ std::vector<Sidewalk> drop_doubled_sidewalks(std::vector<Sidewalk> sidewalks, co
         double covered = 0;
         index.for_each_near(bounds_of(s.polygon), [&](uint32_t i) { covered += clipped_area(s.polygon, mapped[i].outer); });
         if (area > 0 && covered > area / 3) {
-            const char* kind = s.kind == SidewalkKind::Strip ? kSidewalkStrips : kSidewalkCorners;
-            report.dropped(kind, kReplacedByMappedSidewalk);
+            const ReportKind kind =
+                s.kind == SidewalkKind::Strip ? ReportKind::SidewalkStrips : ReportKind::SidewalkCorners;
+            report.dropped(kind, ReportReason::ReplacedByMappedSidewalk);
             report.kept(kind, -1);  // build_sidewalks counted it as kept
             continue;
         }

@@ -15,19 +15,12 @@
 
 namespace citygen {
 
-// Report rows and reasons of this stage.
-inline constexpr char kPathEdges[] = "path edges";
-inline constexpr char kPathWays[] = "path ways";
-inline constexpr char kPathJoints[] = "path joints";
-inline constexpr char kPathClassPrefix[] = "path: ";
-inline constexpr char kPathTooShort[] = "too short for its junctions";
-inline constexpr char kPathTunnel[] = "tunnel";
-inline constexpr char kPathAreaOrIndoor[] = "area or indoor";
-inline constexpr char kReplacedByMappedSidewalk[] = "replaced by a mapped sidewalk (footway=sidewalk)";
-
 // The path class of a way's tags, or nullopt. highway=pedestrian as a line (a pedestrian
 // street) is a path; as an area it is land cover.
 std::optional<PathClass> path_class_of(const OsmTags& tags);
+
+// The report row that counts the kept paths of a class ("path: footway", ...).
+ReportKind path_class_row(PathClass c);
 
 // Width from `width` (1 to 20 m), else the class table: footway 2, path 1.5, cycleway 2,
 // pedestrian 5, steps 2, track 3, bridleway 2, rail 3, tram 2.6, light_rail 3, subway 3 m.

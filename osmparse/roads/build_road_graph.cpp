@@ -42,11 +42,11 @@ std::vector<WayPieces> cut_into_pieces(const OsmData& osm, const Projection& pro
     std::vector<WayPieces> ways;
     std::set<std::pair<int64_t, int64_t>> seen_pairs;
     for (const OsmWay& way : osm.highways) {
-        const std::optional<std::string> why = carriageway_exclusion(way.tags, params);
-        if (why && (*why == kNotACarriagewayClass || *why == kNotAHighway)) continue;
-        report.read(kRoadWays);
+        const std::optional<ReportReason> why = carriageway_exclusion(way.tags, params);
+        if (why && (*why == ReportReason::NotACarriagewayClass || *why == ReportReason::NotAHighway)) continue;
+        report.read(ReportKind::RoadWays);
         if (why) {
-            report.dropped(kRoadWays, *why);
+            report.dropped(ReportKind::RoadWays, *why);
             continue;
         }
         WayPieces wp{&way, {}};
@@ -58,31 +58,31 @@ std::vector<WayPieces> cut_into_pieces(const OsmData& osm, const Projection& pro
             if (a == b) continue;  // repeated node: not a piece at all
             const Vec2 pa = points[i], pb = points[i + 1];
             if (length(pb - pa) < kMinEdgeLength) {
-                report.dropped(kRoadEdges, kZeroLength);
+                report.dropped(ReportKind::RoadEdges, ReportReason::ZeroLength);
                 continue;
             }
             // A mapping mistake (a node moved across the map); later stages' cost grows with it.
             if (length(pb - pa) > kMaxRoadEdgeLength) {
-                report.dropped(kRoadEdges, kOver5Km);
+                report.dropped(ReportKind::RoadEdges, ReportReason::Over5Km);
                 continue;
             }
             if (std::max({std::fabs(pa.x), std::fabs(pa.y), std::fabs(pb.x), std::fabs(pb.y)}) > kMaxCoordinate) {
-                report.dropped(kRoadEdges, kFarFromOrigin);
+                report.dropped(ReportKind::RoadEdges, ReportReason::FarFromOrigin);
                 continue;
             }
             if (!seen_pairs.insert({std::min(a, b), std::max(a, b)}).second) {
-                report.dropped(kRoadEdges, kDuplicatePiece);
+                report.dropped(ReportKind::RoadEdges, ReportReason::DuplicatePiece);
                 continue;
             }
             wp.pieces.push_back({a, b, pa, pb});
         }
         if (wp.pieces.empty()) {
-            report.dropped(kRoadWays, kNoPieceLeft);
+            report.dropped(ReportKind::RoadWays, ReportReason::NoPieceLeft);
             continue;
         }
         ways.push_back(std::move(wp));
     }
-    report.kept(kRoadWays, static_cast<int64_t>(ways.size()));
+    report.kept(ReportKind::RoadWays, static_cast<int64_t>(ways.size()));
     return ways;
 
 }
@@ -153,7 +153,7 @@ RoadGraph merge_collinear_runs(const std::vector<WayPieces>& ways, const std::un
             e.from = run.front().pa;
             e.to = run.back().pb;
             graph.edges.push_back(e);
-            if (run.size() > 1) report.note(kRoadEdges, kMergedCollinear, run.size() - 1);
+            if (run.size() > 1) report.note(ReportKind::RoadEdges, ReportReason::MergedCollinear, run.size() - 1);
             run.clear();
         };
         for (const Piece& p : wp.pieces) {
@@ -211,14 +211,14 @@ bool is_oneway(const OsmTags& tags) {
     return tags.has("highway", "motorway") || tags.has("junction", "roundabout") || tags.has("junction", "circular");
 }
 
-std::optional<std::string> carriageway_exclusion(const OsmTags& tags, const RoadParams& params) {
+std::optional<ReportReason> carriageway_exclusion(const OsmTags& tags, const RoadParams& params) {
     const char* highway = tags.get("highway");
-    if (!highway) return std::string(kNotAHighway);
+    if (!highway) return ReportReason::NotAHighway;
     if (std::find(params.classes.begin(), params.classes.end(), highway) == params.classes.end())
-        return std::string(kNotACarriagewayClass);
-    if (tags.has("area", "yes")) return std::string(kAreaYes);
+        return ReportReason::NotACarriagewayClass;
+    if (tags.has("area", "yes")) return ReportReason::AreaYes;
     const char* tunnel = tags.get("tunnel");
-    if (tunnel && std::strcmp(tunnel, "no") != 0) return std::string(kTunnel);
+    if (tunnel && std::strcmp(tunnel, "no") != 0) return ReportReason::Tunnel;
     return std::nullopt;
 }
 
@@ -226,13 +226,13 @@ double road_width(const OsmTags& tags, const RoadParams& params, ParseReport* re
     if (const char* w = tags.get("width")) {
         std::optional<double> width = parse_osm_length(w);
         if (width && *width >= kMinTaggedWidth && *width <= params.max_width) return *width;
-        if (report) report->note(kRoadEdges, kWidthTagUnusable);
+        if (report) report->note(ReportKind::RoadEdges, ReportReason::WidthTagUnusable);
     }
     if (const char* l = tags.get("lanes")) {
         std::optional<double> lanes = parse_osm_count(l);
         if (lanes && *lanes >= 1 && *lanes <= kMaxLanes)
             return std::floor(*lanes) * params.lane_width + lane_extras_width(tags);
-        if (report) report->note(kRoadEdges, kLanesTagUnusable);
+        if (report) report->note(ReportKind::RoadEdges, ReportReason::LanesTagUnusable);
     }
     const char* highway = tags.get("highway");
     return default_road_width(highway ? highway : "", is_oneway(tags)) + lane_extras_width(tags);
@@ -274,7 +274,7 @@ RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
     const std::vector<WayPieces> ways = cut_into_pieces(osm, projection, params, report);
     const std::unordered_map<int64_t, int> degree = node_degrees(ways);
     RoadGraph graph = merge_collinear_runs(ways, degree, params, report);
-    report.read(kRoadEdges, static_cast<int64_t>(graph.edges.size()));
+    report.read(ReportKind::RoadEdges, static_cast<int64_t>(graph.edges.size()));
     return graph;
 }
 

@@ -14,22 +14,6 @@
 
 namespace citygen {
 
-// Report kinds of the road stages, and the reasons this stage gives.
-inline constexpr char kRoadWays[] = "road ways";
-inline constexpr char kRoadEdges[] = "road edges";
-inline constexpr char kNotAHighway[] = "not a highway";
-inline constexpr char kNotACarriagewayClass[] = "not a carriageway class";
-inline constexpr char kAreaYes[] = "area=yes";
-inline constexpr char kTunnel[] = "tunnel";
-inline constexpr char kWidthTagUnusable[] = "width tag unusable, fell back";
-inline constexpr char kLanesTagUnusable[] = "lanes tag unusable, fell back";
-inline constexpr char kZeroLength[] = "zero length";
-inline constexpr char kOver5Km[] = "over 5 km long";
-inline constexpr char kFarFromOrigin[] = "over 1000 km from the scene origin";
-inline constexpr char kDuplicatePiece[] = "duplicate of another way's piece";
-inline constexpr char kNoPieceLeft[] = "no piece left";
-inline constexpr char kMergedCollinear[] = "merged collinear pieces";
-
 // One straight piece of carriageway between two OSM nodes. As in the thesis the project started
 // from (see README), every edge is a single straight segment: a way with many nodes yields many
 // edges that meet at degree-2 joins; only nearly collinear runs are merged into one edge (the
@@ -54,7 +38,7 @@ struct RoadGraph {
 RoadClass road_class_of(const std::string& highway);
 
 // Why a highway way is not a carriageway, or nullopt when it is one.
-std::optional<std::string> carriageway_exclusion(const OsmTags& tags, const RoadParams& params);
+std::optional<ReportReason> carriageway_exclusion(const OsmTags& tags, const RoadParams& params);
 
 // Default carriageway width in metres per highway=* value, two-way or one-way: the one
 // table (see README).

@@ -48,11 +48,11 @@ RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, Parse
     for (size_t e = 0; e < graph.edges.size(); ++e) {
         const RoadGraphEdge& g = graph.edges[e];
         if (out.layout.absorbed[e]) {
-            report.dropped(kRoadEdges, kAbsorbedIntoMergedJunction);
+            report.dropped(ReportKind::RoadEdges, ReportReason::AbsorbedIntoMergedJunction);
             continue;
         }
         if (out.layout.quads[e].empty()) {
-            report.dropped(kRoadEdges, kTooShortForJunctions);
+            report.dropped(ReportKind::RoadEdges, ReportReason::TooShortForJunctions);
             continue;
         }
         RoadEdge r;
@@ -71,20 +71,20 @@ RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, Parse
         out.road_of_edge[e] = static_cast<int>(out.roads.size());
         out.roads.push_back(std::move(r));
     }
-    report.kept(kRoadEdges, static_cast<int64_t>(out.roads.size()));
+    report.kept(ReportKind::RoadEdges, static_cast<int64_t>(out.roads.size()));
 
     for (NodeLayout& node : out.layout.nodes) {
         // Nothing reads an end's gap points after the joint is shaped (the sidewalks' outline
         // shapes its own): freed, as the joint polygon is moved into the scene's joint.
         for (NodeLayout::End& end : node.ends) std::vector<Vec2>().swap(end.gap_points);
         if (node.kind != JoinKind::Joint) continue;
-        report.read(kRoadJoints);
+        report.read(ReportKind::RoadJoints);
         if (node.joint.empty()) {
-            report.dropped(kRoadJoints, kNothingLeftOfJoint);
+            report.dropped(ReportKind::RoadJoints, ReportReason::NothingLeftOfJoint);
             continue;
         }
-        if (!node.members.empty()) report.note(kRoadJoints, kMergedFromNearbyJunctions);
-        if (node.joint_is_hull) report.note(kRoadJoints, kStarOrHullJoint);
+        if (!node.members.empty()) report.note(ReportKind::RoadJoints, ReportReason::MergedFromNearbyJunctions);
+        if (node.joint_is_hull) report.note(ReportKind::RoadJoints, ReportReason::StarOrHullJoint);
         Joint j;
         j.osm = {OsmType::Node, node.node};
         j.polygon = std::move(node.joint);
@@ -101,13 +101,13 @@ RoadSurface build_road_polygons(const RoadGraph& graph, RoadLayout layout, Parse
             const int road = out.road_of_edge[end.edge];
             if (road < 0) continue;
             if (hole_beyond_end(out.roads, j, static_cast<uint32_t>(road), end.at_from) > kJoinTolerance)
-                report.note(kRoadJoints, kHoleBeyondQuadEnd);
+                report.note(ReportKind::RoadJoints, ReportReason::HoleBeyondQuadEnd);
             if (clipped_area(j.polygon, out.roads[road].quad) > kJoinOverlapTolerance)
-                report.note(kRoadJoints, kQuadOverlapsJoint);
+                report.note(ReportKind::RoadJoints, ReportReason::QuadOverlapsJoint);
         }
         out.joints.push_back(std::move(j));
     }
-    report.kept(kRoadJoints, static_cast<int64_t>(out.joints.size()));
+    report.kept(ReportKind::RoadJoints, static_cast<int64_t>(out.joints.size()));
     return out;
 }
 

@@ -16,16 +16,6 @@ namespace citygen {
 constexpr double kJoinTolerance = 0.01;
 constexpr double kJoinOverlapTolerance = 0.01;
 
-// Report kind and reasons (road edges are kRoadEdges, build_road_graph.h).
-inline constexpr char kRoadJoints[] = "road joints";
-inline constexpr char kAbsorbedIntoMergedJunction[] = "absorbed into a merged junction";
-inline constexpr char kTooShortForJunctions[] = "too short for its junctions";
-inline constexpr char kNothingLeftOfJoint[] = "nothing left of the polygon";
-inline constexpr char kMergedFromNearbyJunctions[] = "merged from nearby junctions";
-inline constexpr char kStarOrHullJoint[] = "star or hull polygon stands in for a tangled one";
-inline constexpr char kHoleBeyondQuadEnd[] = "a quad end leaves a hole over 1 cm";
-inline constexpr char kQuadOverlapsJoint[] = "a quad overlaps its joint by over 0.01 m2";
-
 struct RoadSurface {
     std::vector<RoadEdge> roads;
     std::vector<Joint> joints;

@@ -108,12 +108,12 @@ std::vector<SideWidths> sidewalk_widths(const RoadGraph& graph, const BuildingIn
             if (!(side == 0 ? edge.sidewalk_left : edge.sidewalk_right)) continue;
             double& w = side == 0 ? walk[e].left : walk[e].right;
             if (w < kMinSidewalkWidth) {
-                report.dropped(kSidewalkSides, kNoRoomBesideBuilding);
+                report.dropped(ReportKind::SidewalkSides, ReportReason::NoRoomBesideBuilding);
                 w = 0;
                 continue;
             }
-            if (w < params.width) report.note(kSidewalkSides, kSidewalkNarrowedBesideBuilding);
-            report.kept(kSidewalkSides);
+            if (w < params.width) report.note(ReportKind::SidewalkSides, ReportReason::NarrowedBesideBuilding);
+            report.kept(ReportKind::SidewalkSides);
         }
     }
     return walk;
@@ -197,15 +197,16 @@ std::vector<Sidewalk> check_pieces(std::vector<Piece> pieces, const BuildingInde
     result.reserve(pieces.size());  // most are kept
     for (size_t i = 0; i < pieces.size(); ++i) {
         Piece& piece = pieces[i];
-        const char* what = piece.kind == SidewalkKind::Strip ? kSidewalkStrips : kSidewalkCorners;
+        const ReportKind what =
+            piece.kind == SidewalkKind::Strip ? ReportKind::SidewalkStrips : ReportKind::SidewalkCorners;
         const Checked& c = checked[i];
         if (c.verdict == Verdict::NotAPiece) continue;
         report.read(what);
-        if (c.trimmed) report.note(what, kTrimmedOffRoad);
+        if (c.trimmed) report.note(what, ReportReason::TrimmedOffRoad);
         switch (c.verdict) {
-            case Verdict::Tangled: report.dropped(what, kDegenerateTangledJunction); break;
-            case Verdict::OverlapsBuilding: report.dropped(what, kOverlapsBuilding); break;
-            case Verdict::OnAnotherRoad: report.dropped(what, kLiesOnAnotherRoad); break;
+            case Verdict::Tangled: report.dropped(what, ReportReason::DegenerateTangledJunction); break;
+            case Verdict::OverlapsBuilding: report.dropped(what, ReportReason::OverlapsBuilding); break;
+            case Verdict::OnAnotherRoad: report.dropped(what, ReportReason::LiesOnAnotherRoad); break;
             default:
                 report.kept(what);
                 result.push_back({piece.kind, std::move(piece.polygon), piece.road, piece.joint, params.curb_height});

@@ -13,17 +13,6 @@
 
 namespace citygen {
 
-// Report kinds and reasons.
-inline constexpr char kSidewalkSides[] = "sidewalk sides";
-inline constexpr char kSidewalkStrips[] = "sidewalk strips";
-inline constexpr char kSidewalkCorners[] = "sidewalk corners";
-inline constexpr char kNoRoomBesideBuilding[] = "no room beside a building";
-inline constexpr char kSidewalkNarrowedBesideBuilding[] = "narrowed beside a building";
-inline constexpr char kDegenerateTangledJunction[] = "degenerate (tangled junction)";
-inline constexpr char kOverlapsBuilding[] = "overlaps a building";
-inline constexpr char kTrimmedOffRoad[] = "trimmed off another road";
-inline constexpr char kLiesOnAnotherRoad[] = "lies on another road";
-
 // Sides follow RoadGraphEdge::sidewalk_left/right (sidewalk=* tags or the class). A side
 // whose sidewalk would reach into a building is narrowed in 25 cm steps and left out
 // below 75 cm; pieces that still overlap a building, or overlap another road by more

@@ -16,12 +16,21 @@ namespace {
 
 constexpr int kMaxLanes = 12;
 
-std::optional<int> count_tag(const OsmTags& tags, const char* key, ParseReport* report) {
-    const char* text = tags.get(key);
+// A lane count tag and the note that counts it when it is present but unusable.
+struct CountTag {
+    const char* key;
+    ReportReason unusable;
+};
+constexpr CountTag kLanes{"lanes", ReportReason::LaneCountUnusable};
+constexpr CountTag kLanesForward{"lanes:forward", ReportReason::ForwardLaneCountUnusable};
+constexpr CountTag kLanesBackward{"lanes:backward", ReportReason::BackwardLaneCountUnusable};
+
+std::optional<int> count_tag(const OsmTags& tags, CountTag tag, ParseReport* report) {
+    const char* text = tags.get(tag.key);
     if (!text) return std::nullopt;
     const std::optional<double> n = parse_osm_count(text);
     if (n && *n >= 0 && *n <= kMaxLanes) return static_cast<int>(*n);
-    if (report) report->note(kRoadLanes, std::string(key) + " unusable, fell back");
+    if (report) report->note(ReportKind::RoadLanes, tag.unusable);
     return std::nullopt;
 }
 
@@ -61,8 +70,8 @@ LaneLayout lane_layout(const OsmTags& tags, RoadClass road_class, double width, 
     const char* oneway_tag = tags.get("oneway");
     const bool reversed = oneway_tag && !std::strcmp(oneway_tag, "-1");
     const bool oneway = is_oneway(tags);
-    std::optional<int> fwd = count_tag(tags, "lanes:forward", report), bwd = count_tag(tags, "lanes:backward", report);
-    std::optional<int> total = count_tag(tags, "lanes", report);
+    std::optional<int> fwd = count_tag(tags, kLanesForward, report), bwd = count_tag(tags, kLanesBackward, report);
+    std::optional<int> total = count_tag(tags, kLanes, report);
     if (!total) total = turn_lanes(tags, "turn:lanes");
     if (!fwd) fwd = turn_lanes(tags, "turn:lanes:forward");
     if (!bwd) bwd = turn_lanes(tags, "turn:lanes:backward");
@@ -118,7 +127,7 @@ void lay_out_lanes(std::vector<RoadEdge>& roads, const OsmData& osm, ParseReport
         const double room = r.width - 2.5 * std::max(1, layout.forward + layout.backward);
         r.cycle_lane_left = layout.cycle_left && room >= 1.5 * (1 + layout.cycle_right);
         r.cycle_lane_right = layout.cycle_right && room >= 1.5 * (1 + layout.cycle_left);
-        report.kept(kRoadLanes, layout.forward + layout.backward);
+        report.kept(ReportKind::RoadLanes, layout.forward + layout.backward);
     }
 }
 
@@ -132,7 +141,7 @@ std::vector<Crossing> place_crossings(const OsmData& osm, const Projection& proj
     std::vector<Crossing> out;
     for (const OsmNode& node : osm.road_marks) {
         const bool signal = node.tags.has("highway", "traffic_signals");
-        const char* kind_name = signal ? kStopLines : kZebraCrossings;
+        const ReportKind kind = signal ? ReportKind::StopLines : ReportKind::ZebraCrossings;
         if (!signal) {
             const char* crossing = node.tags.get("crossing");
             const char* markings = node.tags.get("crossing:markings");
@@ -140,7 +149,7 @@ std::vector<Crossing> place_crossings(const OsmData& osm, const Projection& proj
                                 (markings && std::strcmp(markings, "no") != 0) || node.tags.has("crossing_ref", "zebra");
             if (!marked) continue;
         }
-        report.read(kind_name);
+        report.read(kind);
         const Vec2 p = projection.to_local(node.location.lat, node.location.lon);
         Box2 box;
         box.extend(p - Vec2(15, 15));
@@ -159,7 +168,8 @@ std::vector<Crossing> place_crossings(const OsmData& osm, const Projection& proj
             }
         });
         if (best < 0) {
-            report.dropped(kind_name, joint_index.contains(p) ? kOnJunctionPolygon : kNotOnDrawnRoad);
+            report.dropped(kind,
+                           joint_index.contains(p) ? ReportReason::OnJunctionPolygon : ReportReason::NotOnDrawnRoad);
             continue;
         }
         const RoadEdge& r = scene.roads[best];
@@ -175,8 +185,8 @@ std::vector<Crossing> place_crossings(const OsmData& osm, const Projection& proj
     std::sort(out.begin(), out.end(), [](const Crossing& a, const Crossing& b) { return a.osm < b.osm; });
     size_t zebras = 0;
     for (const Crossing& c : out) zebras += c.kind == CrossingKind::Zebra;
-    report.kept(kZebraCrossings, static_cast<int64_t>(zebras));
-    report.kept(kStopLines, static_cast<int64_t>(out.size() - zebras));
+    report.kept(ReportKind::ZebraCrossings, static_cast<int64_t>(zebras));
+    report.kept(ReportKind::StopLines, static_cast<int64_t>(out.size() - zebras));
     return out;
 }
 

@@ -14,13 +14,6 @@
 
 namespace citygen {
 
-// Report rows and reasons of this stage.
-inline constexpr char kRoadLanes[] = "road lanes";
-inline constexpr char kZebraCrossings[] = "zebra crossings";
-inline constexpr char kStopLines[] = "stop lines";
-inline constexpr char kOnJunctionPolygon[] = "on a junction polygon";
-inline constexpr char kNotOnDrawnRoad[] = "not on a drawn road";
-
 struct LaneLayout {
     int forward = 1, backward = 1;  // motor-traffic lanes along and against the way
     CentreLine centre = CentreLine::None;

@@ -114,7 +114,7 @@ NarrowedRoads narrow_roads(RoadGraph graph, const std::vector<Building>& buildin
             kept_narrowed.push_back(narrowed[e]);
         }
         for (bool k : keep)
-            if (!k) report.dropped(kRoadEdges, kNarrowerThanMinWidth);
+            if (!k) report.dropped(ReportKind::RoadEdges, ReportReason::NarrowerThanMinWidth);
         graph = std::move(kept);
         narrowed = std::move(kept_narrowed);
         keep.assign(graph.edges.size(), true);
@@ -151,10 +151,10 @@ NarrowedRoads narrow_roads(RoadGraph graph, const std::vector<Building>& buildin
     }
     int64_t count = 0;
     for (size_t e = 0; e < graph.edges.size(); ++e) {
-        if (!keep[e]) report.dropped(kRoadEdges, kNarrowerThanMinWidth);
+        if (!keep[e]) report.dropped(ReportKind::RoadEdges, ReportReason::NarrowerThanMinWidth);
         count += narrowed[e] && keep[e];
     }
-    if (count) report.note(kRoadEdges, kNarrowedBesideBuilding, count);
+    if (count) report.note(ReportKind::RoadEdges, ReportReason::NarrowedBesideBuilding, count);
     return without_dropped(graph, take_layout(std::move(layout)), keep);
 }
 

@@ -16,10 +16,6 @@ namespace citygen {
 // Largest overlap (square metres) a road piece may have with one building.
 constexpr double kRoadBuildingOverlapTolerance = 0.01;
 
-// Report reasons (kind kRoadEdges).
-inline constexpr char kNarrowerThanMinWidth[] = "narrower than road-min-width beside a building";
-inline constexpr char kNarrowedBesideBuilding[] = "narrowed beside a building";
-
 // The narrowed graph and its carriageway layout (RoadLayout::quads etc. per edge of `graph`).
 struct NarrowedRoads {
     RoadGraph graph;
@@ -29,7 +25,7 @@ struct NarrowedRoads {
 // First each edge's full rectangle, then the laid-out quads and joints are checked
 // against the footprints; an overlapping edge (or every edge of an overlapping joint)
 // loses 15% of its width per step. The layout is made once and, after each step, laid
-// out again only where the narrowed edges change it. Counted under kRoadEdges.
+// out again only where the narrowed edges change it. Counted under ReportKind::RoadEdges.
 NarrowedRoads narrow_roads(RoadGraph graph, const std::vector<Building>& buildings,
                            const RoadParams& params, ParseReport& report);
 

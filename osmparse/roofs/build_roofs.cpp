@@ -15,8 +15,6 @@
 namespace citygen {
 
 namespace {
-
-const char* const kRoofs = "roofs";
 constexpr double kMinRoofHeight = 0.3;  // lower than this, a roof is drawn flat
 
 enum Salt : uint64_t { kPitchedOrFlat = 101, kWhichPitched, kPitch };
@@ -164,12 +162,12 @@ namespace {
 // The roof's shape: tagged, or by the default rules (b.roof_inferred); its pitch: the shape's
 // default or roof:angle.
 RoofShape roof_shape_and_pitch(Building& b, const OsmTags& tags, double area, const RoofEvidence& evidence,
-                               const BuildingParams& params, double* pitch, std::vector<std::string>& notes) {
+                               const BuildingParams& params, double* pitch, std::vector<ReportReason>& notes) {
     RoofShape shape = RoofShape::Flat;
     b.roof_inferred = false;
     if (const char* text = tags.get("roof:shape")) {
         if (!parse_roof_shape(text, &shape)) {
-            notes.push_back("unknown roof:shape: flat");
+            notes.push_back(ReportReason::UnknownRoofShape);
             shape = RoofShape::Flat;
         }
         *pitch = default_pitch(shape);
@@ -181,13 +179,13 @@ RoofShape roof_shape_and_pitch(Building& b, const OsmTags& tags, double area, co
         char* end = nullptr;
         const double angle = std::strtod(text, &end);
         if (end != text && *end == '\0' && angle > 0 && angle <= 85) *pitch = angle;
-        else notes.push_back("bad roof:angle ignored");
+        else notes.push_back(ReportReason::BadRoofAngle);
     }
     return shape;
 }
 
 // The shape with its ridge direction and orientation from the tags.
-RoofSpec roof_spec(RoofShape shape, const OsmTags& tags, std::vector<std::string>& notes) {
+RoofSpec roof_spec(RoofShape shape, const OsmTags& tags, std::vector<ReportReason>& notes) {
     RoofSpec spec;
     spec.shape = shape;
     if (const char* text = tags.get("roof:direction")) {
@@ -196,7 +194,7 @@ RoofSpec roof_spec(RoofShape shape, const OsmTags& tags, std::vector<std::string
             spec.has_direction = true;
             spec.direction = {std::sin(degrees * kPi / 180), std::cos(degrees * kPi / 180)};
         } else {
-            notes.push_back("bad roof:direction ignored");
+            notes.push_back(ReportReason::BadRoofDirection);
         }
     }
     spec.across = tags.has("roof:orientation", "across");
@@ -207,14 +205,14 @@ RoofSpec roof_spec(RoofShape shape, const OsmTags& tags, std::vector<std::string
 // most three quarters of the building). building:levels counts the storeys under the roof, so
 // there the roof goes on top (b.height grows); a tagged height above the building is clamped.
 double roof_height(Building& b, const OsmTags& tags, const RoofSpec& spec, double pitch,
-                   const BuildingParams& params, std::vector<std::string>& notes) {
+                   const BuildingParams& params, std::vector<ReportReason>& notes) {
     const double budget = b.height - b.min_height;
     double height = 0;
     bool derived = false;
     const char* height_text = tags.get("roof:height");
     std::optional<double> tagged = height_text ? parse_osm_length(height_text) : std::nullopt;
     if (height_text && (!tagged || *tagged < 0)) {
-        notes.push_back("bad roof:height ignored");
+        notes.push_back(ReportReason::BadRoofHeight);
         tagged.reset();
     }
     const char* levels_text = tags.get("roof:levels");
@@ -232,14 +230,14 @@ double roof_height(Building& b, const OsmTags& tags, const RoofSpec& spec, doubl
     } else if (derived) {
         height = std::min(height, 0.75 * budget);
     } else if (height > budget) {
-        notes.push_back("roof:height above the building: clamped");
+        notes.push_back(ReportReason::RoofHeightClamped);
         height = budget;
     }
     return height;
 }
 
 void build_roof(Building& b, const BuildingTagIndex& index, const RoofEvidence& evidence, const BuildingParams& params,
-                std::vector<std::string>& notes) {
+                std::vector<ReportReason>& notes) {
     b.roof_faces.clear();
     b.roof_height = 0;
     b.roof_shape = RoofShape::Flat;
@@ -250,14 +248,14 @@ void build_roof(Building& b, const BuildingTagIndex& index, const RoofEvidence& 
     double pitch = 0;
     const RoofShape shape = roof_shape_and_pitch(b, tags, area, evidence, params, &pitch, notes);
     if (shape == RoofShape::Flat) {
-        notes.push_back(b.roof_inferred ? "flat (default)" : "flat (tagged)");
+        notes.push_back(b.roof_inferred ? roof_shape_notes(shape).by_default : roof_shape_notes(shape).tagged);
         return;
     }
 
     RoofSpec spec = roof_spec(shape, tags, notes);
     const double height = roof_height(b, tags, spec, pitch, params, notes);
     if (height < kMinRoofHeight) {
-        notes.push_back("roof too low: flat");
+        notes.push_back(ReportReason::RoofTooLow);
         return;
     }
 
@@ -265,9 +263,9 @@ void build_roof(Building& b, const BuildingTagIndex& index, const RoofEvidence& 
     spec.height = height;
     std::vector<RoofFace> faces;
     RoofShape built = shape;
-    std::string why;
+    ReportReason why{};  // set by make_roof_faces when it fails
     if (!make_roof_faces(b.outer, b.holes, spec, &faces, &built, &why)) {
-        notes.push_back("could not build (" + why + "): flat");
+        notes.push_back(why);
         if (b.height_source == HeightSource::Levels) b.height -= height;
         return;
     }
@@ -275,31 +273,49 @@ void build_roof(Building& b, const BuildingTagIndex& index, const RoofEvidence& 
     bool valid = true;
     for (const RoofFace& face : faces) valid = valid && roof_face_is_valid(face, b, spec.eaves_z, b.height);
     if (!valid) {
-        notes.push_back(std::string("faces failed the checks (") + to_string(shape) + "): flat");
+        notes.push_back(roof_shape_notes(shape).failed_checks.value());
         if (b.height_source == HeightSource::Levels) b.height -= height;
         return;
     }
-    if (built != shape)
-        notes.push_back(std::string(to_string(shape)) + " on a bent or holed footprint: built hipped");
+    if (built != shape) notes.push_back(roof_shape_notes(shape).built_hipped.value());
     b.roof_shape = built;
     b.roof_height = height;
     b.roof_faces = std::move(faces);
-    notes.push_back(std::string(to_string(built)) + (b.roof_inferred ? " (default)" : " (tagged)"));
+    notes.push_back(b.roof_inferred ? roof_shape_notes(built).by_default : roof_shape_notes(built).tagged);
 }
 
 }  // namespace
+
+const RoofShapeNotes& roof_shape_notes(RoofShape shape) {
+    using R = ReportReason;
+    static const RoofShapeNotes kNotes[kRoofShapeCount] = {  // in RoofShape order
+        {R::RoofFlatTagged, R::RoofFlatDefault, std::nullopt, std::nullopt},
+        {R::RoofSkillionTagged, R::RoofSkillionDefault, R::RoofSkillionFailedChecks, R::RoofSkillionBuiltHipped},
+        {R::RoofGabledTagged, R::RoofGabledDefault, R::RoofGabledFailedChecks, R::RoofGabledBuiltHipped},
+        {R::RoofHippedTagged, R::RoofHippedDefault, R::RoofHippedFailedChecks, std::nullopt},
+        {R::RoofHalfHippedTagged, R::RoofHalfHippedDefault, R::RoofHalfHippedFailedChecks,
+         R::RoofHalfHippedBuiltHipped},
+        {R::RoofPyramidalTagged, R::RoofPyramidalDefault, R::RoofPyramidalFailedChecks, R::RoofPyramidalBuiltHipped},
+        {R::RoofGambrelTagged, R::RoofGambrelDefault, R::RoofGambrelFailedChecks, R::RoofGambrelBuiltHipped},
+        {R::RoofMansardTagged, R::RoofMansardDefault, R::RoofMansardFailedChecks, R::RoofMansardBuiltHipped},
+        {R::RoofDomeTagged, R::RoofDomeDefault, R::RoofDomeFailedChecks, R::RoofDomeBuiltHipped},
+        {R::RoofOnionTagged, R::RoofOnionDefault, R::RoofOnionFailedChecks, R::RoofOnionBuiltHipped},
+        {R::RoofRoundTagged, R::RoofRoundDefault, R::RoofRoundFailedChecks, R::RoofRoundBuiltHipped},
+    };
+    return kNotes[static_cast<int>(shape)];
+}
 
 void build_roofs(std::vector<Building>& buildings, const BuildingTagIndex& index, const BuildingParams& params,
                  ParseReport& report, const RoofEvidence* given) {
     // Buildings are independent (the straight skeleton is most of the stage's time): in parallel,
     // with the notes counted afterwards in building order, so the report does not depend on threads.
     const RoofEvidence evidence = given ? *given : roof_evidence(buildings, index);
-    std::vector<std::vector<std::string>> notes(buildings.size());
+    std::vector<std::vector<ReportReason>> notes(buildings.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, buildings.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i != r.end(); ++i) build_roof(buildings[i], index, evidence, params, notes[i]);
     });
     for (const auto& list : notes)
-        for (const std::string& note : list) report.note(kRoofs, note);
+        for (ReportReason note : list) report.note(ReportKind::Roofs, note);
 }
 
 }  // namespace citygen

@@ -2,6 +2,7 @@
 // building (after the heights are final).
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "common/scene.h"
@@ -22,7 +23,7 @@ namespace citygen {
 //    (counted); a derived roof takes at most 3/4 of the building's height;
 //  - faces: make_roof_faces() plus gable_walls(); a shape that cannot be built, or whose faces
 //    fail the checks (planar, between eaves and height, over the footprint), gives a flat roof
-//    (counted under "roofs").
+//    (counted under ReportKind::Roofs).
 // `evidence`: the extract's roof_evidence when `buildings` is only a part of it (a slice, the
 // empty blocks' buildings); by default that of `buildings` and `tags`.
 struct RoofEvidence;
@@ -66,5 +67,14 @@ bool parse_compass_direction(const char* text, double* degrees);
 
 // Whether a face is planar, between z_min and z_max and over the footprint (within tolerance).
 bool roof_face_is_valid(const RoofFace& face, const Building& building, double z_min, double z_max);
+
+// The report notes that name a roof shape: built as tagged or by default; its faces failed the
+// checks; built hipped on a footprint it does not suit. Nullopt where that cannot happen (a
+// flat roof has no faces to check, a hipped one is hipped already).
+struct RoofShapeNotes {
+    ReportReason tagged, by_default;
+    std::optional<ReportReason> failed_checks, built_hipped;
+};
+const RoofShapeNotes& roof_shape_notes(RoofShape shape);
 
 }  // namespace citygen

@@ -306,17 +306,17 @@ int fold_gables(std::vector<SkeletonFace>& skeleton) {
 // Hipped roof from the straight skeleton (height = offset time x slope), optionally with its
 // end triangles folded into gables; `folded` (optional) receives how many were.
 bool hipped(const Ring& outer, const std::vector<Ring>& holes, double eaves_z, double height,
-            std::vector<RoofFace>* faces, std::string* why, bool gables = false, int* folded = nullptr) {
+            std::vector<RoofFace>* faces, ReportReason* why, bool gables = false, int* folded = nullptr) {
     std::vector<SkeletonFace> skeleton;
     if (!skeleton_faces(outer, holes, &skeleton)) {
-        *why = "straight skeleton failed";
+        *why = ReportReason::RoofSkeletonFailed;
         return false;
     }
     double last = 0;
     for (const SkeletonFace& f : skeleton)
         for (double t : f.times) last = std::max(last, t);
     if (!(last > 1e-6) || !std::isfinite(last)) {
-        *why = "straight skeleton failed";
+        *why = ReportReason::RoofSkeletonFailed;
         return false;
     }
     const int gable_count = gables ? fold_gables(skeleton) : 0;
@@ -465,12 +465,12 @@ RoofFrame roof_frame(const Ring& outer, const RoofSpec& spec) {
 }
 
 bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const RoofSpec& spec,
-                     std::vector<RoofFace>* faces, RoofShape* built, std::string* why) {
+                     std::vector<RoofFace>* faces, RoofShape* built, ReportReason* why) {
     faces->clear();
     *built = spec.shape;
     if (spec.shape == RoofShape::Flat) return true;
     if (outer.size() < 3 || !(spec.height > 0)) {
-        *why = "degenerate footprint";
+        *why = ReportReason::RoofDegenerateFootprint;
         return false;
     }
     const double z = spec.eaves_z, h = spec.height;
@@ -480,7 +480,7 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
     const bool near_rectangle =
         holes.empty() && std::fabs(signed_area(outer)) >= kNearRectangle * f.width() * f.length();
     if (!(f.width() > 0.1) || !(f.length() > 0.1)) {
-        *why = "degenerate footprint";
+        *why = ReportReason::RoofDegenerateFootprint;
         return false;
     }
     // Gables, ridges and curves across a bent or holed footprint: the skeleton's hipped roof
@@ -526,7 +526,7 @@ bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const Ro
     if (!near_rectangle) return as_hipped();
     const std::optional<std::vector<Plane>> planes = ridge_roof_planes(f, spec.shape, h);
     if (!planes) {
-        *why = "unknown shape";
+        *why = ReportReason::RoofUnknownShape;
         return false;
     }
     if (!lower_envelope(outer, *planes, z, faces) || faces->empty() || !faces_tile(*faces, outer)) return as_hipped();

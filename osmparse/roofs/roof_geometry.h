@@ -3,11 +3,11 @@
 // footprint and between the eaves and the top.
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include "common/geometry.h"
 #include "common/scene.h"
+#include "osmparse/core/report_reasons.h"
 
 namespace citygen {
 
@@ -25,9 +25,10 @@ struct RoofSpec {
 // that fills at least 85% of its minimum-area rectangle; centred ones (pyramidal, dome, onion)
 // a convex footprint; a skillion no holes. On any other footprint they are built hipped from
 // the straight skeleton, and `built` says so.
-// Returns false, with `why` set, when no roof can be built on this footprint.
+// Returns false, with `why` set (a "could not build" note), when no roof can be built on this
+// footprint.
 bool make_roof_faces(const Ring& outer, const std::vector<Ring>& holes, const RoofSpec& spec,
-                     std::vector<RoofFace>* faces, RoofShape* built, std::string* why);
+                     std::vector<RoofFace>* faces, RoofShape* built, ReportReason* why);
 
 // The vertical walls between the eaves and the roof edge (kind Gable): for each footprint edge
 // whose roof edge rises above eaves_z, one polygon from the eaves up to the roof edge.

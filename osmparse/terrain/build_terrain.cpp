@@ -40,18 +40,26 @@ std::vector<uint8_t> sea_mask(const DemGrid& g, const std::vector<LandCover>& la
 namespace {
 
 void report_terrain(const DemRead& dem, const VoidCounts& counts, size_t files, ParseReport& report) {
-    report.read("dem files", static_cast<int64_t>(files));
-    report.kept("dem files", static_cast<int64_t>(dem.files_used));
-    for (const std::string& note : dem.notes) report.note("dem files", note);
-    report.note("dem files", "heights above " + dem.vertical_datum);
-    const int64_t nodes = static_cast<int64_t>(dem.grid.size());
-    report.read("terrain nodes", nodes);
-    report.kept("terrain nodes", nodes);
-    auto note = [&](const char* what, int64_t n) { if (n > 0) report.note("terrain nodes", what, n); };
-    note("void, filled from its neighbours", counts.filled);
-    note("void at the coast, set to sea level", counts.sea);
-    note("outside every DEM, nearest edge height", counts.outside);
-    note("height beyond -500..9000 m, a void", counts.out_of_range);
+    auto note = [&](ReportKind kind, ReportReason what, int64_t n) { if (n > 0) report.note(kind, what, n); };
+    using R = ReportReason;
+    const auto used = static_cast<int64_t>(dem.files_used);
+    const auto in_feet = static_cast<int64_t>(dem.files_in_feet);
+    const auto named = static_cast<int64_t>(dem.files_naming_datum);
+    const auto ellipsoidal = static_cast<int64_t>(dem.files_above_ellipsoid);
+    report.read(ReportKind::DemFiles, static_cast<int64_t>(files));
+    report.kept(ReportKind::DemFiles, used);
+    note(ReportKind::DemFiles, R::DemOutsideExtract, static_cast<int64_t>(dem.unused.size()));
+    note(ReportKind::DemFiles, R::DemHeightsInFeet, in_feet);
+    note(ReportKind::DemFiles, R::DemVerticalDatumNamed, named);
+    note(ReportKind::DemFiles, R::DemHeightsAboveEllipsoid, ellipsoidal);
+    note(ReportKind::DemFiles, R::DemVerticalDatumAssumed, used - named - ellipsoidal);
+    const auto nodes = static_cast<int64_t>(dem.grid.size());
+    report.read(ReportKind::TerrainNodes, nodes);
+    report.kept(ReportKind::TerrainNodes, nodes);
+    note(ReportKind::TerrainNodes, R::TerrainVoidFilled, counts.filled);
+    note(ReportKind::TerrainNodes, R::TerrainVoidAtCoast, counts.sea);
+    note(ReportKind::TerrainNodes, R::TerrainOutsideEveryDem, counts.outside);
+    note(ReportKind::TerrainNodes, R::TerrainHeightBeyondLimits, counts.out_of_range);
 }
 
 }  // namespace

@@ -37,9 +37,11 @@ struct DemExtent {
 struct DemRead {
     DemGrid grid;                     // heights in metres (feet converted), NaN where no DEM has one
     std::string vertical_datum;       // the first overlapping DEM's that names one, else kAssumedVerticalDatum
-    size_t files_used = 0;            // the DEMs that overlap the bounds
+    size_t files_used = 0;            // the DEMs that overlap the bounds, of which:
+    size_t files_in_feet = 0;         //   heights in feet, converted to metres
+    size_t files_naming_datum = 0;    //   a vertical datum named by their CRS
+    size_t files_above_ellipsoid = 0; //   heights above the ellipsoid (a 3D CRS), not sea level
     std::vector<DemExtent> unused;    // the others
-    std::vector<std::string> notes;   // one per finding: units converted, a DEM not used
 };
 
 // Opens each file as read_dem will (a .zip through /vsizip/), so a missing, unreadable or

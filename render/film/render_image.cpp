@@ -228,15 +228,10 @@ PixelRegion render_region(const RenderSettings& settings) {
     return r;
 }
 
-Film render_image(const PathContext& scene_context, const Camera& camera, const RenderSettings& settings,
-                  RenderStats* stats) {
-    PathContext context = scene_context;
-    SmallGlobes small_globes;
-    if (context.lights && context.lights->lamp_count() > 0) {
-        small_globes = SmallGlobes(*context.lights, camera);
-        context.small_globes = &small_globes;
-    }
-    const PixelRegion region = render_region(settings);
+namespace {
+
+// An empty film for the region, with the guide and AOV buffers the settings ask for.
+Film make_film(const PixelRegion& region, const RenderSettings& settings) {
     Film film;
     film.width = region.width();
     film.height = region.height();
@@ -256,12 +251,59 @@ Film render_image(const PathContext& scene_context, const Camera& camera, const 
         film.object_kind.assign(pixels, 0.f);
         film.object_index.assign(pixels, 0.f);
     }
+    return film;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Passes of one sample per pixel until the time limit (or settings.spp); every pixel keeps its
+// stream and sum between passes, so n passes add exactly the samples, in the same order, of a
+// fixed n-spp render. Returns the samples per pixel taken.
+int render_time_limited(const PathContext& context, const Camera& camera, const RenderSettings& settings,
+                        std::chrono::steady_clock::time_point start, std::atomic<uint64_t>& total_rays, Film& film) {
+    const size_t pixels = static_cast<size_t>(film.width) * film.height;
+    std::vector<PixelSamples> state;
+    state.reserve(pixels);
+    for (int fy = 0; fy < film.height; ++fy)
+        for (int fx = 0; fx < film.width; ++fx) state.push_back(start_pixel(settings, film.x0 + fx, film.y0 + fy));
+    const uint64_t limit_ms = static_cast<uint64_t>(settings.time_limit_seconds * 1000);
+    Progress progress("render (time limit)", limit_ms, settings.quiet);
+    uint64_t shown_ms = 0;
+    int spp = 0;
+    double last_pass = 0;
+    while (spp < settings.spp && (spp == 0 || seconds_since(start) + last_pass <= settings.time_limit_seconds)) {
+        const double pass_start = seconds_since(start);
+        for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
+            add_samples(context, camera, x, y, 1, state[i], rays, settings.denoise_guides);
+        });
+        ++spp;
+        last_pass = seconds_since(start) - pass_start;
+        const uint64_t now_ms = std::min(limit_ms, static_cast<uint64_t>(seconds_since(start) * 1000));
+        if (now_ms > shown_ms) progress.advance(now_ms - shown_ms), shown_ms = now_ms;
+    }
+    progress.finish();
+    for (size_t i = 0; i < pixels; ++i) store_pixel(state[i], spp, i, film);
+    return spp;
+}
+
+}  // namespace
+
+Film render_image(const PathContext& scene_context, const Camera& camera, const RenderSettings& settings,
+                  RenderStats* stats) {
+    PathContext context = scene_context;
+    SmallGlobes small_globes;
+    if (context.lights && context.lights->lamp_count() > 0) {
+        small_globes = SmallGlobes(*context.lights, camera);
+        context.small_globes = &small_globes;
+    }
+    Film film = make_film(render_region(settings), settings);
+    const size_t pixels = static_cast<size_t>(film.width) * film.height;
     const int tile_count = ((film.width + kTileSize - 1) / kTileSize) * ((film.height + kTileSize - 1) / kTileSize);
     std::atomic<uint64_t> total_rays{0};
     const auto start = std::chrono::steady_clock::now();
-    auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     int spp = settings.spp;
-
     if (settings.time_limit_seconds <= 0) {
         Progress progress("render", static_cast<uint64_t>(tile_count), settings.quiet);
         for_each_tile(film, &progress, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
@@ -271,29 +313,7 @@ Film render_image(const PathContext& scene_context, const Camera& camera, const 
         });
         progress.finish();
     } else {
-        // Passes of one sample per pixel; every pixel keeps its stream and sum between passes, so
-        // n passes add exactly the samples, in the same order, of a fixed n-spp render.
-        std::vector<PixelSamples> state;
-        state.reserve(pixels);
-        for (int fy = 0; fy < film.height; ++fy)
-            for (int fx = 0; fx < film.width; ++fx) state.push_back(start_pixel(settings, film.x0 + fx, film.y0 + fy));
-        const uint64_t limit_ms = static_cast<uint64_t>(settings.time_limit_seconds * 1000);
-        Progress progress("render (time limit)", limit_ms, settings.quiet);
-        uint64_t shown_ms = 0;
-        spp = 0;
-        double last_pass = 0;
-        while (spp < settings.spp && (spp == 0 || seconds() + last_pass <= settings.time_limit_seconds)) {
-            const double pass_start = seconds();
-            for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
-                add_samples(context, camera, x, y, 1, state[i], rays, settings.denoise_guides);
-            });
-            ++spp;
-            last_pass = seconds() - pass_start;
-            const uint64_t now_ms = std::min(limit_ms, static_cast<uint64_t>(seconds() * 1000));
-            if (now_ms > shown_ms) progress.advance(now_ms - shown_ms), shown_ms = now_ms;
-        }
-        progress.finish();
-        for (size_t i = 0; i < pixels; ++i) store_pixel(state[i], spp, i, film);
+        spp = render_time_limited(context, camera, settings, start, total_rays, film);
     }
     if (settings.aovs) {
         for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
@@ -310,7 +330,7 @@ Film render_image(const PathContext& scene_context, const Camera& camera, const 
         });
     }
     if (stats) {
-        stats->seconds = seconds();
+        stats->seconds = seconds_since(start);
         stats->rays = total_rays.load();
         stats->spp = spp;
     }

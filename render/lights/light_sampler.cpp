@@ -49,30 +49,69 @@ const char* to_string(LightSamplerKind kind) {
     return "?";
 }
 
-LightSampler::LightSampler(const std::vector<LightBounds>& lights, LightSamplerKind kind)
-    : kind_(kind), light_count_(lights.size()) {
-    if (lights.empty()) return;
-    if (lights.size() >= kLeaf) throw Error("too many lights for the light sampler");
-    if (kind == LightSamplerKind::Power) {
-        cdf_.resize(lights.size());
-        double sum = 0;
-        for (size_t i = 0; i < lights.size(); ++i) cdf_[i] = sum += std::max(0.0f, lights[i].phi);
-    } else if (kind == LightSamplerKind::Tree) {
-        std::vector<Item> items(lights.size());
-        for (size_t i = 0; i < lights.size(); ++i) items[i] = {lights[i], static_cast<uint32_t>(i)};
-        std::vector<BinaryNode> tree(1);
-        tree.reserve(2 * lights.size());
-        build(items, 0, items.size(), 0, 0, tree);
-        leaf_of_.assign(lights.size(), 0);
-        nodes_.emplace_back();
-        parents_.push_back(kRoot);
-        collapse(tree, 0, 0);
-        nodes_.shrink_to_fit();
-        parents_.shrink_to_fit();
+std::unique_ptr<LightSampler> make_light_sampler(const std::vector<LightBounds>& lights, LightSamplerKind kind) {
+    if (lights.size() >= 0x80000000u) throw Error("too many lights for the light sampler");
+    switch (kind) {
+        case LightSamplerKind::Uniform: return std::make_unique<UniformLightSampler>(lights);
+        case LightSamplerKind::Power: return std::make_unique<PowerLightSampler>(lights);
+        case LightSamplerKind::Tree: break;
     }
+    return std::make_unique<BVHLightSampler>(lights);
 }
 
-void LightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self) {
+bool UniformLightSampler::sample(Vec3, Vec3, double u, uint32_t* light, double* pmf) const {
+    if (light_count_ == 0) return false;
+    const size_t i = std::min(static_cast<size_t>(u * light_count_), light_count_ - 1);
+    *light = static_cast<uint32_t>(i);
+    *pmf = 1.0 / light_count_;
+    return true;
+}
+
+double UniformLightSampler::pmf(Vec3, Vec3, uint32_t light) const {
+    return light < light_count_ ? 1.0 / light_count_ : 0;
+}
+
+PowerLightSampler::PowerLightSampler(const std::vector<LightBounds>& lights) : LightSampler(lights.size()) {
+    cdf_.resize(lights.size());
+    double sum = 0;
+    for (size_t i = 0; i < lights.size(); ++i) cdf_[i] = sum += std::max(0.0f, lights[i].phi);
+}
+
+bool PowerLightSampler::sample(Vec3, Vec3, double u, uint32_t* light, double* pmf) const {
+    if (light_count_ == 0) return false;
+    const double total = cdf_.back();
+    if (!(total > 0)) return false;
+    const size_t i =
+        std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u * total) - cdf_.begin(), light_count_ - 1);
+    const double phi = cdf_[i] - (i ? cdf_[i - 1] : 0);
+    if (!(phi > 0)) return false;
+    *light = static_cast<uint32_t>(i);
+    *pmf = phi / total;
+    return true;
+}
+
+double PowerLightSampler::pmf(Vec3, Vec3, uint32_t light) const {
+    if (light >= light_count_) return 0;
+    const double total = cdf_.back();
+    return total > 0 ? (cdf_[light] - (light ? cdf_[light - 1] : 0)) / total : 0;
+}
+
+BVHLightSampler::BVHLightSampler(const std::vector<LightBounds>& lights) : LightSampler(lights.size()) {
+    if (lights.empty()) return;
+    std::vector<Item> items(lights.size());
+    for (size_t i = 0; i < lights.size(); ++i) items[i] = {lights[i], static_cast<uint32_t>(i)};
+    std::vector<BinaryNode> tree(1);
+    tree.reserve(2 * lights.size());
+    build(items, 0, items.size(), 0, 0, tree);
+    leaf_of_.assign(lights.size(), 0);
+    nodes_.emplace_back();
+    parents_.push_back(kRoot);
+    collapse(tree, 0, 0);
+    nodes_.shrink_to_fit();
+    parents_.shrink_to_fit();
+}
+
+void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self) {
     // The lanes: b's children, each replaced by its own two children where it has them (a lone
     // light at the root is a node with one lane).
     uint32_t lanes[4];
@@ -107,7 +146,7 @@ void LightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, uin
     for (int lane = count; lane < 4; ++lane) nodes_[self].child[lane] = kLeaf;  // empty: power 0, never chosen
 }
 
-void LightSampler::build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint32_t self,
+void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint32_t self,
                          std::vector<BinaryNode>& tree) {
     if (end - begin == 1) {
         tree[self].bounds = items[begin].bounds;
@@ -178,28 +217,8 @@ void LightSampler::build(std::vector<Item>& items, size_t begin, size_t end, int
     tree[self].index = first;
 }
 
-bool LightSampler::sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {
+bool BVHLightSampler::sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {
     if (light_count_ == 0) return false;
-    switch (kind_) {
-        case LightSamplerKind::Uniform: {
-            const size_t i = std::min(static_cast<size_t>(u * light_count_), light_count_ - 1);
-            *light = static_cast<uint32_t>(i);
-            *pmf = 1.0 / light_count_;
-            return true;
-        }
-        case LightSamplerKind::Power: {
-            const double total = cdf_.back();
-            if (!(total > 0)) return false;
-            const size_t i = std::min<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u * total) - cdf_.begin(),
-                                              light_count_ - 1);
-            const double phi = cdf_[i] - (i ? cdf_[i - 1] : 0);
-            if (!(phi > 0)) return false;
-            *light = static_cast<uint32_t>(i);
-            *pmf = phi / total;
-            return true;
-        }
-        case LightSamplerKind::Tree: break;
-    }
     const LightQuery q(p, n);
     uint32_t node = 0;
     double probability = 1;
@@ -228,16 +247,8 @@ bool LightSampler::sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf
     }
 }
 
-double LightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
+double BVHLightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
     if (light >= light_count_) return 0;
-    switch (kind_) {
-        case LightSamplerKind::Uniform: return 1.0 / light_count_;
-        case LightSamplerKind::Power: {
-            const double total = cdf_.back();
-            return total > 0 ? (cdf_[light] - (light ? cdf_[light - 1] : 0)) / total : 0;
-        }
-        case LightSamplerKind::Tree: break;
-    }
     // The lanes from the light up to the root, then their probabilities multiplied from the
     // root down, in the order sample() multiplies them (the same double, bit for bit).
     uint32_t path[64];
@@ -264,7 +275,7 @@ double LightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
 // Where no lane can light p (the bounds are loose enough that a cluster may pass the test
 // its children all fail), in proportion to power. So every descent ends at a light and the
 // probabilities of all lights sum to one; a light that cannot reach p then contributes nothing.
-void LightSampler::lane_probabilities(const LightQuery& q, const Node& node, double p[4]) const {
+void BVHLightSampler::lane_probabilities(const LightQuery& q, const Node& node, double p[4]) const {
     float most[4], least[4];
     node.bounds.importance(q, most, least);
     double sum_most = 0, sum_least = 0, sum_phi = 0;
@@ -283,9 +294,8 @@ void LightSampler::lane_probabilities(const LightQuery& q, const Node& node, dou
     for (int i = 0; i < 4; ++i) p[i] = most[i] * by_most + least[i] * by_least;
 }
 
-size_t LightSampler::bytes() const {
-    return nodes_.capacity() * sizeof(Node) + parents_.capacity() * sizeof(uint32_t) + leaf_of_.capacity() * sizeof(uint32_t) +
-           cdf_.capacity() * sizeof(double);
+size_t BVHLightSampler::bytes() const {
+    return nodes_.capacity() * sizeof(Node) + parents_.capacity() * sizeof(uint32_t) + leaf_of_.capacity() * sizeof(uint32_t);
 }
 
 }  // namespace citygen

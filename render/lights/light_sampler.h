@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,18 +21,54 @@ enum class LightSamplerKind { Tree, Power, Uniform };
 LightSamplerKind parse_light_sampler(const std::string& text);  // throws citygen::Error
 const char* to_string(LightSamplerKind kind);
 
+// Chooses one light for a shading point; one class per strategy, made by make_light_sampler.
 class LightSampler {
 public:
-    LightSampler() = default;
-    LightSampler(const std::vector<LightBounds>& lights, LightSamplerKind kind);
-
-    size_t size() const { return light_count_; }
-    LightSamplerKind kind() const { return kind_; }
+    virtual ~LightSampler() = default;
     // Picks a light for point p with normal n (zero in a medium) from one uniform number.
     // False only when there are no lights (or none with power).
-    bool sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const;
-    double pmf(Vec3 p, Vec3 n, uint32_t light) const;
-    size_t bytes() const;
+    virtual bool sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const = 0;
+    // The probability sample() has of picking `light` at p.
+    virtual double pmf(Vec3 p, Vec3 n, uint32_t light) const = 0;
+    virtual size_t bytes() const = 0;
+    size_t size() const { return light_count_; }
+
+protected:
+    explicit LightSampler(size_t light_count) : light_count_(light_count) {}
+    const size_t light_count_;
+};
+
+// The sampler of the given strategy (--light-sampler) over these lights.
+std::unique_ptr<LightSampler> make_light_sampler(const std::vector<LightBounds>& lights, LightSamplerKind kind);
+
+// Every light alike.
+class UniformLightSampler final : public LightSampler {
+public:
+    explicit UniformLightSampler(const std::vector<LightBounds>& lights) : LightSampler(lights.size()) {}
+    bool sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const override;
+    double pmf(Vec3 p, Vec3 n, uint32_t light) const override;
+    size_t bytes() const override { return 0; }
+};
+
+// In proportion to each light's power, wherever the shading point is.
+class PowerLightSampler final : public LightSampler {
+public:
+    explicit PowerLightSampler(const std::vector<LightBounds>& lights);
+    bool sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const override;
+    double pmf(Vec3 p, Vec3 n, uint32_t light) const override;
+    size_t bytes() const override { return cdf_.capacity() * sizeof(double); }
+
+private:
+    std::vector<double> cdf_;  // running sum of powers
+};
+
+// Down a light BVH, each child in proportion to its importance for the shading point.
+class BVHLightSampler final : public LightSampler {
+public:
+    explicit BVHLightSampler(const std::vector<LightBounds>& lights);
+    bool sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const override;
+    double pmf(Vec3 p, Vec3 n, uint32_t light) const override;
+    size_t bytes() const override;
 
 private:
     // A node of the 4-wide tree: up to four children (the grandchildren of a node of the binary
@@ -58,12 +95,9 @@ private:
     // Makes node `self` of the 4-wide tree from binary node `b` and its descendants.
     void collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self);
 
-    LightSamplerKind kind_ = LightSamplerKind::Tree;
-    size_t light_count_ = 0;
-    std::vector<Node> nodes_;          // tree, root first
-    std::vector<uint32_t> parents_;    // tree: per node, its parent x 4 + its lane there (root: kRoot)
-    std::vector<uint32_t> leaf_of_;    // tree: per light, the node holding it x 4 + its lane
-    std::vector<double> cdf_;          // power: running sum of powers
+    std::vector<Node> nodes_;        // root first
+    std::vector<uint32_t> parents_;  // per node, its parent x 4 + its lane there (root: kRoot)
+    std::vector<uint32_t> leaf_of_;  // per light, the node holding it x 4 + its lane
 };
 
 }  // namespace citygen

@@ -14,7 +14,6 @@ namespace citygen {
 
 namespace {
 
-
 bool is_pane_material(uint16_t m) { return m == kGlass || m == kShopWindow; }
 
 // Rejection rounds before a strip's window is chosen by summing: a round keeps its candidate
@@ -34,30 +33,43 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
     static std::atomic<uint64_t> instances{0};
     id_ = ++instances;  // never 0: an empty cache slot belongs to no instance
     std::vector<LightBounds> bounds;
-    if (options.lamps && options.lamp_lumens > 0) {
-        for (const citygen::Lamp& lamp : scene.lamps) {
-            const LampShape s = lamp_shape(lamp, scene.ground.z);
-            const Vec3 c = s.globe_center;
-            const double r = s.globe_radius;
-            lamps_.push_back({{float(c.x), float(c.y), float(c.z)}, float(r)});
-            LightBounds b;
-            b.set_box(c - Vec3{r, r, r}, c + Vec3{r, r, r});
-            b.cos_theta_o = -1;  // a sphere's normals point everywhere
-            b.cos_theta_e = 0;
-            // Luminous flux of a Lambertian sphere: pi x luminance x area.
-            b.phi = static_cast<float>(options.lamp_lumens);
-            bounds.push_back(b);
-        }
-        // Lambertian sphere of area 4 pi r^2 sending lamp_lumens: L = flux / (pi * area).
-        const double r = lamp_shape(citygen::Lamp{}, 0).globe_radius;
-        const double nits = options.lamp_lumens / (kPi * 4 * kPi * r * r);
-        lamp_radiance_ = blackbody_color(options.lamp_kelvin) * (nits / kNitsPerRadianceUnit);
+    if (options.lamps && options.lamp_lumens > 0) gather_lamps(bounds);
+    if (options.lit_windows > 0) gather_window_strips(bounds);
+    lamps_.shrink_to_fit();
+    strips_.shrink_to_fit();
+    split_ = options.sampler == LightSamplerKind::Tree && !lamps_.empty() && !strips_.empty();
+    if (split_) {
+        strip_sampler_ =
+            make_light_sampler(std::vector<LightBounds>(bounds.begin() + lamps_.size(), bounds.end()), options.sampler);
+        bounds.resize(lamps_.size());
     }
+    sampler_ = make_light_sampler(bounds, options.sampler);
+}
 
-    for (uint32_t b = 0; b < scene.buildings.size(); ++b) {
-        const Building& building = scene.buildings[b];
+void SceneLights::gather_lamps(std::vector<LightBounds>& bounds) {
+    for (const citygen::Lamp& lamp : scene_->lamps) {
+        const LampShape s = lamp_shape(lamp, scene_->ground.z);
+        const Vec3 c = s.globe_center;
+        const double r = s.globe_radius;
+        lamps_.push_back({{float(c.x), float(c.y), float(c.z)}, float(r)});
+        LightBounds b;
+        b.set_box(c - Vec3{r, r, r}, c + Vec3{r, r, r});
+        b.cos_theta_o = -1;  // a sphere's normals point everywhere
+        b.cos_theta_e = 0;
+        // Luminous flux of a Lambertian sphere: pi x luminance x area.
+        b.phi = static_cast<float>(options_.lamp_lumens);
+        bounds.push_back(b);
+    }
+    // Lambertian sphere of area 4 pi r^2 sending lamp_lumens: L = flux / (pi * area).
+    const double r = lamp_shape(citygen::Lamp{}, 0).globe_radius;
+    const double nits = options_.lamp_lumens / (kPi * 4 * kPi * r * r);
+    lamp_radiance_ = blackbody_color(options_.lamp_kelvin) * (nits / kNitsPerRadianceUnit);
+}
+
+void SceneLights::gather_window_strips(std::vector<LightBounds>& bounds) {
+    for (uint32_t b = 0; b < scene_->buildings.size(); ++b) {
+        const Building& building = scene_->buildings[b];
         if (!has_volume(building)) continue;
-        if (!(options.lit_windows > 0)) continue;
         const BuildingWalls walls(building);
         if (building.holes.size() + 1 > BuildingWalls::kInlineRings) {
             many_ring_buildings_.push_back(b);
@@ -67,62 +79,59 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
             WallGeometry g;
             if (!derive_wall_geometry(walls, b, w, &g) || g.layout.plain()) continue;
             const WallLayout& L = g.layout;
-            for (int first = 0; first < L.floors; first += kFloorsPerStrip) {
-                const int count = std::min(kFloorsPerStrip, L.floors - first);
-                for (int first_slot = 0; first_slot < L.slots; first_slot += kSlotsPerStrip) {
-                    const int slot_count = std::min(kSlotsPerStrip, L.slots - first_slot);
-                    double weight = 0, max_weight = 0;
-                    uint16_t lit = 0;
-                    for (int floor = first; floor < first + count; ++floor) {
-                        for (int slot = first_slot; slot < first_slot + slot_count; ++slot) {
-                            ++windows_;
-                            const double wgt = window_weight(g, floor, slot);
-                            if (!(wgt > 0)) continue;
-                            ++lit_windows_;
-                            lit |= uint16_t(1u << ((floor - first) * slot_count + slot - first_slot));
-                            weight += wgt;
-                            max_weight = std::max(max_weight, wgt);
-                        }
-                    }
-                    if (!(weight > 0)) continue;
-                    float max_rounded = static_cast<float>(max_weight);  // a bound for rejection: never below
-                    if (max_rounded < max_weight) max_rounded = std::nextafter(max_rounded, 1e30f);
-                    strips_.push_back({b, w, static_cast<uint16_t>(first), static_cast<uint16_t>(first_slot),
-                                       static_cast<uint8_t>(count), static_cast<uint8_t>(slot_count), lit, float(weight),
-                                       max_rounded});
-                    // Bounds: the strip's cells of the wall at the pane depth, facing out of the building.
-                    const double v0 = L.grid_v0 + first * L.floor_height, v1 = v0 + count * L.floor_height;
-                    const double u0 = L.grid_u0 + first_slot * L.slot_width, u1 = u0 + slot_count * L.slot_width;
-                    LightBounds lb;
-                    lb.set_box(g.frame.to_world(u0, v0, L.recess), g.frame.to_world(u1, v1, L.recess));
-                    lb.set_axis(-g.frame.w_axis);
-                    lb.cos_theta_o = 1;
-                    lb.cos_theta_e = 0;
-                    lb.phi = static_cast<float>(kPi * weight * kNitsPerRadianceUnit);  // lumens, as the lamps
-                    bounds.push_back(lb);
-                }
-            }
+            for (int first = 0; first < L.floors; first += kFloorsPerStrip)
+                for (int first_slot = 0; first_slot < L.slots; first_slot += kSlotsPerStrip)
+                    add_window_strip(g, b, w, first, first_slot, bounds);
         }
     }
-    lamps_.shrink_to_fit();
-    strips_.shrink_to_fit();
-    split_ = options.sampler == LightSamplerKind::Tree && !lamps_.empty() && !strips_.empty();
-    if (split_) {
-        strip_sampler_ = LightSampler(std::vector<LightBounds>(bounds.begin() + lamps_.size(), bounds.end()), options.sampler);
-        bounds.resize(lamps_.size());
+}
+
+// The strip of windows from (first floor, first slot) on wall w of building b: kept with its
+// bounds if any of its windows is lit.
+void SceneLights::add_window_strip(const WallGeometry& g, uint32_t b, uint32_t w, int first, int first_slot,
+                                   std::vector<LightBounds>& bounds) {
+    const WallLayout& L = g.layout;
+    const int count = std::min(kFloorsPerStrip, L.floors - first);
+    const int slot_count = std::min(kSlotsPerStrip, L.slots - first_slot);
+    double weight = 0, max_weight = 0;
+    uint16_t lit = 0;
+    for (int floor = first; floor < first + count; ++floor) {
+        for (int slot = first_slot; slot < first_slot + slot_count; ++slot) {
+            ++windows_;
+            const double wgt = window_weight(g, floor, slot);
+            if (!(wgt > 0)) continue;
+            ++lit_windows_;
+            lit |= uint16_t(1u << ((floor - first) * slot_count + slot - first_slot));
+            weight += wgt;
+            max_weight = std::max(max_weight, wgt);
+        }
     }
-    sampler_ = LightSampler(bounds, options.sampler);
+    if (!(weight > 0)) return;
+    float max_rounded = static_cast<float>(max_weight);  // a bound for rejection: never below
+    if (max_rounded < max_weight) max_rounded = std::nextafter(max_rounded, 1e30f);
+    strips_.push_back({b, w, static_cast<uint16_t>(first), static_cast<uint16_t>(first_slot),
+                       static_cast<uint8_t>(count), static_cast<uint8_t>(slot_count), lit, float(weight), max_rounded});
+    // Bounds: the strip's cells of the wall at the pane depth, facing out of the building.
+    const double v0 = L.grid_v0 + first * L.floor_height, v1 = v0 + count * L.floor_height;
+    const double u0 = L.grid_u0 + first_slot * L.slot_width, u1 = u0 + slot_count * L.slot_width;
+    LightBounds lb;
+    lb.set_box(g.frame.to_world(u0, v0, L.recess), g.frame.to_world(u1, v1, L.recess));
+    lb.set_axis(-g.frame.w_axis);
+    lb.cos_theta_o = 1;
+    lb.cos_theta_e = 0;
+    lb.phi = static_cast<float>(kPi * weight * kNitsPerRadianceUnit);  // lumens, as the lamps
+    bounds.push_back(lb);
 }
 
 bool SceneLights::choose_light(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {
-    if (!split_) return sampler_.sample(p, n, u, light, pmf);
+    if (!split_) return sampler_ && sampler_->sample(p, n, u, light, pmf);
     // One uniform number for both steps, rescaled after the first (as the tree's descent does).
     if (u < kLampShare) {
-        if (!sampler_.sample(p, n, std::min(u / kLampShare, 0x1.fffffffffffffp-1), light, pmf)) return false;
+        if (!sampler_->sample(p, n, std::min(u / kLampShare, 0x1.fffffffffffffp-1), light, pmf)) return false;
         *pmf *= kLampShare;
         return true;
     }
-    if (!strip_sampler_.sample(p, n, std::min((u - kLampShare) / (1 - kLampShare), 0x1.fffffffffffffp-1), light, pmf))
+    if (!strip_sampler_->sample(p, n, std::min((u - kLampShare) / (1 - kLampShare), 0x1.fffffffffffffp-1), light, pmf))
         return false;
     *pmf *= 1 - kLampShare;
     *light += static_cast<uint32_t>(lamps_.size());
@@ -130,13 +139,14 @@ bool SceneLights::choose_light(Vec3 p, Vec3 n, double u, uint32_t* light, double
 }
 
 double SceneLights::light_pmf(Vec3 p, Vec3 n, uint32_t light) const {
-    if (!split_) return sampler_.pmf(p, n, light);
-    if (light < lamps_.size()) return kLampShare * sampler_.pmf(p, n, light);
-    return (1 - kLampShare) * strip_sampler_.pmf(p, n, light - static_cast<uint32_t>(lamps_.size()));
+    if (!split_) return sampler_ ? sampler_->pmf(p, n, light) : 0;
+    if (light < lamps_.size()) return kLampShare * sampler_->pmf(p, n, light);
+    return (1 - kLampShare) * strip_sampler_->pmf(p, n, light - static_cast<uint32_t>(lamps_.size()));
 }
 
 size_t SceneLights::bytes() const {
-    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) + sampler_.bytes() + strip_sampler_.bytes();
+    return lamps_.capacity() * sizeof(Lamp) + strips_.capacity() * sizeof(Strip) + (sampler_ ? sampler_->bytes() : 0) +
+           (strip_sampler_ ? strip_sampler_->bytes() : 0);
 }
 
 bool SceneLights::wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const {

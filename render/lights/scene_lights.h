@@ -139,6 +139,11 @@ private:
         uint64_t building_key;
         uint32_t wall;
     };
+    // The constructor's parts: each adds its emitters and their bounds (in sampler order).
+    void gather_lamps(std::vector<LightBounds>& bounds);
+    void gather_window_strips(std::vector<LightBounds>& bounds);
+    void add_window_strip(const WallGeometry& g, uint32_t b, uint32_t w, int first, int first_slot,
+                          std::vector<LightBounds>& bounds);
     bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;  // cached per thread
     bool derive_wall_geometry(const BuildingWalls& walls, uint32_t building, uint32_t wall, WallGeometry* out) const;
     double window_weight(const WallGeometry& g, int floor, int slot) const;  // 0: dark
@@ -166,8 +171,8 @@ private:
     // street's first hits was 5x further from proportional to the lamps' unshadowed light
     // (tests/bench/night_bench.sh street view; see README). Uniform and power choose among all
     // lights at once, as their names say.
-    LightSampler sampler_;        // all lights; with the tree, the lamps
-    LightSampler strip_sampler_;  // with the tree, the window strips
+    std::unique_ptr<LightSampler> sampler_;        // all lights; with the tree, the lamps (null: no lights)
+    std::unique_ptr<LightSampler> strip_sampler_;  // with the tree, the window strips (null unless split_)
     // With the tree, the probability of choosing among the lamps. Not their share of the power
     // (0.65 on Monaco): a window's light leaves a recessed pane, mostly sideways and upwards into
     // other facades, and most window samples end in the shadow roulette, while a lamp lights the

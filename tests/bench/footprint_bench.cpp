@@ -149,7 +149,8 @@ void bench(const std::string& path) {
     // The whole clean-up as the buildings stage runs it.
     const double clean_ms = median_ms([&] {
         ParseReport r;
-        for (const Polygon& p : raw) sink = sink + clean_footprint(p.outer, p.holes, BuildingParams{}, r, "buildings").size();
+        for (const Polygon& p : raw)
+            sink = sink + clean_footprint(p.outer, p.holes, BuildingParams{}, r, ReportKind::Buildings).size();
     });
     std::printf("  %-34s %9zu %12.2f %12s %9s\n", "clean_footprint (as osmparse runs it)", raw.size(), clean_ms, "", "");
 
@@ -159,7 +160,7 @@ void bench(const std::string& path) {
     {
         ParseReport r;
         for (const Polygon& p : raw)
-            for (Footprint& f : clean_footprint(p.outer, p.holes, BuildingParams{}, r, "buildings")) {
+            for (Footprint& f : clean_footprint(p.outer, p.holes, BuildingParams{}, r, ReportKind::Buildings)) {
                 const Vec2 a = f.outer[0], b = f.outer[1], mid = (a + b) * 0.5;
                 const Vec2 along = (b - a) * (1 / length(b - a)), across{-along.y, along.x};
                 quads.push_back({mid - along * 10 - across * 3, mid + along * 10 - across * 3,

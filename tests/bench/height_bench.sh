@@ -17,7 +17,7 @@
 # fewer than MIN_TAGGED (default 15) tagged whole buildings is too small a sample and is skipped.
 # Then leave-one-city-out for the constants the bench can refit without a rebuild: a scale for
 # each group of the type-and-area rules (kBaseLevels for the fabric rule, the type table's
-# heights for the others, in osmparse/infer_heights.cpp), fitted as the median over cities
+# heights for the others, in osmparse/buildings/infer_heights.cpp), fitted as the median over cities
 # (each city's median ratio truth / guess with every tag hidden, one vote per city with at least
 # 10 such guesses): for each city, the scale fitted on the other cities multiplies the built
 # rules (exact with every tag hidden, where nothing in the extract calibrates them; with half

@@ -89,7 +89,7 @@ TEST(Hardening, LandUseAreaWithAStrayNodeIsLeftOutAndCounted) {
     job.quiet = true;
     ParseReport report;
     const Scene scene = parse_osm_to_scene(job, report);
-    EXPECT_EQ(report.note_count(kBuildingHeights, kLandUseTooLarge), 1);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::LandUseTooLarge), 1);
     ASSERT_EQ(scene.buildings.size(), 1u);
     EXPECT_EQ(scene.buildings[0].height_rule, HeightRule::TypeAndArea);  // an industrial hall: 8 m +-10%
     EXPECT_NEAR(scene.buildings[0].height, 8, 0.81);

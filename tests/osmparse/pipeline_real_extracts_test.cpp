@@ -59,9 +59,9 @@ TEST_P(RealExtract, EveryStoredRingIsSimpleOrientedAndPositive) {
     const std::vector<uint8_t> bytes = encode_scene(parsed);
     const Scene scene = decode_scene(bytes.data(), bytes.size(), GetParam());
 
-    ASSERT_GT(report.read_count("building areas"), 0);
+    ASSERT_GT(report.read_count(ReportKind::BuildingAreas), 0);
     ASSERT_FALSE(scene.buildings.empty());
-    EXPECT_EQ(report.kept_count("buildings") + report.kept_count("building parts"),
+    EXPECT_EQ(report.kept_count(ReportKind::Buildings) + report.kept_count(ReportKind::BuildingParts),
               static_cast<int64_t>(scene.buildings.size()));
     const double min_area = ParseParams{}.buildings.min_area;
     for (const Building& b : scene.buildings) {

@@ -113,26 +113,19 @@ struct DemSource {
     double scale = 1, offset = 0;  // metres = raw * scale + offset (band scale, offset and unit)
     bool has_nodata = false;
     double nodata = 0;
-    std::string unit_note;  // "feet", ... when converted
+    bool in_feet = false;   // converted to metres
     std::string datum;      // "" when it names none
+    bool above_ellipsoid = false;
 };
 
+constexpr double kFoot = 0.3048, kUsSurveyFoot = 1200.0 / 3937.0;  // metres
+
 // Metres per unit of a band's unit name (GDAL's and the usual spellings), 0 when unknown.
-double metres_per_unit(const std::string& unit, std::string& name) {
+double metres_per_unit(const std::string& unit) {
     const std::string u = lower(unit);
     if (u.empty() || u == "m" || u == "metre" || u == "metres" || u == "meter" || u == "meters") return 1;
-    if (u == "ft" || u == "foot" || u == "feet" || u == "international foot") {
-        name = "feet";
-        return 0.3048;
-    }
-    if (u == "us-ft" || u == "ftus" || u == "us survey foot" || u == "us_survey_foot" || u == "foot_us") {
-        name = "US survey feet";
-        return 1200.0 / 3937.0;
-    }
-    if (u == "cm") {
-        name = "centimetres";
-        return 0.01;
-    }
+    if (u == "ft" || u == "foot" || u == "feet" || u == "international foot") return kFoot;
+    if (u == "us-ft" || u == "ftus" || u == "us survey foot" || u == "us_survey_foot" || u == "foot_us") return kUsSurveyFoot;
     return 0;
 }
 
@@ -140,19 +133,27 @@ double metres_per_unit(const std::string& unit, std::string& name) {
 void vertical_frame(DemSource& s, GDALRasterBandH band) {
     OGRSpatialReferenceH srs = GDALGetSpatialRef(s.ds.get());
     double unit = 1;
+    std::string unit_name;
     if (srs && OSRIsCompound(srs)) {
         if (const char* name = OSRGetAttrValue(srs, "COMPD_CS|VERT_CS", 0)) s.datum = name;
-        char* unit_name = nullptr;
-        unit = OSRGetTargetLinearUnits(srs, "VERT_CS", &unit_name);
-        if (unit_name && std::fabs(unit - 1) > 1e-9) s.unit_note = unit_name;
-    } else if (srs && OSRGetAxesCount(srs) == 3) {
-        const char* datum = OSRGetAttrValue(srs, "DATUM", 0);
-        s.datum = std::string("the ellipsoid of ") + (datum ? datum : "its datum") + " (not sea level)";
+        char* name = nullptr;
+        unit = OSRGetTargetLinearUnits(srs, "VERT_CS", &name);
+        if (name) unit_name = name;
+        for (double known : {1.0, kFoot, kUsSurveyFoot})
+            if (std::fabs(unit - known) < 1e-6) unit = known;
     } else {
+        if (srs && OSRGetAxesCount(srs) == 3) {
+            const char* datum = OSRGetAttrValue(srs, "DATUM", 0);
+            s.datum = std::string("the ellipsoid of ") + (datum ? datum : "its datum") + " (not sea level)";
+            s.above_ellipsoid = true;
+        }
         const char* unit_type = GDALGetRasterUnitType(band);
-        unit = metres_per_unit(unit_type ? unit_type : "", s.unit_note);
-        if (unit == 0) throw Error("DEM " + s.path + ": heights in an unknown unit '" + unit_type + "'");
+        unit_name = unit_type ? unit_type : "";
+        unit = metres_per_unit(unit_name);
     }
+    if (unit != 1 && unit != kFoot && unit != kUsSurveyFoot)
+        throw Error("DEM " + s.path + ": heights in a unit other than metres or feet ('" + unit_name + "')");
+    s.in_feet = unit != 1;
     int has = 0;
     const double band_scale = GDALGetRasterScale(band, &has);
     const double band_offset = GDALGetRasterOffset(band, &has);
@@ -356,13 +357,14 @@ extern "C" void citygen_warp_dems(const std::vector<std::string>& paths, double 
             std::vector<uint8_t> inside(out.grid.size(), 0);
             if (mark_coverage(s, transformer.get(), out.grid, inside) == 0) {
                 out.unused.push_back(dem_extent(s));
-                out.notes.push_back(s.path + ": outside the extract, not used");
                 continue;
             }
-            ++out.files_used;
             warp_into(s, transformer.get(), target.get());
             take_heights(s, target.get(), inside, out.grid);
-            if (!s.unit_note.empty()) out.notes.push_back(s.path + ": heights in " + s.unit_note + ", converted to metres");
+            ++out.files_used;
+            out.files_in_feet += s.in_feet;
+            out.files_above_ellipsoid += s.above_ellipsoid;
+            out.files_naming_datum += !s.datum.empty() && !s.above_ellipsoid;
             if (out.vertical_datum.empty()) out.vertical_datum = s.datum;
         }
     });

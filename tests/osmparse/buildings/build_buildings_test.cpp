@@ -67,8 +67,8 @@ TEST(BuildBuildings, PartsReplaceTheOutlineTheyLieIn) {
     EXPECT_EQ(low[0]->levels, 3);
     EXPECT_FALSE(plain[0]->is_part);
     EXPECT_DOUBLE_EQ(plain[0]->height, 6);
-    EXPECT_EQ(report.dropped_count("buildings", "replaced by its building:part outlines"), 1);
-    EXPECT_EQ(report.kept_count("building parts"), 2);
+    EXPECT_EQ(report.dropped_count(ReportKind::Buildings, ReportReason::ReplacedByParts), 1);
+    EXPECT_EQ(report.kept_count(ReportKind::BuildingParts), 2);
 }
 
 TEST(BuildBuildings, ClippedWayIsCountedNotFatal) {
@@ -76,8 +76,8 @@ TEST(BuildBuildings, ClippedWayIsCountedNotFatal) {
     const Scene scene = parse_fixture("clipped_way", report);
     EXPECT_TRUE(find(scene, OsmType::Way, 101).empty());
     EXPECT_EQ(find(scene, OsmType::Way, 103).size(), 1u);
-    EXPECT_EQ(report.dropped_count("building ways", "nodes missing from extract"), 1);
-    EXPECT_EQ(report.note_count("highway ways", "clipped at extract edge"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::BuildingWays, ReportReason::NodesMissing), 1);
+    EXPECT_EQ(report.note_count(ReportKind::HighwayWays, ReportReason::ClippedAtEdge), 1);
 }
 
 TEST(BuildBuildings, RelationWithMissingMemberIsCountedNotFatal) {
@@ -88,7 +88,7 @@ TEST(BuildBuildings, RelationWithMissingMemberIsCountedNotFatal) {
     ASSERT_EQ(complete.size(), 1u);
     EXPECT_EQ(complete[0]->holes.size(), 1u);
     EXPECT_DOUBLE_EQ(complete[0]->height, 12);
-    EXPECT_EQ(report.dropped_count("building relations", "members missing from extract"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::BuildingRelations, ReportReason::MembersMissing), 1);
 }
 
 TEST(BuildBuildings, BrokenOutlinesAreRepairedOrDropped) {
@@ -108,9 +108,9 @@ TEST(BuildBuildings, BrokenOutlinesAreRepairedOrDropped) {
     EXPECT_TRUE(find(scene, OsmType::Way, 103).empty()) << "sliver";
     EXPECT_TRUE(find(scene, OsmType::Way, 106).empty()) << "building=ruins is ignored";
     EXPECT_EQ(find(scene, OsmType::Relation, 4).size(), 2u);
-    EXPECT_EQ(report.dropped_count("buildings", "sliver below min area"), 1);
-    EXPECT_EQ(report.dropped_count("buildings", "ignored type (--ignore-building-types)"), 1);
-    EXPECT_EQ(report.note_count("buildings", "self-intersection repaired by splitting"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::Buildings, ReportReason::SliverBelowMinArea), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::Buildings, ReportReason::IgnoredType), 1);
+    EXPECT_EQ(report.note_count(ReportKind::Buildings, ReportReason::Repaired), 1);
 }
 
 TEST(BuildBuildings, HeightsInFeetAndLevels) {
@@ -129,7 +129,7 @@ TEST(BuildBuildings, HeightsInFeetAndLevels) {
     EXPECT_DOUBLE_EQ(only(104).height, 21);
     EXPECT_EQ(only(105).height_source, HeightSource::Random);  // 5000 m is absurd
     EXPECT_DOUBLE_EQ(only(106).eaves_height(), 9);              // "tall" ignored, 3 levels (+ any roof)
-    EXPECT_EQ(report.note_count("buildings", "bad height tag ignored"), 2);
+    EXPECT_EQ(report.note_count(ReportKind::Buildings, ReportReason::BadHeightTag), 2);
 }
 
 TEST(BuildBuildings, IgnoreTypesOption) {

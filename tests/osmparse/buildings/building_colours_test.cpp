@@ -35,8 +35,8 @@ TEST(ParseColour, NamesAndHexAndGarbage) {
 TEST(BuildingColours, TaggedDefaultAndGarbageCounted) {
     ParseReport report;
     const Scene scene = parse_quietly(source_path("tests/data/roofs.osm"), report);
-    EXPECT_EQ(report.note_count("colours and materials", "bad building:colour: default"), 1);
-    EXPECT_EQ(report.note_count("colours and materials", "bad roof:colour: default"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::ColoursAndMaterials, ReportReason::BadWallColour), 1);
+    EXPECT_EQ(report.note_count(ReportKind::ColoursAndMaterials, ReportReason::BadRoofColour), 1);
     bool tagged_seen = false;
     for (const Building& b : scene.buildings) {
         EXPECT_NE(b.wall_colour, 0u);

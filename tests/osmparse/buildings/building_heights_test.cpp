@@ -14,7 +14,7 @@ OsmTags tags(std::initializer_list<std::pair<std::string, std::string>> entries)
 
 BuildingHeight height_of(const OsmTags& t, ParseReport& report, int64_t id = 7,
                          BuildingParams params = BuildingParams{}) {
-    return building_height(t, {OsmType::Way, id}, params, report, "buildings");
+    return building_height(t, {OsmType::Way, id}, params, report, ReportKind::Buildings);
 }
 
 }  // namespace
@@ -29,7 +29,7 @@ TEST(BuildingHeights, TaggedHeightWithUnits) {
     h = height_of(tags({{"height", "12'6\""}, {"min_height", "10'"}}), report);
     EXPECT_NEAR(h.height, 3.81, 1e-9);
     EXPECT_NEAR(h.min_height, 3.048, 1e-9);
-    EXPECT_EQ(report.note_count("buildings", "height from height tag"), 2);
+    EXPECT_EQ(report.note_count(ReportKind::Buildings, ReportReason::HeightFromHeightTag), 2);
 }
 
 TEST(BuildingHeights, LevelsTimesLevelHeight) {
@@ -67,7 +67,7 @@ TEST(BuildingHeights, RandomOnlyWhenNothingTaggedAndIndependentOfOrder) {
     EXPECT_NE(a.height, b.height);
     params.seed = 43;
     EXPECT_NE(height_of(tags({{"building", "yes"}}), report, 1001, params).height, a.height);
-    EXPECT_EQ(report.note_count("buildings", "random height (nothing tagged)"), 4);
+    EXPECT_EQ(report.note_count(ReportKind::Buildings, ReportReason::RandomHeight), 4);
 }
 
 TEST(BuildingHeights, RandomHeightsSpanTheRange) {
@@ -96,8 +96,8 @@ TEST(BuildingHeights, AbsurdOrUnparseableValuesFallBackAndAreCounted) {
     EXPECT_EQ(h.source, HeightSource::Random);
     h = height_of(tags({{"building:levels", "500"}}), report);  // 1500 m
     EXPECT_EQ(h.source, HeightSource::Random);
-    EXPECT_EQ(report.note_count("buildings", "bad height tag ignored"), 3);
-    EXPECT_EQ(report.note_count("buildings", "bad building:levels tag ignored"), 2);
+    EXPECT_EQ(report.note_count(ReportKind::Buildings, ReportReason::BadHeightTag), 3);
+    EXPECT_EQ(report.note_count(ReportKind::Buildings, ReportReason::BadLevelsTag), 2);
 }
 
 TEST(BuildingHeights, MinHeightNotBelowHeightIsIgnored) {
@@ -105,7 +105,7 @@ TEST(BuildingHeights, MinHeightNotBelowHeightIsIgnored) {
     BuildingHeight h = height_of(tags({{"height", "10"}, {"min_height", "12"}}), report);
     EXPECT_DOUBLE_EQ(h.height, 10);
     EXPECT_DOUBLE_EQ(h.min_height, 0);
-    EXPECT_EQ(report.note_count("buildings", "min_height not below height, ignored"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::Buildings, ReportReason::MinHeightNotBelowHeight), 1);
 }
 
 TEST(BuildingHeights, OnlyMinHeightTaggedGivesOneStoreyAboveIt) {

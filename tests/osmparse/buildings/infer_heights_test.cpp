@@ -86,7 +86,7 @@ TEST(InferHeights, NeighboursThatDisagreeStillBeatARandomHeight) {
     infer_heights(v, {}, params, report);
     EXPECT_EQ(by_id(v, 4).height_rule, HeightRule::Neighbours);
     expect_near_guess(by_id(v, 4), 9);
-    EXPECT_EQ(report.note_count(kBuildingHeights, "from tagged neighbours that disagree"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::FromDisagreeingNeighbours), 1);
 }
 
 TEST(InferHeights, SameTypeNeighboursBeatOtherTypes) {
@@ -136,7 +136,7 @@ TEST(InferHeights, ExtractWideMedianOfTheSameKindWhenNoneIsNear) {
     // Too few tagged dormitories: a home takes the type table.
     bool sure = false;
     expect_near_guess(by_id(v, 5), height_by_type_and_area("dormitory", 225, &sure));
-    EXPECT_EQ(report.note_count(kBuildingHeights, "from tagged buildings of its type and size in the extract"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::FromExtractMedian), 1);
 }
 
 TEST(InferHeights, UntypedHallsOnIndustrialLand) {
@@ -219,7 +219,7 @@ TEST(InferHeights, UntypedBuildingsTakeTheirTownsFabric) {
     EXPECT_GT(by_id(v, 2).height, 1.5 * by_id(v, 1).height);
     expect_near_guess(by_id(v, 1), params.level_height * levels_from_surroundings(400, 100, false));
     expect_near_guess(by_id(v, 2), params.level_height * levels_from_surroundings(400, 400, false));
-    EXPECT_EQ(report.note_count(kBuildingHeights, kFromSurroundings), 74);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::FromSurroundings), 74);
 }
 
 TEST(InferHeights, SharedWallsAndWorkplaces) {
@@ -290,7 +290,7 @@ TEST(InferHeights, PointBlockBeatsItsTaggedNeighbours) {
     expect_near_guess(by_id(v, 2), 15);
     EXPECT_EQ(by_id(v, 3).height_rule, HeightRule::Neighbours);
     expect_near_guess(by_id(v, 3), 15);
-    EXPECT_EQ(report.note_count(kBuildingHeights, kPointBlock), 1);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::PointBlock), 1);
 }
 
 TEST(InferHeights, NamedHomesOfABlocksFootprintAreLandmarkTowers) {
@@ -316,7 +316,7 @@ TEST(InferHeights, NamedHomesOfABlocksFootprintAreLandmarkTowers) {
         expect_near_guess(by_id(v, id), 15);
     }
     EXPECT_LT(by_id(v, 5).height, 0.6 * tower_height(625, params));
-    EXPECT_EQ(report.note_count(kBuildingHeights, kLandmarkHome), 2);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::LandmarkHome), 2);
     EXPECT_FALSE(is_landmark_home("office", 5000, true));
     EXPECT_TRUE(is_landmark_home("residential", 500, true));
 }
@@ -390,7 +390,7 @@ TEST(InferHeights, ATaggedTwinNextDoorDecides) {
     }
     for (int64_t id : {4, 5, 6}) EXPECT_LT(by_id(v, id).height, 0.6 * 42) << id;
     EXPECT_LT(by_id(v, 7).height, 0.6 * 42) << "two untyped buildings of one size are no estate";
-    EXPECT_EQ(report.note_count(kBuildingHeights, kTwin), 2);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::Twin), 2);
 }
 
 // A town of 15 x 15 m untyped blocks (grain 225 m2), nothing tagged: ids 100-115.
@@ -427,7 +427,7 @@ TEST(InferHeights, UseTagsMakeAHome) {
     ParseReport report;
     infer_heights(v, {}, params, report, {}, {{OsmType::Way, 1}});
     expect_near_guess(by_id(v, 1), tower_height(225, params));
-    EXPECT_EQ(report.note_count(kBuildingHeights, kPointBlock), 1);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::PointBlock), 1);
     infer_heights(untagged_use, {}, params, report);
     EXPECT_LT(by_id(untagged_use, 1).height, 0.6 * tower_height(225, params));
 }
@@ -497,14 +497,14 @@ TEST(InferHeights, ACityOfTaggedBlocksCalibratesTheFabricRule) {
     const double learnt = median_height(v, 1000, 2000);
     EXPECT_LT(learnt, 19.0);
     EXPECT_GT(learnt, 15.0);
-    EXPECT_EQ(report.note_count(kBuildingHeights, kCalibrated), 16);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::Calibrated), 16);
     // With fewer than ten tagged, the prior stands (a handful of tagged are the notable ones).
     std::vector<Building> few = city_of_blocks(0);
     for (int i = 0; i < 9; ++i)
         few.push_back(building(100 + i, 20.0 * i, 0, "yes", 15, HeightSource::Levels, 20));
     ParseReport few_report;
     infer_heights(few, {}, params, few_report);
-    EXPECT_EQ(few_report.note_count(kBuildingHeights, kCalibrated), 0);
+    EXPECT_EQ(few_report.note_count(ReportKind::BuildingHeights, ReportReason::Calibrated), 0);
 }
 
 TEST(InferHeights, TaggedHousesOfTheRegionCalibrateTheHouseRule) {

@@ -81,7 +81,7 @@ TEST_F(TerrainCli, TheFieldIsInTheSceneAndInBothPrograms) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("terrain nodes"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("void, filled from its neighbours"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("heights above EGM96 geoid (assumed"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("names no vertical datum: EGM96 geoid assumed"), std::string::npos) << r.err;
     for (const CommandResult& info : {run_command(quoted(osmparse_binary()) + " --info " + quoted(scene)),
                                       render("--print-scene-info " + quoted(scene))}) {
         EXPECT_EQ(info.exit_code, 0) << info.err;

@@ -25,16 +25,16 @@ std::string printed(const ParseReport& report) {
 
 // Two stages' worth of counts, the second adding to a row the first began.
 void first_stage(ParseReport& r) {
-    r.read("buildings", 3);
-    r.dropped("buildings", "sliver", 1);
-    r.note("buildings", "repaired");
+    r.read(ReportKind::Buildings, 3);
+    r.dropped(ReportKind::Buildings, ReportReason::SliverBelowMinArea, 1);
+    r.note(ReportKind::Buildings, ReportReason::Repaired);
     r.stage_time("first", 0.5);
 }
 void second_stage(ParseReport& r) {
-    r.read("roads", 2);
-    r.kept("roads", 2);
-    r.kept("buildings", 2);
-    r.dropped("buildings", "sliver", 0);  // a row entry with nothing in it still prints
+    r.read(ReportKind::RoadWays, 2);
+    r.kept(ReportKind::RoadWays, 2);
+    r.kept(ReportKind::Buildings, 2);
+    r.dropped(ReportKind::Buildings, ReportReason::SliverBelowMinArea, 0);  // an entry with nothing in it still prints
     r.stage_time("second", 0.25);
 }
 
@@ -51,9 +51,9 @@ TEST(ParseReport, MergedReportsPrintLikeOneReportFilledInOrder) {
     merged.merge(a);
     merged.merge(b);
     EXPECT_EQ(printed(merged), printed(one));
-    EXPECT_EQ(merged.kept_count("buildings"), 2);
-    EXPECT_EQ(merged.dropped_count("buildings", "sliver"), 1);
-    EXPECT_EQ(merged.read_count("roads"), 2);
+    EXPECT_EQ(merged.kept_count(ReportKind::Buildings), 2);
+    EXPECT_EQ(merged.dropped_count(ReportKind::Buildings, ReportReason::SliverBelowMinArea), 1);
+    EXPECT_EQ(merged.read_count(ReportKind::RoadWays), 2);
 }
 
 TEST(ParseReport, MergeOrderDecidesTheRowOrder) {
@@ -65,6 +65,26 @@ TEST(ParseReport, MergeOrderDecidesTheRowOrder) {
     ba.merge(b);
     ba.merge(a);
     const std::string first = printed(ab), second = printed(ba);
-    EXPECT_LT(first.find("\nbuildings"), first.find("\nroads"));
-    EXPECT_GT(second.find("\nbuildings"), second.find("\nroads"));
+    EXPECT_LT(first.find("\nbuildings"), first.find("\nroad ways"));
+    EXPECT_GT(second.find("\nbuildings"), second.find("\nroad ways"));
+}
+
+// Rows print in first-use order; under a row, reasons by their text, whatever the enum's order.
+TEST(ParseReport, PrintsRowsInFirstUseOrderAndReasonsByText) {
+    ParseReport r;
+    r.dropped(ReportKind::RoadWays, ReportReason::InvalidLocation);
+    r.dropped(ReportKind::RoadWays, ReportReason::Degenerate, 2);
+    r.note(ReportKind::RoadWays, ReportReason::ZeroLength);
+    r.note(ReportKind::RoadWays, ReportReason::AreaYes);
+    r.read(ReportKind::Buildings);
+    const std::string out = printed(r);
+    const std::string expected_rows =
+        "object                         read       kept    dropped\n"
+        "road ways                         0          -          3\n"
+        "    dropped        2  degenerate (fewer than 3 distinct points)\n"
+        "    dropped        1  invalid location\n"
+        "    note           1  area=yes\n"
+        "    note           1  zero length\n"
+        "buildings                         1          -          0\n";
+    EXPECT_EQ(out.substr(0, expected_rows.size()), expected_rows);
 }

@@ -115,7 +115,7 @@ TEST(Sea, ACoastlineCutByAClippedExtractIsCarriedToTheEdge) {
     EXPECT_TRUE(covered(s, LandCoverClass::Sea, at(s, -195, -50)));  // beside the carried west end
     EXPECT_FALSE(covered(s, LandCoverClass::Sea, at(s, 0, 150)));
     EXPECT_FALSE(covered(s, LandCoverClass::Sea, at(s, 0, 100)));
-    EXPECT_EQ(report.note_count("coastline ways", "cut by the extract: end carried to its edge"), 2);
+    EXPECT_EQ(report.note_count(ReportKind::CoastlineWays, ReportReason::CutByExtract), 2);
     expect_valid(s);
 }
 
@@ -123,7 +123,7 @@ TEST(Sea, ACoastlineEndingInsideTheExtractGivesNoSeaAndIsCounted) {
     ParseReport report;
     const Scene s = fixture("coast_broken", report);
     EXPECT_EQ(count(s, LandCoverClass::Sea), 0u);
-    EXPECT_EQ(report.dropped_count("sea polygons", "coastline ends inside the extract (broken or partial): no sea drawn"),
+    EXPECT_EQ(report.dropped_count(ReportKind::SeaPolygons, ReportReason::CoastlineEndsInside),
               1);
 }
 
@@ -135,7 +135,7 @@ TEST(Sea, CoastlinesDisagreeingInDirectionGiveNoSea) {
     ParseReport report;
     const std::vector<CoastlineChain> chains{{{{-200, -50}, {200, -50}}, 1}, {{{-200, 50}, {200, 50}}, 2}};
     EXPECT_TRUE(sea_from_chains(chains, box, report).empty());
-    EXPECT_EQ(report.dropped_count("sea polygons", "coastline directions disagree along the extract edge: no sea drawn"),
+    EXPECT_EQ(report.dropped_count(ReportKind::SeaPolygons, ReportReason::CoastlineDirectionsDisagree),
               1);
 }
 
@@ -165,7 +165,7 @@ TEST(Sea, ASeaHoldingMostBuildingsIsTakenForLandAndDropped) {
     box.extend({200, 200});
     ParseReport report;
     EXPECT_TRUE(assemble_sea(osm, projection, box, houses, report).empty());
-    EXPECT_EQ(report.dropped_count("sea polygons", "would flood the city (holds most buildings)"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::SeaPolygons, ReportReason::WouldFloodCity), 1);
 }
 
 TEST(LandCover, ALakeMultipolygonKeepsItsIslandAsAHole) {
@@ -197,7 +197,7 @@ TEST(LandCover, ARiverbankWithAMissingMemberIsSkippedAndCounted) {
     ParseReport report;
     const Scene s = fixture("riverbank_missing_member", report);
     EXPECT_TRUE(s.land_cover.empty());
-    EXPECT_EQ(report.dropped_count("land cover areas", "relation members missing from extract"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::LandCoverAreas, ReportReason::RelationMembersMissing), 1);
 }
 
 TEST(LandCover, ClassesFollowTheTable) {
@@ -221,6 +221,13 @@ TEST(LandCover, ClassesFollowTheTable) {
     EXPECT_EQ(cls({{"landuse", "retail"}}), LandCoverClass::BuiltUp);
     EXPECT_EQ(cls({{"natural", "coastline"}}), std::nullopt);
     EXPECT_EQ(cls({{"amenity", "bench"}}), std::nullopt);
+}
+
+TEST(LandCover, EveryClassHasItsReportRow) {
+    for (int i = 0; i < kLandCoverClassCount; ++i) {
+        const LandCoverClass c = static_cast<LandCoverClass>(i);
+        EXPECT_EQ(std::string(text_of(land_cover_row(c))), std::string("land cover: ") + to_string(c));
+    }
 }
 
 TEST(LandCover, MonacoHasTheSeaInTheSouthEastAndValidPolygons) {

@@ -61,9 +61,9 @@ TEST(FillEmptyBlocks, OnlyWhenAskedAndOnlyInTheEmptyBlock) {
     }
     EXPECT_GE(generated, 6);
     EXPECT_EQ(filled.buildings.size(), plain.buildings.size() + generated);
-    EXPECT_EQ(report.kept_count("generated buildings"), generated);
-    EXPECT_EQ(report.note_count("generated buildings", "empty built-up block filled"), 1);
-    EXPECT_GT(report.dropped_count("generated buildings", "lot without street access"), 0);
+    EXPECT_EQ(report.kept_count(ReportKind::GeneratedBuildings), generated);
+    EXPECT_EQ(report.note_count(ReportKind::GeneratedBuildings, ReportReason::BlockFilled), 1);
+    EXPECT_GT(report.dropped_count(ReportKind::GeneratedBuildings, ReportReason::LotWithoutAccess), 0);
     // The header says it was asked for; the same input gives the same bytes.
     bool in_header = false;
     for (const auto& [k, v] : filled.header.options) in_header |= k == "fill-empty-blocks";

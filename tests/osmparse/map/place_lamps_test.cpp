@@ -73,7 +73,7 @@ TEST(PlaceLamps, TaggedLampsMovedOffTheRoadAndKeptClearOf) {
     EXPECT_EQ(lamps[0].osm.id, 5);
     EXPECT_NEAR(lamps[0].position.y, 3.5, 1e-3) << "pushed just off the road edge";
     EXPECT_NEAR(lamps[1].position.y, 10.0, 1e-3);
-    EXPECT_EQ(report.note_count("tagged street lamps", "moved off the road surface"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::TaggedStreetLamps, ReportReason::MovedOffRoad), 1);
     for (size_t i = 2; i < lamps.size(); ++i) {
         const Vec2 p{lamps[i].position.x, lamps[i].position.y};
         EXPECT_GE(length(p - Vec2(0, 3.5)), params.min_distance_to_tagged);
@@ -92,7 +92,7 @@ TEST(PlaceLamps, NeverInsideABuilding) {
     osm.street_lamps.push_back(lamp_node(projection, 5, {10, 8}));  // mapped inside it
     ParseReport report;
     const std::vector<Lamp> lamps = place_lamps(osm, projection, scene, LampParams{}, 1, report);
-    EXPECT_EQ(report.dropped_count("tagged street lamps", "inside a road or building"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::TaggedStreetLamps, ReportReason::InsideRoadOrBuilding), 1);
     ASSERT_FALSE(lamps.empty());
     for (const Lamp& l : lamps) EXPECT_LT(l.position.y, 0) << "only the south side is free";
 }

@@ -71,19 +71,20 @@ Vec2 at(const Scene& s, double x, double y) {
 
 TEST(TreeTags, HeightCrownAndLeafTypeFromTagsElseDefaults) {
     ParseReport report;
-    Tree t = tree_from_tags(tags({{"height", "12"}, {"diameter_crown", "6"}, {"leaf_type", "needleleaved"}}), report, "t");
+    Tree t = tree_from_tags(tags({{"height", "12"}, {"diameter_crown", "6"}, {"leaf_type", "needleleaved"}}), report,
+                            ReportKind::MappedTrees);
     EXPECT_DOUBLE_EQ(t.height, 12);
     EXPECT_DOUBLE_EQ(t.crown_diameter, 6);
     EXPECT_EQ(t.leaf_type, LeafType::Needleleaved);
-    t = tree_from_tags(tags({{"est_height", "8 m"}}), report, "t");
+    t = tree_from_tags(tags({{"est_height", "8 m"}}), report, ReportKind::MappedTrees);
     EXPECT_DOUBLE_EQ(t.height, 8);
     EXPECT_EQ(t.leaf_type, LeafType::Broadleaved);
-    t = tree_from_tags(tags({{"height", "-3"}, {"diameter_crown", "1e9"}}), report, "t");
+    t = tree_from_tags(tags({{"height", "-3"}, {"diameter_crown", "1e9"}}), report, ReportKind::MappedTrees);
     EXPECT_DOUBLE_EQ(t.height, 10);
     EXPECT_DOUBLE_EQ(t.crown_diameter, 7);
-    EXPECT_EQ(report.note_count("t", "height unusable, default used"), 1);
-    EXPECT_EQ(report.note_count("t", "diameter_crown unusable, default used"), 1);
-    t = tree_from_tags(tags({{"height", "banana"}}), report, "t");
+    EXPECT_EQ(report.note_count(ReportKind::MappedTrees, ReportReason::TreeHeightUnusable), 1);
+    EXPECT_EQ(report.note_count(ReportKind::MappedTrees, ReportReason::CrownDiameterUnusable), 1);
+    t = tree_from_tags(tags({{"height", "banana"}}), report, ReportKind::MappedTrees);
     EXPECT_DOUBLE_EQ(t.height, 10);
 }
 

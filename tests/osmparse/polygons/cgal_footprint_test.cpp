@@ -15,7 +15,7 @@ using namespace citygen;
 namespace {
 
 std::vector<Footprint> clean(const Ring& outer, const std::vector<Ring>& holes, ParseReport& report) {
-    return clean_footprint(outer, holes, BuildingParams{}, report, "buildings");
+    return clean_footprint(outer, holes, BuildingParams{}, report, ReportKind::Buildings);
 }
 
 Ring rectangle(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
@@ -83,7 +83,7 @@ TEST(CgalFootprint, SimplifiedOutlineNeverCrossesAHole) {
     ASSERT_EQ(polygons.size(), 1u);
     ASSERT_EQ(polygons[0].holes.size(), 1u);
     expect_valid(polygons);
-    EXPECT_EQ(report.dropped_count("building holes", "outside or touching the outline"), 0);
+    EXPECT_EQ(report.dropped_count(ReportKind::BuildingHoles, ReportReason::HoleOutside), 0);
 }
 
 TEST(CgalFootprint, SimplifiedHoleNeverCrossesANearlyTouchingHole) {
@@ -97,7 +97,7 @@ TEST(CgalFootprint, SimplifiedHoleNeverCrossesANearlyTouchingHole) {
     ASSERT_EQ(polygons.size(), 1u);
     EXPECT_EQ(polygons[0].holes.size(), 2u);
     expect_valid(polygons);
-    EXPECT_EQ(report.dropped_count("building holes", "overlaps another hole"), 0);
+    EXPECT_EQ(report.dropped_count(ReportKind::BuildingHoles, ReportReason::HoleOverlaps), 0);
 }
 
 TEST(CgalFootprint, HolesThatReallyOverlapAreStillDropped) {
@@ -105,7 +105,7 @@ TEST(CgalFootprint, HolesThatReallyOverlapAreStillDropped) {
     const auto polygons = clean(rectangle(0, 0, 20, 20), {rectangle(2, 2, 8, 8), rectangle(6, 6, 12, 12)}, report);
     ASSERT_EQ(polygons.size(), 1u);
     EXPECT_EQ(polygons[0].holes.size(), 1u);
-    EXPECT_EQ(report.dropped_count("building holes", "overlaps another hole"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::BuildingHoles, ReportReason::HoleOverlaps), 1);
     expect_valid(polygons);
 }
 

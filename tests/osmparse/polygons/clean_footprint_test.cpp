@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "common/rng.h"
 #include "osmparse/polygons/clean_footprint.h"
@@ -17,7 +18,7 @@ Ring square(double x0, double y0, double size) {
 
 std::vector<Footprint> clean(const Ring& outer, const std::vector<Ring>& holes, ParseReport& report,
                              BuildingParams params = BuildingParams{}) {
-    return clean_footprint(outer, holes, params, report, "buildings");
+    return clean_footprint(outer, holes, params, report, ReportKind::Buildings);
 }
 
 // Every promise clean_footprint makes about its output.
@@ -107,9 +108,23 @@ TEST(CleanFootprint, CourtyardKeepsItsHole) {
     const auto polygons = clean(square(0, 0, 40), {yard}, report);
     ASSERT_EQ(polygons.size(), 1u);
     ASSERT_EQ(polygons[0].holes.size(), 1u);
-    EXPECT_EQ(report.read_count("building holes"), 1);
-    EXPECT_EQ(report.kept_count("building holes"), 1);
+    EXPECT_EQ(report.read_count(ReportKind::BuildingHoles), 1);
+    EXPECT_EQ(report.kept_count(ReportKind::BuildingHoles), 1);
     expect_valid(polygons);
+}
+
+TEST(CleanFootprint, HolesCountUnderTheirOutlinesHolesRow) {
+    EXPECT_EQ(holes_row(ReportKind::Buildings), ReportKind::BuildingHoles);
+    EXPECT_EQ(holes_row(ReportKind::BuildingParts), ReportKind::BuildingHoles);
+    EXPECT_EQ(holes_row(ReportKind::LandCoverAreas), ReportKind::LandCoverAreaHoles);
+    EXPECT_EQ(holes_row(ReportKind::SeaPolygons), ReportKind::SeaPolygonHoles);
+    EXPECT_EQ(holes_row(ReportKind::CoastlineIslands), ReportKind::CoastlineIslandHoles);
+    EXPECT_THROW(holes_row(ReportKind::Roofs), std::invalid_argument);
+    ParseReport report;
+    Ring yard{{10, 10}, {10, 30}, {30, 30}, {30, 10}};
+    clean_footprint(square(0, 0, 40), {yard}, BuildingParams{}, report, ReportKind::SeaPolygons);
+    EXPECT_EQ(report.kept_count(ReportKind::SeaPolygonHoles), 1);
+    EXPECT_EQ(report.read_count(ReportKind::BuildingHoles), 0);
 }
 
 TEST(CleanFootprint, BowTieIsSplitIntoTwoTriangles) {
@@ -123,7 +138,7 @@ TEST(CleanFootprint, BowTieIsSplitIntoTwoTriangles) {
         EXPECT_TRUE(has_vertex(f.outer, {5, 5}));
         EXPECT_DOUBLE_EQ(signed_area(f.outer), 25);
     }
-    EXPECT_EQ(report.note_count("buildings", "self-intersection repaired by splitting"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::Buildings, ReportReason::Repaired), 1);
     expect_valid(polygons);
 }
 
@@ -141,17 +156,17 @@ TEST(CleanFootprint, SliverIsDropped) {
     ParseReport report;
     const Ring sliver{{0, 0}, {30, 0}, {30, 0.1}, {0, 0.1}};  // 3 square metres
     EXPECT_TRUE(clean(sliver, {}, report).empty());
-    EXPECT_EQ(report.dropped_count("buildings", "sliver below min area"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::Buildings, ReportReason::SliverBelowMinArea), 1);
     // A courtyard eating nearly everything leaves a sliver too.
     EXPECT_TRUE(clean(square(0, 0, 10), {square(0.1, 0.1, 9.8)}, report).empty());
-    EXPECT_EQ(report.dropped_count("buildings", "sliver below min area"), 2);
+    EXPECT_EQ(report.dropped_count(ReportKind::Buildings, ReportReason::SliverBelowMinArea), 2);
 }
 
 TEST(CleanFootprint, DegenerateRingIsDropped) {
     ParseReport report;
     EXPECT_TRUE(clean({{0, 0}, {5, 0}, {10, 0}, {5, 0}}, {}, report).empty());
     EXPECT_TRUE(clean({{0, 0}, {0, 0}, {0, 0}}, {}, report).empty());
-    EXPECT_EQ(report.dropped_count("buildings", "degenerate (fewer than 3 distinct points)"), 2);
+    EXPECT_EQ(report.dropped_count(ReportKind::Buildings, ReportReason::Degenerate), 2);
 }
 
 TEST(CleanFootprint, InvalidHolesAreDroppedAndCounted) {
@@ -168,9 +183,9 @@ TEST(CleanFootprint, InvalidHolesAreDroppedAndCounted) {
     ASSERT_EQ(polygons.size(), 1u);
     ASSERT_EQ(polygons[0].holes.size(), 1u);
     EXPECT_DOUBLE_EQ(signed_area(polygons[0].holes[0]), -100);
-    EXPECT_EQ(report.dropped_count("building holes", "outside or touching the outline"), 2);
-    EXPECT_EQ(report.dropped_count("building holes", "overlaps another hole"), 1);
-    EXPECT_EQ(report.dropped_count("building holes", "below min area"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::BuildingHoles, ReportReason::HoleOutside), 2);
+    EXPECT_EQ(report.dropped_count(ReportKind::BuildingHoles, ReportReason::HoleOverlaps), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::BuildingHoles, ReportReason::HoleBelowMinArea), 1);
     expect_valid(polygons);
 }
 
@@ -212,7 +227,7 @@ TEST(CleanFootprint, RandomTanglesAlwaysGiveValidPolygons) {
         }
         for (int i = 0; i < 4; ++i) hole.push_back(round_to_stored_precision({20 + rng.next_double() * 10, 20 + rng.next_double() * 10}));
         ParseReport report;
-        const auto polygons = clean_footprint(outer, {hole}, BuildingParams{}, report, "buildings");
+        const auto polygons = clean_footprint(outer, {hole}, BuildingParams{}, report, ReportKind::Buildings);
         expect_valid(polygons);
         for (const Footprint& f : polygons)
             for (const Ring& h : f.holes)
@@ -221,7 +236,7 @@ TEST(CleanFootprint, RandomTanglesAlwaysGiveValidPolygons) {
                         for (size_t i = 0; i < h.size(); ++i) ASSERT_FALSE(point_in_ring(h[i], other));
                     }
         kept_polygons += polygons.size();
-        repaired += report.note_count("buildings", "self-intersection repaired by splitting");
+        repaired += report.note_count(ReportKind::Buildings, ReportReason::Repaired);
         if (HasFailure()) {
             ADD_FAILURE() << "trial " << trial;
             return;

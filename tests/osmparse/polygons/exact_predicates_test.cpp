@@ -84,7 +84,7 @@ TEST(ExactPredicates, HoleContainmentIsExact) {
             const Vec2 q = nudged({12, 12}, i, j);
             const Ring hole{q, {5, 15}, {10, 20}};  // clockwise, as a hole is stored
             ParseReport report;
-            const auto polygons = clean_footprint(outer, {hole}, BuildingParams{}, report, "buildings");
+            const auto polygons = clean_footprint(outer, {hole}, BuildingParams{}, report, ReportKind::Buildings);
             ASSERT_EQ(polygons.size(), 1u);
             for (const Footprint& f : polygons) ASSERT_TRUE(polygon_is_valid_exact(f.outer, f.holes));
             const bool inside = polygon_is_valid_exact(outer, {hole});

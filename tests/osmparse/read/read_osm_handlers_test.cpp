@@ -60,8 +60,8 @@ TEST(StreetLampHandler, KeepsLocatedLampsAndCountsTheOthers) {
     ASSERT_EQ(data.street_lamps.size(), 1u);
     EXPECT_EQ(data.street_lamps[0].id, 1);
     EXPECT_DOUBLE_EQ(data.street_lamps[0].location.lat, 49.0);
-    EXPECT_EQ(report.read_count(kTaggedStreetLamps), 2);
-    EXPECT_EQ(report.dropped_count(kTaggedStreetLamps, kInvalidLocation), 1);
+    EXPECT_EQ(report.read_count(ReportKind::TaggedStreetLamps), 2);
+    EXPECT_EQ(report.dropped_count(ReportKind::TaggedStreetLamps, ReportReason::InvalidLocation), 1);
     // A lamp extends the data's bounds.
     EXPECT_DOUBLE_EQ(data.min.lon, 7.0);
     EXPECT_DOUBLE_EQ(data.max.lon, 7.0);
@@ -78,7 +78,7 @@ TEST(RoadMarkHandler, KeepsCrossingsAndSignalsOnly) {
     objects.apply(marks);
     ASSERT_EQ(data.road_marks.size(), 2u);
     EXPECT_EQ(data.road_marks[1].id, 2);
-    EXPECT_EQ(report.read_count(kRoadMarkNodes), 2);
+    EXPECT_EQ(report.read_count(ReportKind::RoadMarkNodes), 2);
     EXPECT_GT(data.min.lat, data.max.lat) << "road marks do not extend the bounds";
 }
 
@@ -94,11 +94,11 @@ TEST(TreeHandler, KeepsTreeNodesAndTreeRows) {
     osmium::builder::add_way(objects.buffer(), _id(11), _tag("natural", "tree_row"), _nodes({missing(3), missing(4)}));
     objects.apply(trees);
     ASSERT_EQ(data.trees.size(), 1u);
-    EXPECT_EQ(report.dropped_count(kMappedTrees, kInvalidLocation), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::MappedTrees, ReportReason::InvalidLocation), 1);
     ASSERT_EQ(data.tree_rows.size(), 1u);
     EXPECT_EQ(data.tree_rows[0].id, 10);
-    EXPECT_EQ(report.read_count(kTreeRows), 2);
-    EXPECT_EQ(report.dropped_count(kTreeRows, kNodesMissing), 1);
+    EXPECT_EQ(report.read_count(ReportKind::TreeRows), 2);
+    EXPECT_EQ(report.dropped_count(ReportKind::TreeRows, ReportReason::NodesMissing), 1);
 }
 
 TEST(HighwayHandler, CutsAClippedWayIntoRunsOfPresentNodes) {
@@ -123,9 +123,9 @@ TEST(HighwayHandler, CutsAClippedWayIntoRunsOfPresentNodes) {
     EXPECT_EQ(data.highways[1].id, 5);
     EXPECT_DOUBLE_EQ(data.max.lon, 7.006);
     EXPECT_DOUBLE_EQ(data.max.lat, 49.001);
-    EXPECT_EQ(report.read_count(kHighwayWays), 2);
-    EXPECT_EQ(report.note_count(kHighwayWays, kClippedAtEdge), 1);
-    EXPECT_EQ(report.dropped_count(kHighwayWays, kNodesMissing), 1);
+    EXPECT_EQ(report.read_count(ReportKind::HighwayWays), 2);
+    EXPECT_EQ(report.note_count(ReportKind::HighwayWays, ReportReason::ClippedAtEdge), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::HighwayWays, ReportReason::NodesMissing), 1);
 }
 
 TEST(CoastlineAndRailwayHandlers, KeepTheirWaysWithoutExtendingTheBounds) {
@@ -143,7 +143,7 @@ TEST(CoastlineAndRailwayHandlers, KeepTheirWaysWithoutExtendingTheBounds) {
     ASSERT_EQ(data.coastlines.size(), 1u);
     ASSERT_EQ(data.railways.size(), 1u);
     EXPECT_EQ(data.railways[0].id, 2);
-    EXPECT_EQ(report.read_count(kRailwayWays), 1);
+    EXPECT_EQ(report.read_count(ReportKind::RailwayWays), 1);
     EXPECT_GT(data.min.lat, data.max.lat) << "coastlines and railways do not extend the bounds";
 }
 
@@ -160,9 +160,9 @@ TEST(BuildingAreaHandler, CountsBuildingWaysAndKeepsTheAssembledArea) {
                              _nodes({at(1, 7.0, 49.0), at(2, 7.001, 49.0), at(3, 7.001, 49.001), at(4, 7.0, 49.001),
                                      at(1, 7.0, 49.0)}));
     objects.apply(buildings);
-    EXPECT_EQ(report.read_count(kBuildingWays), 3);
-    EXPECT_EQ(report.dropped_count(kBuildingWays, kNotClosed), 1);
-    EXPECT_EQ(report.dropped_count(kBuildingWays, kNodesMissing), 1);
+    EXPECT_EQ(report.read_count(ReportKind::BuildingWays), 3);
+    EXPECT_EQ(report.dropped_count(ReportKind::BuildingWays, ReportReason::NotClosed), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::BuildingWays, ReportReason::NodesMissing), 1);
     objects.apply_area_of_last_way(buildings);
     ASSERT_EQ(data.building_areas.size(), 1u);
     const OsmArea& area = data.building_areas[0];
@@ -172,7 +172,7 @@ TEST(BuildingAreaHandler, CountsBuildingWaysAndKeepsTheAssembledArea) {
     ASSERT_EQ(area.polygons.size(), 1u);
     EXPECT_EQ(area.polygons[0].outer.size(), 5u);
     EXPECT_DOUBLE_EQ(data.max.lat, 49.001);
-    EXPECT_EQ(report.note_count(kBuildingAreas, kOutlinePassedForRepair), 0);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingAreas, ReportReason::OutlinePassedForRepair), 0);
 }
 
 TEST(BuildingAreaHandler, KeepsEveryTagButTheAddress) {
@@ -209,7 +209,7 @@ TEST(BuildingAreaHandler, PassesARefusedSelfIntersectingOutlineOnForRepair) {
     ASSERT_EQ(data.building_areas[0].polygons.size(), 1u);
     EXPECT_EQ(data.building_areas[0].polygons[0].outer.size(), 5u);
     EXPECT_DOUBLE_EQ(data.building_areas[0].polygons[0].outer[1].lat, 49.001);
-    EXPECT_EQ(report.note_count(kBuildingAreas, kOutlinePassedForRepair), 1);
+    EXPECT_EQ(report.note_count(ReportKind::BuildingAreas, ReportReason::OutlinePassedForRepair), 1);
 }
 
 TEST(LandCoverHandler, KeepsAreasWithALandCoverClassButNoBuildings) {
@@ -233,7 +233,7 @@ TEST(LandCoverHandler, KeepsAreasWithALandCoverClassButNoBuildings) {
     objects.apply_area_of_last_way(land_cover, buildings);
     ASSERT_EQ(data.land_cover_areas.size(), 1u);
     EXPECT_EQ(data.land_cover_areas[0].ref.id, 1);
-    EXPECT_EQ(report.read_count(kLandCoverAreas), 1);
+    EXPECT_EQ(report.read_count(ReportKind::LandCoverAreas), 1);
     ASSERT_EQ(data.building_areas.size(), 1u);
     EXPECT_EQ(data.building_areas[0].ref.id, 3);
 }
@@ -250,5 +250,5 @@ TEST(ReadOsm, AssemblesAMultipolygonWhoseRelationComesAfterItsWays) {
         EXPECT_EQ(a.polygons[0].inners.size(), 1u);
     }
     EXPECT_EQ(relations, 1);
-    EXPECT_EQ(report.read_count(kBuildingRelations), 1);
+    EXPECT_EQ(report.read_count(ReportKind::BuildingRelations), 1);
 }

@@ -49,7 +49,14 @@ TEST(PathTags, ClassesAndWidths) {
     EXPECT_DOUBLE_EQ(path_width(tags({{"width", "3.5"}}), PathClass::Footway, nullptr), 3.5);
     ParseReport report;
     EXPECT_DOUBLE_EQ(path_width(tags({{"width", "banana"}}), PathClass::Track, &report), 3.0);
-    EXPECT_EQ(report.note_count("path edges", "width tag unusable, fell back"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::WidthTagUnusable), 1);
+}
+
+TEST(PathTags, EveryClassHasItsReportRow) {
+    for (int i = 0; i < kPathClassCount; ++i) {
+        const PathClass c = static_cast<PathClass>(i);
+        EXPECT_EQ(std::string(text_of(path_class_row(c))), std::string("path: ") + to_string(c));
+    }
 }
 
 TEST(Paths, FootwayCrossingAStreetStepsAndARailwayButNoTunnel) {
@@ -66,10 +73,10 @@ TEST(Paths, FootwayCrossingAStreetStepsAndARailwayButNoTunnel) {
     EXPECT_EQ(footways, 2u);  // the crossing footway and the mapped sidewalk
     EXPECT_EQ(steps, 1u);
     EXPECT_EQ(rails, 1u);
-    EXPECT_EQ(report.dropped_count("path ways", "tunnel"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::PathWays, ReportReason::Tunnel), 1);
     expect_valid_strips(s);
     // The mapped sidewalk on the north side replaces ours there; the south one stays.
-    EXPECT_EQ(report.dropped_count("sidewalk strips", "replaced by a mapped sidewalk (footway=sidewalk)"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::SidewalkStrips, ReportReason::ReplacedByMappedSidewalk), 1);
     EXPECT_EQ(s.sidewalks.size(), 1u);
 }
 
@@ -113,10 +120,11 @@ TEST(Paths, KeepPathWaysKeepsWhatBuildPathsReads) {
     }
     ASSERT_EQ(kept.joints.size(), all.joints.size());
     for (size_t i = 0; i < all.joints.size(); ++i) EXPECT_EQ(kept.joints[i].polygon, all.joints[i].polygon);
-    for (const char* row : {kPathWays, kPathEdges, kPathJoints}) {
-        EXPECT_EQ(kept_report.read_count(row), all_report.read_count(row)) << row;
-        EXPECT_EQ(kept_report.kept_count(row), all_report.kept_count(row)) << row;
+    for (ReportKind row : {ReportKind::PathWays, ReportKind::PathEdges, ReportKind::PathJoints}) {
+        EXPECT_EQ(kept_report.read_count(row), all_report.read_count(row)) << text_of(row);
+        EXPECT_EQ(kept_report.kept_count(row), all_report.kept_count(row)) << text_of(row);
     }
-    EXPECT_EQ(kept_report.dropped_count(kPathWays, kPathTunnel), all_report.dropped_count(kPathWays, kPathTunnel));
-    EXPECT_EQ(kept_report.dropped_count(kPathWays, kPathTunnel), 1);
+    EXPECT_EQ(kept_report.dropped_count(ReportKind::PathWays, ReportReason::Tunnel),
+              all_report.dropped_count(ReportKind::PathWays, ReportReason::Tunnel));
+    EXPECT_EQ(kept_report.dropped_count(ReportKind::PathWays, ReportReason::Tunnel), 1);
 }

@@ -38,8 +38,8 @@ TEST(RoadTags, AbsurdValuesFallBackAndAreCounted) {
                      default_road_width("tertiary", false));
     EXPECT_DOUBLE_EQ(road_width(tags({{"highway", "tertiary"}, {"width", "3;4"}}), p, &report),
                      default_road_width("tertiary", false));
-    EXPECT_EQ(report.note_count("road edges", "width tag unusable, fell back"), 4);
-    EXPECT_EQ(report.note_count("road edges", "lanes tag unusable, fell back"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::RoadEdges, ReportReason::WidthTagUnusable), 4);
+    EXPECT_EQ(report.note_count(ReportKind::RoadEdges, ReportReason::LanesTagUnusable), 1);
 }
 
 TEST(RoadTags, WhichWaysAreCarriageways) {
@@ -50,9 +50,10 @@ TEST(RoadTags, WhichWaysAreCarriageways) {
     EXPECT_TRUE(carriageway_exclusion(tags({{"highway", "steps"}}), p));
     EXPECT_TRUE(carriageway_exclusion(tags({{"highway", "cycleway"}}), p));
     EXPECT_TRUE(carriageway_exclusion(tags({{"highway", "path"}}), p));
-    EXPECT_EQ(*carriageway_exclusion(tags({{"highway", "pedestrian"}, {"area", "yes"}}), p), "not a carriageway class");
-    EXPECT_EQ(*carriageway_exclusion(tags({{"highway", "service"}, {"area", "yes"}}), p), "area=yes");
-    EXPECT_EQ(*carriageway_exclusion(tags({{"highway", "primary"}, {"tunnel", "yes"}}), p), "tunnel");
+    EXPECT_EQ(*carriageway_exclusion(tags({{"highway", "pedestrian"}, {"area", "yes"}}), p),
+              ReportReason::NotACarriagewayClass);
+    EXPECT_EQ(*carriageway_exclusion(tags({{"highway", "service"}, {"area", "yes"}}), p), ReportReason::AreaYes);
+    EXPECT_EQ(*carriageway_exclusion(tags({{"highway", "primary"}, {"tunnel", "yes"}}), p), ReportReason::Tunnel);
     EXPECT_FALSE(carriageway_exclusion(tags({{"highway", "primary"}, {"tunnel", "no"}}), p));
     p.classes = {"primary"};
     EXPECT_TRUE(carriageway_exclusion(tags({{"highway", "residential"}}), p));

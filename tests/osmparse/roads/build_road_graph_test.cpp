@@ -47,7 +47,7 @@ TEST(BuildRoadGraph, SplitsAtSharedNodesAndMergesCollinearRuns) {
     EXPECT_DOUBLE_EQ(g.edges[2].width, default_road_width("service", false));
     EXPECT_TRUE(g.edges[0].sidewalk_left && g.edges[0].sidewalk_right);
     EXPECT_FALSE(g.edges[2].sidewalk_left || g.edges[2].sidewalk_right);
-    EXPECT_EQ(report.note_count("road edges", "merged collinear pieces"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::RoadEdges, ReportReason::MergedCollinear), 1);
 }
 
 TEST(BuildRoadGraph, MergeAngleIsAnOption) {
@@ -76,7 +76,7 @@ TEST(BuildRoadGraph, LeavesOutNonCarriagewaysTunnelsAndDuplicates) {
     ASSERT_EQ(g.edges.size(), 1u);
     EXPECT_EQ(g.edges[0].way_id, 3);
     EXPECT_TRUE(g.edges[0].bridge);
-    EXPECT_EQ(report.dropped_count("road ways", "tunnel"), 1);
-    EXPECT_EQ(report.dropped_count("road ways", "area=yes"), 1);
-    EXPECT_EQ(report.dropped_count("road edges", "duplicate of another way's piece"), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::RoadWays, ReportReason::Tunnel), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::RoadWays, ReportReason::AreaYes), 1);
+    EXPECT_EQ(report.dropped_count(ReportKind::RoadEdges, ReportReason::DuplicatePiece), 1);
 }

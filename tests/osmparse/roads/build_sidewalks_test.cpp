@@ -67,7 +67,7 @@ TEST(Sidewalks, PiecesFillTheBandBesideTheCarriageway) {
     // Roughly 2 m along both sides of 40 + 40 + 40 + 28 m of road, less the junction.
     EXPECT_GT(area, 2 * 2 * 120);
     EXPECT_LT(area, 2 * 2 * 150);
-    EXPECT_EQ(report.kept_count(kSidewalkSides), 8);
+    EXPECT_EQ(report.kept_count(ReportKind::SidewalkSides), 8);
 }
 
 }  // namespace

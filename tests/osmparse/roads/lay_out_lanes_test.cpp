@@ -50,7 +50,7 @@ TEST(LaneLayout, FromTagsAndDefaults) {
     ParseReport report;
     l = lane_layout(tags({{"lanes", "banana"}}), RoadClass::Residential, 6, &report);
     EXPECT_EQ(l.forward + l.backward, 2);
-    EXPECT_EQ(report.note_count("road lanes", "lanes unusable, fell back"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::RoadLanes, ReportReason::LaneCountUnusable), 1);
 }
 
 TEST(LaneLayout, CycleBusAndParkingLanesWidenAnUntaggedRoad) {
@@ -83,6 +83,6 @@ TEST(Markings, FixtureHasLanesAZebraAndAStopLine) {
     EXPECT_EQ(s.roads[zebra->road].osm.id, 12);
     EXPECT_EQ(s.roads[stop->road].osm.id, 10);
     EXPECT_EQ(stop->side, RoadSide::Right);  // towards the junction at the road's `to` end
-    EXPECT_EQ(report.note_count("road lanes", "lanes unusable, fell back"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::RoadLanes, ReportReason::LaneCountUnusable), 1);
 
 }

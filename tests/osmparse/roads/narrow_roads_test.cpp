@@ -59,7 +59,7 @@ TEST(NarrowBesideBuilding, OnlyTheEdgesAtTheTouchedJunctionNarrow) {
     EXPECT_LT(narrowed.graph.edges[0].width, 8);
     EXPECT_LT(narrowed.graph.edges[1].width, 8);
     EXPECT_GT(narrowed.graph.edges[0].width, 5.7);  // two steps of 15%: 5.78 m
-    EXPECT_EQ(report.note_count(kRoadEdges, kNarrowedBesideBuilding), 2);
+    EXPECT_EQ(report.note_count(ReportKind::RoadEdges, ReportReason::NarrowedBesideBuilding), 2);
     // ... every other edge keeps its width, and the far cross its joint.
     for (size_t e = 2; e < graph.edges.size(); ++e) EXPECT_EQ(narrowed.graph.edges[e].width, 8) << e;
     const RoadLayout untouched = lay_out(graph);

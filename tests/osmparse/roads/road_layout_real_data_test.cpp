@@ -44,8 +44,8 @@ void check_extract(const std::string& relative, JoinLimits limits) {
     EXPECT_LE(c.quad_joint_overlaps, limits.overlaps) << "quads overlapping their joint";
     EXPECT_LE(c.sidewalks_on_road, limits.sidewalks_on_road) << "sidewalk pieces on a road";
     // osmparse counts the same cases in its report.
-    EXPECT_EQ(report.note_count("road joints", "a quad end leaves a hole over 1 cm"), c.quad_joint_gaps);
-    EXPECT_EQ(report.note_count("road joints", "a quad overlaps its joint by over 0.01 m2"), c.quad_joint_overlaps);
+    EXPECT_EQ(report.note_count(ReportKind::RoadJoints, ReportReason::HoleBeyondQuadEnd), c.quad_joint_gaps);
+    EXPECT_EQ(report.note_count(ReportKind::RoadJoints, ReportReason::QuadOverlapsJoint), c.quad_joint_overlaps);
 }
 
 }  // namespace

@@ -120,7 +120,7 @@ TEST(Roofs, ShapesThatNeedAConvexFootprintFallBackToHipped) {
         if (!b.holes.empty() && !b.roof_faces.empty()) hipped_courtyards += b.roof_shape == RoofShape::Hipped;
     EXPECT_EQ(hipped_courtyards, 10);  // every shape but flat, on the courtyard
     // Gabled on the L and the U: the skeleton's end triangles folded into gable walls.
-    EXPECT_EQ(report.note_count("roofs", "gabled on a bent or holed footprint: built hipped"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::Roofs, ReportReason::RoofGabledBuiltHipped), 1);
     int folded = 0;
     for (const Building& b : scene.buildings) {
         if (b.roof_shape != RoofShape::Gabled || b.outer.size() <= 4) continue;
@@ -135,9 +135,9 @@ TEST(Roofs, ShapesThatNeedAConvexFootprintFallBackToHipped) {
 TEST(Roofs, BadTagsFallBackAndAreCounted) {
     ParseReport report;
     const Scene& scene = roofs_scene(&report);
-    EXPECT_EQ(report.note_count("roofs", "roof:height above the building: clamped"), 1);
-    EXPECT_EQ(report.note_count("roofs", "bad roof:angle ignored"), 1);
-    EXPECT_EQ(report.note_count("roofs", "unknown roof:shape: flat"), 1);
+    EXPECT_EQ(report.note_count(ReportKind::Roofs, ReportReason::RoofHeightClamped), 1);
+    EXPECT_EQ(report.note_count(ReportKind::Roofs, ReportReason::BadRoofAngle), 1);
+    EXPECT_EQ(report.note_count(ReportKind::Roofs, ReportReason::UnknownRoofShape), 1);
     for (const Building& b : scene.buildings) EXPECT_LE(b.roof_height, b.height - b.min_height + 1e-9);
 }
 
@@ -157,12 +157,33 @@ TEST(Roofs, DegenerateFootprintGivesNoRoof) {
     spec.height = 2;
     std::vector<RoofFace> faces;
     RoofShape built;
-    std::string why;
+    ReportReason why{};
     const Ring sliver{{0, 0}, {10, 0}, {10, 0.01}, {0, 0.01}};
     EXPECT_FALSE(make_roof_faces(sliver, {}, spec, &faces, &built, &why));
-    EXPECT_FALSE(why.empty());
+    EXPECT_EQ(why, ReportReason::RoofDegenerateFootprint) << text_of(why);
     const Ring line{{0, 0}, {10, 0}, {20, 0}};
+    why = ReportReason{};
     EXPECT_FALSE(make_roof_faces(line, {}, spec, &faces, &built, &why));
+    EXPECT_EQ(why, ReportReason::RoofDegenerateFootprint) << text_of(why);
+}
+
+// The notes that name a shape say its roof:shape value (to_string), as the report always printed.
+TEST(Roofs, ShapeNotesNameTheirShape) {
+    for (int i = 0; i < kRoofShapeCount; ++i) {
+        const RoofShape shape = static_cast<RoofShape>(i);
+        const std::string name = to_string(shape);
+        const RoofShapeNotes& notes = roof_shape_notes(shape);
+        EXPECT_EQ(text_of(notes.tagged), name + " (tagged)");
+        EXPECT_EQ(text_of(notes.by_default), name + " (default)");
+        ASSERT_EQ(notes.failed_checks.has_value(), shape != RoofShape::Flat) << name;
+        if (notes.failed_checks) {
+            EXPECT_EQ(text_of(*notes.failed_checks), "faces failed the checks (" + name + "): flat");
+        }
+        ASSERT_EQ(notes.built_hipped.has_value(), shape != RoofShape::Flat && shape != RoofShape::Hipped) << name;
+        if (notes.built_hipped) {
+            EXPECT_EQ(text_of(*notes.built_hipped), name + " on a bent or holed footprint: built hipped");
+        }
+    }
 }
 
 TEST(Roofs, SkillionFacesItsDirection) {
@@ -174,7 +195,7 @@ TEST(Roofs, SkillionFacesItsDirection) {
     spec.direction = {0, -1};  // faces south: the north side is high
     std::vector<RoofFace> faces;
     RoofShape built;
-    std::string why;
+    ReportReason why{};
     ASSERT_TRUE(make_roof_faces({{0, 0}, {10, 0}, {10, 6}, {0, 6}}, {}, spec, &faces, &built, &why));
     ASSERT_EQ(faces.size(), 1u);
     for (Vec3 p : faces[0].points) EXPECT_NEAR(p.z, p.y > 3 ? 5.0 : 3.0, 1e-9);
@@ -301,8 +322,8 @@ TEST(Roofs, RidgeRoofsOnANotchedNearRectangle) {
         spec.height = 3;
         std::vector<RoofFace> faces;
         RoofShape built;
-        std::string why;
-        ASSERT_TRUE(make_roof_faces(ring, {}, spec, &faces, &built, &why)) << why;
+        ReportReason why{};
+        ASSERT_TRUE(make_roof_faces(ring, {}, spec, &faces, &built, &why)) << text_of(why);
         EXPECT_EQ(built, shape) << to_string(shape);
         double sum = 0;
         for (const RoofFace& f : faces) {

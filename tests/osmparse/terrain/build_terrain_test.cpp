@@ -78,8 +78,8 @@ TEST(BuildTerrainMonaco, HeightsArePlausibleAndTheSeaIsAtSeaLevel) {
     EXPECT_NEAR(height_at(s, 43.7394, 7.4277), 45, 35);  // the Casino, about 45 m
     EXPECT_NEAR(height_at(s, 43.7290, 7.4380), 0, 3);    // the sea off Monte Carlo
     EXPECT_NEAR(height_at(s, 43.7300, 7.4500), 0, 3);
-    EXPECT_EQ(report.kept_count("dem files"), 1);
-    EXPECT_EQ(report.kept_count("terrain nodes"), static_cast<int64_t>(t.heights.size()));
+    EXPECT_EQ(report.kept_count(ReportKind::DemFiles), 1);
+    EXPECT_EQ(report.kept_count(ReportKind::TerrainNodes), static_cast<int64_t>(t.heights.size()));
 }
 
 // The file written part by part holds the field and is the bytes of the whole scene encoded.

@@ -188,8 +188,11 @@ TEST(ReadDem, FeetAreConvertedAndNamed) {
     write_geotiff(dir.file("feet.tif"), feet);
     const DemRead dem = read({dir.file("feet.tif")});
     EXPECT_LT(largest_plane_error(dem.grid), 0.01);
-    ASSERT_EQ(dem.notes.size(), 1u);
-    EXPECT_NE(dem.notes[0].find("heights in feet, converted to metres"), std::string::npos) << dem.notes[0];
+    EXPECT_EQ(dem.files_in_feet, 1u);
+    feet.unit = "furlong";
+    write_geotiff(dir.file("furlongs.tif"), feet);
+    EXPECT_NE(one_line_error([&] { read({dir.file("furlongs.tif")}); }).find("a unit other than metres or feet ('furlong')"),
+              std::string::npos);
 }
 
 TEST(ReadDem, TheVerticalDatumOfACompoundCrsIsNamed) {
@@ -197,7 +200,9 @@ TEST(ReadDem, TheVerticalDatumOfACompoundCrsIsNamed) {
     const Vec2 o = origin_in_utm();
     Raster r{"EPSG:32632+5773", o.x - 1200, o.y + 1200, 10, 240, 240, [](double, double) { return 250.0; }};
     write_geotiff(dir.file("egm96.tif"), r);
-    EXPECT_EQ(read({dir.file("egm96.tif")}).vertical_datum, "EGM96 height");
+    const DemRead dem = read({dir.file("egm96.tif")});
+    EXPECT_EQ(dem.vertical_datum, "EGM96 height");
+    EXPECT_EQ(dem.files_naming_datum, 1u);
 }
 
 // The first DEM given wins where both have a height; the second fills the first's voids.
@@ -280,10 +285,11 @@ TEST(BuildTerrain, PartialOverlapAndVoidsAreFilledAndCounted) {
     params.dem_files = {dir.file("west.tif")};
     ParseReport report;
     const HeightField f = build_terrain(header, kScene, {}, params, report);
-    EXPECT_GT(report.note_count("terrain nodes", "void, filled from its neighbours"), 20);
-    EXPECT_GT(report.note_count("terrain nodes", "void at the coast, set to sea level"), 20);
-    EXPECT_GT(report.note_count("terrain nodes", "outside every DEM, nearest edge height"), 40 * 90);
-    EXPECT_EQ(report.kept_count("dem files"), 1);
+    EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainVoidFilled), 20);
+    EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainVoidAtCoast), 20);
+    EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainOutsideEveryDem), 40 * 90);
+    EXPECT_EQ(report.kept_count(ReportKind::DemFiles), 1);
+    EXPECT_EQ(report.note_count(ReportKind::DemFiles, ReportReason::DemVerticalDatumAssumed), 1);
     EXPECT_EQ(f.reference_altitude, 0);  // the sea is in the scene
     EXPECT_NEAR(f.at(-300, 200), plane(-300, 200), 0.5);
     EXPECT_NEAR(f.at(-300, -300), 0, 1e-6);
