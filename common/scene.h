@@ -12,7 +12,7 @@
 namespace citygen {
 
 constexpr uint16_t kSceneFormatMajor = 1;
-constexpr uint16_t kSceneFormatMinor = 1;
+constexpr uint16_t kSceneFormatMinor = 2;
 
 enum class OsmType : uint8_t { Node = 0, Way = 1, Relation = 2 };
 
@@ -213,6 +213,24 @@ struct Crossing {
     RoadSide side = RoadSide::Both;
 };
 
+// Format 1.2: the ground's heights, from a DEM (osmparse --dem); empty without one. A regular
+// grid of nodes over the scene's bounds: node (i, j) at origin + (i * cell, j * cell), heights
+// row-major (i fastest, rows south to north) in metres above reference_altitude, which is in
+// metres above vertical_datum (e.g. "EGM96 geoid", SRTM's). docs/terrain.md.
+struct HeightField {
+    Vec2 origin;
+    double cell = 0;
+    uint32_t nx = 0, ny = 0;
+    std::vector<float> heights;
+    double reference_altitude = 0;
+    std::string vertical_datum;
+
+    bool empty() const { return heights.empty(); }
+    // The height at (x, y) above reference_altitude: bilinear between the 4 nodes around it,
+    // clamped to the grid's edge outside it; 0 for an empty field.
+    double at(double x, double y) const;
+};
+
 struct SceneHeader {
     uint16_t format_major = kSceneFormatMajor;
     uint16_t format_minor = kSceneFormatMinor;
@@ -238,6 +256,7 @@ struct Scene {
     std::vector<PathEdge> paths;        // format 1.1
     std::vector<Joint> path_joints;     // format 1.1; edges index into paths
     std::vector<Crossing> crossings;    // format 1.1
+    HeightField terrain;                // format 1.2
 };
 
 }  // namespace citygen

@@ -137,6 +137,23 @@ void print_map_details_info(const Scene& s, std::FILE* out) {
     std::fprintf(out, "roads_with_markings: %zu\n", marked);
 }
 
+// Format 1.2: the height field's extent, resolution, nodes and height range, when present.
+void print_terrain_info(const Scene& s, std::FILE* out) {
+    const HeightField& t = s.terrain;
+    if (t.empty()) {
+        std::fprintf(out, "terrain: none (flat)\n");
+        return;
+    }
+    const Vec2 far = t.origin + Vec2((t.nx - 1) * t.cell, (t.ny - 1) * t.cell);
+    std::fprintf(out, "terrain: [%.1f, %.1f] - [%.1f, %.1f] m (%.0f x %.0f m), cell %g m, %u x %u nodes (%zu)\n",
+                 t.origin.x, t.origin.y, far.x, far.y, far.x - t.origin.x, far.y - t.origin.y, t.cell, t.nx, t.ny,
+                 t.heights.size());
+    const auto [lowest, highest] = std::minmax_element(t.heights.begin(), t.heights.end());
+    std::fprintf(out, "terrain_heights: %.1f - %.1f m above %s (z = altitude - %.1f m)\n",
+                 t.reference_altitude + *lowest, t.reference_altitude + *highest, t.vertical_datum.c_str(),
+                 t.reference_altitude);
+}
+
 }  // namespace
 
 void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
@@ -147,6 +164,7 @@ void print_scene_info(const Scene& s, const std::string& name, std::FILE* out) {
     print_map_details_info(s, out);
     std::fprintf(out, "ground: [%.1f, %.1f] - [%.1f, %.1f] m at z=%.2f\n", s.ground.min.x,
                  s.ground.min.y, s.ground.max.x, s.ground.max.y, s.ground.z);
+    print_terrain_info(s, out);
     std::fprintf(out, "options:\n");
     for (const auto& [k, v] : s.header.options) std::fprintf(out, "  %s = %s\n", k.c_str(), v.c_str());
 }

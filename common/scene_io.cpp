@@ -242,6 +242,7 @@ size_t encoded_size_bound(const Scene& scene) {
     for (const Joint& x : scene.joints) n += 4 + kTable + 2 * kVector + kPoint2 * x.polygon.size() + 4 * x.edges.size();
     for (const Sidewalk& x : scene.sidewalks) n += 4 + kTable + kVector + kPoint2 * x.polygon.size();
     n += (4 + kTable) * scene.lamps.size() + 64 * scene.trees.size() + (4 + kTable) * scene.crossings.size();
+    n += kTable + kVector + 4 * scene.terrain.heights.size() + scene.terrain.vertical_datum.size();
     for (const LandCover& x : scene.land_cover) {
         n += 4 + kTable + kVector + ring_bytes(x.outer);
         for (const Ring& r : x.holes) n += 4 + ring_bytes(r);
@@ -392,6 +393,14 @@ std::vector<flatbuffers::Offset<fb::Crossing>> encode_crossings(Builder& b, cons
     return crossings;
 }
 
+// Absent (a null offset) for an empty field: a scene without a DEM keeps format 1.1's bytes.
+flatbuffers::Offset<fb::HeightField> encode_terrain(Builder& b, const HeightField& t) {
+    if (t.empty()) return 0;
+    const auto datum = b.CreateString(t.vertical_datum);
+    const auto heights = b.CreateVector(t.heights);
+    return fb::CreateHeightField(b, t.origin.x, t.origin.y, t.cell, t.nx, t.ny, heights, t.reference_altitude, datum);
+}
+
 std::vector<fb::Tree> encode_trees(const std::vector<Tree>& items) {
     std::vector<fb::Tree> trees;
     trees.reserve(items.size());
@@ -465,6 +474,9 @@ void SceneEncoder::finish_parts(S& scene, const std::function<void()>* release) 
     const auto crossings = encode_crossings(b, scene.crossings);
     release_part(scene.crossings, release);
 
+    const auto terrain = encode_terrain(b, scene.terrain);
+    release_part(scene.terrain.heights, release);
+
     const auto crossing_vector = b.CreateVector(crossings);
     const auto path_joint_vector = b.CreateVector(path_joints);
     const auto path_vector = b.CreateVector(paths);
@@ -477,7 +489,7 @@ void SceneEncoder::finish_parts(S& scene, const std::function<void()>* release) 
     const auto building_vector = b.CreateVector(state_->buildings);
     auto root = fb::CreateScene(b, state_->header, building_vector, road_vector, joint_vector, sidewalk_vector, lamp_vector,
                                 ground, land_cover_vector, tree_vector, path_vector, path_joint_vector,
-                                crossing_vector);
+                                crossing_vector, terrain);
     fb::FinishSceneBuffer(b, root);
 }
 
@@ -732,6 +744,35 @@ void decode_crossings(const fb::Scene* in, Checker& check, Scene& s) {
         }
 }
 
+// The height field: a grid within the limits, one finite height per node, every altitude
+// (reference + height) within kMinAltitude..kMaxAltitude.
+void decode_terrain(const fb::Scene* in, Checker& check, Scene& s) {
+    const fb::HeightField* t = in->terrain();
+    if (!t) return;
+    HeightField& f = s.terrain;
+    f.origin = {t->origin_x(), t->origin_y()};
+    f.cell = t->cell();
+    f.nx = t->nx();
+    f.ny = t->ny();
+    if (!height_field_within_limit(f.origin, f.cell, f.nx, f.ny))
+        check.fail("terrain grid of " + std::to_string(f.nx) + " x " + std::to_string(f.ny) + " nodes, cell " +
+                   std::to_string(f.cell) + " m, is beyond the limits (2 x 2 to " +
+                   std::to_string(kMaxHeightFieldNodes) + " nodes within the coordinate limit)");
+    const size_t count = t->heights() ? t->heights()->size() : 0;
+    if (count != static_cast<uint64_t>(f.nx) * f.ny)
+        check.fail("terrain has " + std::to_string(count) + " heights for " + std::to_string(f.nx) + " x " +
+                   std::to_string(f.ny) + " nodes");
+    f.reference_altitude = t->reference_altitude();
+    if (!altitude_within_limit(f.reference_altitude)) check.fail("terrain reference altitude beyond -500..9000 m");
+    f.heights.reserve(count);
+    for (float h : *t->heights()) {
+        if (!altitude_within_limit(f.reference_altitude + h))
+            check.fail("terrain height " + std::to_string(f.reference_altitude + h) + " m beyond -500..9000 m");
+        f.heights.push_back(h);
+    }
+    f.vertical_datum = str(t->vertical_datum());
+}
+
 }  // namespace
 
 Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
@@ -762,6 +803,7 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
     decode_trees(in, check, s);
     decode_paths(in, check, s);
     decode_crossings(in, check, s);
+    decode_terrain(in, check, s);
     return s;
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "common/geometry.h"
@@ -28,6 +29,12 @@ constexpr size_t kMaxRingPoints = 10000;
 constexpr size_t kMaxLandCoverPoints = 100000;
 constexpr double kMaxLandCoverExtent = 2 * kMaxCoordinate;
 
+// The terrain's height field (format 1.2). Ground altitudes, metres above sea level: the Dead
+// Sea's shore is at -430 m, Everest 8,849 m; a DEM's value beyond them is a void (no data).
+constexpr double kMinAltitude = -500, kMaxAltitude = 9000;
+// Nodes in one height field: 268 MB of heights, 8 x 8 km at 1 m, a whole region at 30 m.
+constexpr uint64_t kMaxHeightFieldNodes = uint64_t(1) << 26;
+
 // The checks themselves, on a value as the scene stores it (float32): decode_scene refuses
 // what fails them, and osmparse drops or clips it before writing with these same functions.
 // A coordinate within `limit` of the origin (and finite).
@@ -43,6 +50,16 @@ inline bool extent_within_limit(const std::vector<Vec2>& points, double max_exte
     Box2 box;
     for (Vec2 p : points) box.extend({static_cast<float>(p.x), static_cast<float>(p.y)});
     return box.empty() || std::max(box.max.x - box.min.x, box.max.y - box.min.y) <= max_extent;
+}
+
+// An altitude within kMinAltitude..kMaxAltitude (NaN is not).
+inline bool altitude_within_limit(double altitude) { return altitude >= kMinAltitude && altitude <= kMaxAltitude; }
+// A height field's grid: at least 2 x 2 nodes and at most kMaxHeightFieldNodes, a positive
+// cell, and its corners within the coordinate limit.
+inline bool height_field_within_limit(Vec2 origin, double cell, uint64_t nx, uint64_t ny) {
+    if (nx < 2 || ny < 2 || nx > kMaxHeightFieldNodes / ny || !(cell > 0) || !std::isfinite(cell)) return false;
+    const Vec2 far_corner = origin + Vec2((nx - 1) * cell, (ny - 1) * cell);
+    return point_within_limit(origin) && point_within_limit(far_corner);
 }
 
 }  // namespace citygen

@@ -1,4 +1,5 @@
 // osmparse: OpenStreetMap data in, citygen scene out. Also --info and --diff on scenes.
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -16,6 +17,7 @@
 #include "osmparse/output/diff_scenes.h"
 #include "osmparse/output/write_geojson.h"
 #include "osmparse/pipeline.h"
+#include "osmparse/terrain/read_dem.h"
 
 using namespace citygen;
 
@@ -52,6 +54,7 @@ struct Options {
     std::vector<std::string> diff_files;
     double tolerance = 0.01;
     std::string ignore_types, road_classes, trees = "all";
+    CLI::Option* dem_resolution = nullptr;  // given or not: 0 is an error, not the default
 };
 
 void add_file_options(CLI::App& app, ParseJob& job, Options& o) {
@@ -96,6 +99,12 @@ void add_road_and_map_options(CLI::App& app, ParseParams& p, Options& o) {
         ->check(CLI::IsMember({"none", "mapped", "all"}))->capture_default_str();
     app.add_option("--forest-tree-spacing", p.trees.forest_spacing, "least distance between trees scattered in forests (m)")
         ->check(CLI::Range(1.0, 1000.0))->capture_default_str();
+    app.add_option("--dem", p.terrain.dem_files,
+                   "elevation raster for the terrain (SRTM .hgt or .hgt.zip, GeoTIFF, VRT; any CRS); repeat for "
+                   "several, the first given wins where they overlap")
+        ->allow_extra_args(false)->take_all();
+    o.dem_resolution = app.add_option("--dem-resolution", p.terrain.resolution,
+                                      "metres between the terrain's nodes (default: the finest DEM's own, at least 1)");
 }
 
 void add_run_options(CLI::App& app, ParseJob& job) {
@@ -128,6 +137,12 @@ int run_parse(ParseJob& job, const Options& o) {
         throw Error("--building-min-h is larger than --building-max-h");
     if (!o.ignore_types.empty()) p.buildings.ignore_types = split_list(o.ignore_types);
     if (!o.road_classes.empty()) p.roads.classes = split_list(o.road_classes);
+    if (o.dem_resolution->count() > 0) {
+        if (p.terrain.dem_files.empty()) throw Error("--dem-resolution needs --dem");
+        if (!(p.terrain.resolution > 0) || !std::isfinite(p.terrain.resolution))
+            throw Error("--dem-resolution must be a positive number of metres");
+    }
+    check_dem_files(p.terrain.dem_files);  // before the parse: a bad file fails at once
     p.buildings.seed = p.seed;
     p.trees.mode = o.trees == "none" ? TreeMode::None : o.trees == "mapped" ? TreeMode::Mapped : TreeMode::All;
 

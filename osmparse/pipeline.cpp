@@ -34,6 +34,7 @@
 #include "osmparse/roads/narrow_roads.h"
 #include "osmparse/roofs/build_roofs.h"
 #include "osmparse/run_stages.h"
+#include "osmparse/terrain/build_terrain.h"
 
 namespace citygen {
 
@@ -217,7 +218,7 @@ struct ParseState {
     //                                       "osm building areas": osm.building_areas
     //                                       "osm ways": osm.highways and osm.railways
     std::optional<Projection> projection;  // "projection"
-    Scene scene;  // "header", "buildings", "roads", "joints", "sidewalks", "paths", "lamps", ...
+    Scene scene;  // "header", "buildings", "roads", "joints", "sidewalks", "paths", "lamps", ..., "terrain"
     std::optional<BuildingTagIndex> building_tags;  // "building tags": what roofs and colours read
     RoofEvidence roof_evidence;  // "roof evidence": the map's tagged roofs, which untagged ones follow
     size_t map_buildings = 0;  // the map's buildings come first; the empty blocks' after them
@@ -400,6 +401,10 @@ std::vector<Stage> parse_stages(ParseState& s) {
         {"bounds", {"buildings", "roads", "joints", "sidewalks", "lamps", "land cover", "trees", "paths", "crossings"},
          {"header", "ground"},
          [&](ParseReport&) { set_bounds_and_ground(scene, s.encoded_box); }},
+        // --dem: over the bounds (so after them), with the sea, where a void is at the coast.
+        {"terrain", {"header", "projection", "land cover"}, {"terrain"},
+         [&](ParseReport& r) { scene.terrain = build_terrain(scene.header, *s.projection, scene.land_cover, p.terrain, r); },
+         !p.terrain.dem_files.empty()},
     };
 }
 

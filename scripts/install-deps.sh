@@ -18,6 +18,8 @@ RUNTIME=(
   libosmium2-dev libprotozero-dev libexpat1-dev zlib1g-dev libbz2-dev
   # Projecting coordinates (osmparse) and exact footprint geometry and roof skeletons (CGAL).
   libgeographiclib-dev libcgal-dev
+  # Elevation rasters for osmparse --dem (SRTM .hgt, GeoTIFF, VRT; reprojection).
+  libgdal-dev
   # The scene format: the FlatBuffers library and flatc, which generates its code at build time.
   libflatbuffers-dev flatbuffers-compiler
   # Both programs' command lines.

@@ -42,6 +42,12 @@ std::vector<std::pair<std::string, std::string>> ParseParams::to_key_values() co
         {"tree-row-spacing", number(trees.row_spacing)},
     };
     if (blocks.enabled) kv.push_back({"fill-empty-blocks", "true"});  // only when on: older headers unchanged
+    if (!terrain.dem_files.empty()) {  // the same: only with a DEM
+        std::vector<std::string> names;  // base names only, as the header's source
+        for (const std::string& path : terrain.dem_files) names.push_back(path.substr(path.find_last_of('/') + 1));
+        kv.push_back({"dem", joined(names)});
+        kv.push_back({"dem-resolution", terrain.resolution > 0 ? number(terrain.resolution) : "native"});
+    }
     std::sort(kv.begin(), kv.end());
     return kv;
 }

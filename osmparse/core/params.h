@@ -66,6 +66,12 @@ struct TreeParams {
     size_t max_scattered = 200000;   // a cap on forest trees, so a national park cannot fill memory
 };
 
+// Terrain (osmparse/terrain/build_terrain.h): without DEM files the scene stays flat.
+struct TerrainParams {
+    std::vector<std::string> dem_files;  // --dem, in the order given: where DEMs overlap, the first wins
+    double resolution = 0;               // --dem-resolution: metres between nodes; 0: the finest DEM's own
+};
+
 struct ParseParams {
     BuildingParams buildings;
     RoadParams roads;
@@ -73,6 +79,7 @@ struct ParseParams {
     LampParams lamps;
     BlockParams blocks;
     TreeParams trees;
+    TerrainParams terrain;
     uint64_t seed = 1;
 
     // Every parameter as text, sorted by key, for the scene header and --info.

@@ -77,6 +77,8 @@ constexpr Text<ReportKind> kKindTexts[] = {
     {K::TreeRowTrees, "tree row trees"},
     {K::ForestTrees, "forest trees"},
     {K::GeneratedBuildings, "generated buildings"},
+    {K::DemFiles, "dem files"},
+    {K::TerrainNodes, "terrain nodes"},
 };
 static_assert(in_declaration_order(kKindTexts), "one text per ReportKind, in declaration order");
 
@@ -237,6 +239,15 @@ constexpr Text<ReportReason> kReasonTexts[] = {
     {R::LotWithoutAccess, "lot without street access"},
     {R::LotTooSmall, "lot too small"},
     {R::LotOverlaps, "would overlap a road, sidewalk or building"},
+    {R::DemOutsideExtract, "outside the extract, not used"},
+    {R::DemHeightsInFeet, "heights in feet, converted to metres"},
+    {R::DemVerticalDatumAssumed, "names no vertical datum: EGM96 geoid assumed"},
+    {R::DemVerticalDatumNamed, "names its vertical datum (--info shows it)"},
+    {R::DemHeightsAboveEllipsoid, "heights above the ellipsoid, not sea level"},
+    {R::TerrainVoidFilled, "void, filled from its neighbours"},
+    {R::TerrainVoidAtCoast, "void at the coast, set to sea level"},
+    {R::TerrainOutsideEveryDem, "outside every DEM, nearest edge height"},
+    {R::TerrainHeightBeyondLimits, "height beyond -500..9000 m, a void"},
 };
 static_assert(in_declaration_order(kReasonTexts), "one text per ReportReason, in declaration order");
 

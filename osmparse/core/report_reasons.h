@@ -73,6 +73,9 @@ enum class ReportKind {
     TreeRowTrees,
     ForestTrees,
     GeneratedBuildings,
+    // terrain (--dem)
+    DemFiles,
+    TerrainNodes,
     Count  // not a row: the number of rows
 };
 
@@ -254,6 +257,16 @@ enum class ReportReason {
     LotWithoutAccess,
     LotTooSmall,
     LotOverlaps,
+    // build_terrain: the DEMs (read_dem), then the nodes (fill_dem_voids)
+    DemOutsideExtract,
+    DemHeightsInFeet,
+    DemVerticalDatumAssumed,
+    DemVerticalDatumNamed,
+    DemHeightsAboveEllipsoid,
+    TerrainVoidFilled,
+    TerrainVoidAtCoast,
+    TerrainOutsideEveryDem,
+    TerrainHeightBeyondLimits,
     Count  // not a reason: the number of reasons
 };
 

@@ -173,6 +173,23 @@ std::string tree_change(const Tree& x, const Tree& y, double tol) {
     return "";
 }
 
+// The height fields: the same grid, and every node's altitude within the tolerance.
+void diff_terrain(const HeightField& x, const HeightField& y, double tol, std::vector<SceneChange>& out) {
+    if (x.empty() != y.empty()) {
+        out.push_back({x.empty() ? "added" : "removed", "terrain", ""});
+        return;
+    }
+    if (x.empty()) return;
+    if (x.nx != y.nx || x.ny != y.ny || x.cell != y.cell || length(x.origin - y.origin) > tol) {
+        out.push_back({"changed", "terrain", "another grid"});
+        return;
+    }
+    double d = 0;
+    for (size_t k = 0; k < x.heights.size(); ++k)
+        d = std::max(d, std::fabs((x.reference_altitude + x.heights[k]) - (y.reference_altitude + y.heights[k])));
+    if (d > tol) out.push_back({"changed", "terrain", "heights differ by up to " + metres(d)});
+}
+
 }  // namespace
 
 std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol) {
@@ -196,6 +213,7 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
     diff("crossing", a.crossings, b.crossings, crossing_key, crossing_change);
     diff("land_cover", a.land_cover, b.land_cover, cover_key, land_cover_change);
     diff("tree", a.trees, b.trees, tree_key, tree_change);
+    diff_terrain(a.terrain, b.terrain, tol, out);
     return out;
 }
 

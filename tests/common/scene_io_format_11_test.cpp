@@ -50,7 +50,7 @@ TEST(SceneFormat11, NewTablesRoundTrip) {
     const Scene s = sample();
     const std::vector<uint8_t> bytes = encode_scene(s);
     const Scene back = decode_scene(bytes.data(), bytes.size(), "sample");
-    EXPECT_EQ(back.header.format_minor, 1);
+    EXPECT_EQ(back.header.format_minor, kSceneFormatMinor);
     ASSERT_EQ(back.roads.size(), 1u);
     EXPECT_EQ(back.roads[0].lanes_forward, 2);
     EXPECT_EQ(back.roads[0].centre_line, CentreLine::Solid);

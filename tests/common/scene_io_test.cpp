@@ -159,6 +159,10 @@ TEST(SceneIo, EncoderPartByPartGivesEncodeScenesBytes) {
     s.buildings.push_back(s.buildings.front());
     s.buildings.back().osm.id = 43;
     s.buildings.back().roof_faces = {{{{0, 0, 12}, {10, 0, 12}, {5, 5, 15}}, RoofFaceKind::Roof}};
+    s.terrain.origin = {-10, -10};
+    s.terrain.cell = 10;
+    s.terrain.nx = s.terrain.ny = 3;
+    s.terrain.heights = {0, 1, 2, 3, 4, 5, 6, 7, 8};
     const std::vector<uint8_t> whole = encode_scene(s);
 
     SceneHeader early = s.header;
@@ -169,12 +173,14 @@ TEST(SceneIo, EncoderPartByPartGivesEncodeScenesBytes) {
     int released = 0;
     encoder.finish_releasing(rest, [&] { ++released; });
     EXPECT_EQ(std::vector<uint8_t>(encoder.data(), encoder.data() + encoder.size()), whole);
-    EXPECT_EQ(released, 9) << "one call per part after the buildings";
-    EXPECT_TRUE(rest.roads.empty() && rest.joints.empty() && rest.lamps.empty()) << "encoded parts are freed";
+    EXPECT_EQ(released, 10) << "one call per part after the buildings";
+    EXPECT_TRUE(rest.roads.empty() && rest.joints.empty() && rest.lamps.empty() && rest.terrain.heights.empty())
+        << "encoded parts are freed";
 
     const Scene t = decode_scene(encoder.data(), encoder.size(), "mem");
     EXPECT_FLOAT_EQ(t.header.bounds_min.y, -7);
     EXPECT_FLOAT_EQ(t.header.bounds_max.x, 12);
     ASSERT_EQ(t.buildings.size(), 2u);
     EXPECT_EQ(t.buildings[1].roof_faces.size(), 1u);
+    EXPECT_EQ(t.terrain.heights, s.terrain.heights);
 }

@@ -21,7 +21,7 @@ TEST(MapContentCli, InfoGeojsonAndGeometryInfoListEveryNewKind) {
 
     const CommandResult info = run_command(osmparse_binary() + " --info " + quoted(scene));
     EXPECT_EQ(info.exit_code, 0);
-    for (const char* line : {"format_version: 1.1", "land_cover: 2", "land_cover_forest: 1", "land_cover_water: 1",
+    for (const char* line : {"format_version: 1.2", "land_cover: 2", "land_cover_forest: 1", "land_cover_water: 1",
                              "trees: ", "paths: ", "crossings: "})
         EXPECT_NE(info.out.find(line), std::string::npos) << line << "\n" << info.out;
     const CommandResult lanes_info = run_command(osmparse_binary() + " --info " + quoted(lanes));
