@@ -225,7 +225,7 @@ void decode_building_look(const fb::Building* x, const Checker& check, Building&
 
 // A generous upper bound of the encoded size (points, a table per object, vectors, strings).
 // The builder reserves this once: it grows by half its size at a time, and each growth copies
-// the buffer while the old one is still held (Kaiserslautern: ~23 MB held for a 9.5 MB scene).
+// the buffer while the old one is still held (over twice the scene's size at the copy).
 // An unused tail costs nothing resident (the builder writes from the end down and never
 // touches it). A wrong bound costs only memory: the builder still grows when it must.
 size_t encoded_size_bound(const Scene& scene) {

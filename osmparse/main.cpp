@@ -165,9 +165,9 @@ int run_parse(ParseJob& job, const Options& o) {
 int main(int argc, char** argv) {
 #ifdef __GLIBC__
     // glibc gives threads that allocate at the same time arenas of their own, and what one arena
-    // frees the others do not reuse: with stages side by side, Kaiserslautern's peak memory went
-    // from ~85 MB to 110-123 MB (tests/bench/parse_bench.sh). One arena keeps it at ~85 MB, at
-    // the same CPU time on 2 cores (the stages allocate little compared to what they compute).
+    // frees the others do not reuse, which raises the peak by a third with stages side by side
+    // (docs/bench/2026-11-parse.md). One arena costs no CPU time here: the stages allocate little
+    // compared to what they compute.
     mallopt(M_ARENA_MAX, 1);
 #endif
     CLI::App app{"osmparse: turn OpenStreetMap data into a citygen scene"};

@@ -295,7 +295,7 @@ void lay_out_land_cover(ParseState& s, ParseReport& report) {
 }
 
 // Roofs and colours change only the heights, roofs and colours of the buildings, and no other
-// stage reads those: they run last, so the roof faces (Kaiserslautern: 7 MB) are not held while
+// stage reads those: they run last, so the roof faces (megabytes on a city) are not held while
 // another stage's working set is. For the file, the buildings are then finished and encoded a
 // slice at a time, each slice freed before the next is built: the roof faces and footprints are
 // never held all at once, and the encoded scene grows as they are freed. Each building's roof and
@@ -440,7 +440,7 @@ Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     run_pipeline(state, report);
     // The OSM data and the stages' working sets are freed now, in small pieces all over the heap
     // (one arena, see main.cpp): hand their pages back before the scene is encoded, so encoding
-    // adds to what the scene holds, not to the stages' peak (Kaiserslautern: 92 MB -> 72 MB).
+    // adds to what the scene holds, not to the stages' peak (docs/bench/2026-11-parse.md).
     trim_heap();
     return std::move(state.scene);
 }
