@@ -11,29 +11,46 @@
 
 namespace citygen {
 
-std::vector<std::array<Vec3, 4>> terrain_skirt(const Scene& scene) {
-    const HeightField& f = scene.terrain;
-    const Box2 e = terrain_extent(scene);
+size_t terrain_skirt_count(const HeightField& field) { return 2 * (field.nx - 1) + 2 * (field.ny - 1) + 4; }
+
+// South edges, north edges, west edges, east edges, then the corners SW, SE, NE, NW.
+std::array<Vec3, 4> terrain_skirt_quad(const HeightField& f, const Box2& e, size_t k) {
     const uint32_t ni = f.nx - 1, nj = f.ny - 1;
-    std::vector<std::array<Vec3, 4>> quads;
     auto out = [](Vec3 p, double x, double y) { return Vec3{x, y, p.z}; };
-    for (uint32_t i = 0; i < ni; ++i) {
-        const Vec3 s0 = field_node(f, i, 0), s1 = field_node(f, i + 1, 0);
-        quads.push_back({out(s0, s0.x, e.min.y), out(s1, s1.x, e.min.y), s1, s0});
+    if (k < 2 * size_t{ni}) {
+        const uint32_t i = static_cast<uint32_t>(k % ni);
+        if (k < ni) {
+            const Vec3 s0 = field_node(f, i, 0), s1 = field_node(f, i + 1, 0);
+            return {out(s0, s0.x, e.min.y), out(s1, s1.x, e.min.y), s1, s0};
+        }
         const Vec3 n0 = field_node(f, i, nj), n1 = field_node(f, i + 1, nj);
-        quads.push_back({n0, n1, out(n1, n1.x, e.max.y), out(n0, n0.x, e.max.y)});
+        return {n0, n1, out(n1, n1.x, e.max.y), out(n0, n0.x, e.max.y)};
     }
-    for (uint32_t j = 0; j < nj; ++j) {
-        const Vec3 w0 = field_node(f, 0, j), w1 = field_node(f, 0, j + 1);
-        quads.push_back({out(w0, e.min.x, w0.y), w0, w1, out(w1, e.min.x, w1.y)});
+    k -= 2 * size_t{ni};
+    if (k < 2 * size_t{nj}) {
+        const uint32_t j = static_cast<uint32_t>(k % nj);
+        if (k < nj) {
+            const Vec3 w0 = field_node(f, 0, j), w1 = field_node(f, 0, j + 1);
+            return {out(w0, e.min.x, w0.y), w0, w1, out(w1, e.min.x, w1.y)};
+        }
         const Vec3 e0 = field_node(f, ni, j), e1 = field_node(f, ni, j + 1);
-        quads.push_back({e0, out(e0, e.max.x, e0.y), out(e1, e.max.x, e1.y), e1});
+        return {e0, out(e0, e.max.x, e0.y), out(e1, e.max.x, e1.y), e1};
     }
+    k -= 2 * size_t{nj};
     const Vec3 sw = field_node(f, 0, 0), se = field_node(f, ni, 0), nw = field_node(f, 0, nj), ne = field_node(f, ni, nj);
-    quads.push_back({out(sw, e.min.x, e.min.y), out(sw, sw.x, e.min.y), sw, out(sw, e.min.x, sw.y)});
-    quads.push_back({out(se, se.x, e.min.y), out(se, e.max.x, e.min.y), out(se, e.max.x, se.y), se});
-    quads.push_back({ne, out(ne, e.max.x, ne.y), out(ne, e.max.x, e.max.y), out(ne, ne.x, e.max.y)});
-    quads.push_back({out(nw, e.min.x, nw.y), nw, out(nw, nw.x, e.max.y), out(nw, e.min.x, e.max.y)});
+    switch (k) {
+        case 0: return {out(sw, e.min.x, e.min.y), out(sw, sw.x, e.min.y), sw, out(sw, e.min.x, sw.y)};
+        case 1: return {out(se, se.x, e.min.y), out(se, e.max.x, e.min.y), out(se, e.max.x, se.y), se};
+        case 2: return {ne, out(ne, e.max.x, ne.y), out(ne, e.max.x, e.max.y), out(ne, ne.x, e.max.y)};
+        default: return {out(nw, e.min.x, nw.y), nw, out(nw, nw.x, e.max.y), out(nw, e.min.x, e.max.y)};
+    }
+}
+
+std::vector<std::array<Vec3, 4>> terrain_skirt(const Scene& scene) {
+    const Box2 extent = terrain_extent(scene);
+    std::vector<std::array<Vec3, 4>> quads;
+    for (size_t k = 0, n = terrain_skirt_count(scene.terrain); k < n; ++k)
+        quads.push_back(terrain_skirt_quad(scene.terrain, extent, k));
     return quads;
 }
 
@@ -80,7 +97,8 @@ bool ray_triangle(Vec3 a, Vec3 b, Vec3 c, Vec3 o, Vec3 d, double tmin, double tm
 
 class ProceduralTerrain : public RenderGeometry {
 public:
-    explicit ProceduralTerrain(const Scene& scene) : field_(scene.terrain), skirt_(terrain_skirt(scene)) {
+    explicit ProceduralTerrain(const Scene& scene)
+        : field_(scene.terrain), extent_(terrain_extent(scene)), skirt_count_(terrain_skirt_count(field_)) {
         blocks_x_ = (field_.nx - 2) / kTerrainBlock + 1;
         blocks_y_ = (field_.ny - 2) / kTerrainBlock + 1;
         block_range_.resize(static_cast<size_t>(blocks_x_) * blocks_y_);
@@ -97,11 +115,10 @@ public:
     }
     ObjectKind kind() const override { return ObjectKind::Terrain; }
     GeometryMode mode() const override { return GeometryMode::Procedural; }
-    uint64_t primitive_count() const override { return block_range_.size() + skirt_.size(); }
+    uint64_t primitive_count() const override { return block_range_.size() + skirt_count_; }
     uint64_t triangle_count() const override { return 0; }
     size_t buffer_bytes() const override {
-        return field_.heights.capacity() * sizeof(float) + block_range_.capacity() * sizeof(BlockRange) +
-               skirt_.capacity() * sizeof(skirt_[0]);
+        return field_.heights.capacity() * sizeof(float) + block_range_.capacity() * sizeof(BlockRange);
     }
     RTCGeometry create_embree_geometry(RTCDevice device) override {
         return new_user_geometry(device, this, primitive_count());
@@ -142,7 +159,8 @@ private:
     bool intersect_block(unsigned prim, Vec3 o, Vec3 d, double tmin, double tmax, UserHit* hit) const;
 
     HeightField field_;
-    std::vector<std::array<Vec3, 4>> skirt_;
+    Box2 extent_;
+    size_t skirt_count_;
     std::vector<BlockRange> block_range_;
     uint32_t blocks_x_ = 0, blocks_y_ = 0;
 };
@@ -156,7 +174,7 @@ void ProceduralTerrain::bounds(unsigned prim, RTCBounds* out) const {
         lo = {a.x, a.y, block_range_[prim].lo};
         hi = {b.x, b.y, block_range_[prim].hi};
     } else {
-        const auto& q = skirt_[prim - block_range_.size()];
+        const auto q = terrain_skirt_quad(field_, extent_, prim - block_range_.size());
         lo = hi = q[0];
         for (const Vec3& p : q) {
             lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
@@ -175,7 +193,7 @@ void ProceduralTerrain::bounds(unsigned prim, RTCBounds* out) const {
 
 bool ProceduralTerrain::intersect(unsigned prim, Vec3 o, Vec3 d, double tmin, double tmax, UserHit* hit) const {
     if (prim < block_range_.size()) return intersect_block(prim, o, d, tmin, tmax, hit);
-    const auto& q = skirt_[prim - block_range_.size()];
+    const auto q = terrain_skirt_quad(field_, extent_, prim - block_range_.size());
     UserHit first, second;
     const bool h1 = ray_triangle(q[0], q[1], q[2], o, d, tmin, tmax, &first);
     const bool h2 = ray_triangle(q[0], q[2], q[3], o, d, tmin, tmax, &second);

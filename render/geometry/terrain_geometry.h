@@ -22,6 +22,10 @@ constexpr uint32_t kTerrainBlock = 16;
 // The skirt's quads, each counter-clockwise seen from above (planar: a border edge moved straight
 // out, or a corner at its node's height).
 std::vector<std::array<Vec3, 4>> terrain_skirt(const Scene& scene);
+// Quad k of terrain_skirt(scene) for `field` reaching out to `extent` (terrain_extent), of
+// terrain_skirt_count(field): what the procedural terrain derives instead of storing them.
+size_t terrain_skirt_count(const HeightField& field);
+std::array<Vec3, 4> terrain_skirt_quad(const HeightField& field, const Box2& extent, size_t k);
 
 // The field's triangles and the skirt, all object 0, material kGround. The scene must have a field.
 TriangleMesh build_stored_field_terrain(const Scene& scene);
