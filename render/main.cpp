@@ -252,9 +252,10 @@ int run(const Options& o) {
     RenderSettings& settings = job.settings;
     PhaseSeconds phases;
     const Clock::time_point start = Clock::now();
-    const Scene scene = load_scene(o.scene_path);
+    Scene scene = load_scene(o.scene_path);
     phases.load = seconds_since(start);
     if (o.print_scene_info) print_scene_info(scene, o.scene_path, stdout);
+    sink_field_under_sea(scene);  // before anything stands on the field
 
     // User textures are read before the long geometry build, so a bad --texture-dir fails fast.
     std::unique_ptr<BuildingTextures> textures;

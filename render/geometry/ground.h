@@ -20,6 +20,13 @@ double ground_height(const Scene& scene, double x, double y);
 // procedural intersector and ground_height.
 double field_surface_height(const HeightField& field, double x, double y);
 
+// Where the map has sea, the DEM's coarse cells and its coast often stand above sea level and
+// would cover the sea surface (drawn flat at its level): nodes inside a Sea land-cover polygon
+// (holes excepted) are lowered to kSeaFloor. Render applies it once after loading a scene, so
+// every user of ground_height sees the same field. Without a field it does nothing.
+constexpr double kSeaFloor = -1.0;  // metres, relative to the field's reference (sea level)
+void sink_field_under_sea(Scene& scene);
+
 // Node (i, j) of the field in scene coordinates.
 inline Vec3 field_node(const HeightField& field, uint32_t i, uint32_t j) {
     return {field.origin.x + i * field.cell, field.origin.y + j * field.cell,

@@ -1,5 +1,6 @@
 // Terrain on a height field: the stored mesh, the procedural block walker, and everything that
 // stands on the ground (buildings at their lowest corner, trees, lamps, roads draped).
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -170,4 +171,31 @@ TEST(TerrainGeometry, LampsRoadsAndTreesLieOnTheGround) {
         ASSERT_TRUE(scene->intersect(Ray{{20, 0, g + 1}, {1, 0, 0}, 0, 1e30}, hit));
         EXPECT_EQ(hit.kind, ObjectKind::Tree);
     }
+}
+
+TEST(TerrainGeometry, TheFieldSinksUnderTheSeaButNotUnderLand) {
+    Scene s = scene_on(hilly_field(10));
+    LandCover sea;
+    sea.cover = LandCoverClass::Sea;
+    sea.outer = square(-100, -100, 50);  // nodes x, y in [-100, -50]
+    sea.holes = {square(-80, -80, 15)};  // an island: nodes (-70, -70) inside it
+    std::reverse(sea.holes[0].begin(), sea.holes[0].end());
+    s.land_cover.push_back(sea);
+    const HeightField before = s.terrain;
+    sink_field_under_sea(s);
+    const HeightField& f = s.terrain;
+    int sunk = 0;
+    for (uint32_t j = 0; j < f.ny; ++j)
+        for (uint32_t i = 0; i < f.nx; ++i) {
+            const Vec3 p = field_node(f, i, j);
+            const size_t k = static_cast<size_t>(j) * f.nx + i;
+            const bool in_sea = point_in_ring({p.x, p.y}, sea.outer) && !point_in_ring({p.x, p.y}, sea.holes[0]);
+            if (in_sea && p.x > -99 && p.y > -99 && p.x < -51 && p.y < -51) {
+                EXPECT_LE(f.heights[k], kSeaFloor) << p.x << "," << p.y;
+                ++sunk;
+            } else if (!in_sea && (p.x > -49 || p.y > -49 || (p.x == -70 && p.y == -70))) {
+                EXPECT_EQ(f.heights[k], before.heights[k]) << p.x << "," << p.y;
+            }
+        }
+    EXPECT_GT(sunk, 10);
 }
