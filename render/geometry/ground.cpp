@@ -1,6 +1,7 @@
 #include "render/geometry/ground.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -28,10 +29,10 @@ double ground_height(const Scene& scene, double x, double y) {
 
 namespace {
 
-// The lowest ground along the edge a->b: the surface is linear between the points where the
-// edge crosses a grid line (u or v integer) or a diagonal (u - v integer).
-double lowest_along_edge(const HeightField& f, Vec2 a, Vec2 b) {
-    double lowest = std::min(field_surface_height(f, a.x, a.y), field_surface_height(f, b.x, b.y));
+// Where the segment a->b crosses the field's grid lines (u or v integer) and diagonals (u - v
+// integer), as parameters in (0, 1), ascending: the drawn ground is linear between them.
+std::vector<double> field_line_crossings(const HeightField& f, Vec2 a, Vec2 b) {
+    std::vector<double> ts;
     const double ua = (a.x - f.origin.x) / f.cell, va = (a.y - f.origin.y) / f.cell;
     const double du = (b.x - a.x) / f.cell, dv = (b.y - a.y) / f.cell;
     auto crossings = [&](double start, double delta) {
@@ -39,12 +40,22 @@ double lowest_along_edge(const HeightField& f, Vec2 a, Vec2 b) {
         const double end = start + delta;
         for (double k = std::ceil(std::min(start, end)); k <= std::max(start, end); k += 1) {
             const double t = (k - start) / delta;
-            lowest = std::min(lowest, field_surface_height(f, a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)));
+            if (t > 1e-9 && t < 1 - 1e-9) ts.push_back(t);
         }
     };
     crossings(ua, du);
     crossings(va, dv);
     crossings(ua - va, du - dv);
+    std::sort(ts.begin(), ts.end());
+    return ts;
+}
+
+double lowest_along_edge(const HeightField& f, Vec2 a, Vec2 b) {
+    double lowest = std::min(field_surface_height(f, a.x, a.y), field_surface_height(f, b.x, b.y));
+    for (double t : field_line_crossings(f, a, b)) {
+        const Vec2 p = a + (b - a) * t;
+        lowest = std::min(lowest, field_surface_height(f, p.x, p.y));
+    }
     return lowest;
 }
 
@@ -109,28 +120,82 @@ void sink_field_under_sea(Scene& scene) {
     }
 }
 
-Ring subdivided_for_ground(const Scene& scene, const Ring& ring) {
+Ring split_at_field_lines(const Scene& scene, const Ring& ring) {
     if (scene.terrain.empty()) return ring;
-    const double step = scene.terrain.cell;
     Ring out;
     out.reserve(ring.size());
     for (size_t k = 0, n = ring.size(); k < n; ++k) {
         const Vec2 a = ring[k], b = ring[(k + 1) % n];
         out.push_back(a);
-        const int pieces = static_cast<int>(std::ceil(length(b - a) / step));
-        for (int s = 1; s < pieces; ++s) out.push_back(a + (b - a) * (static_cast<double>(s) / pieces));
+        for (double t : field_line_crossings(scene.terrain, a, b)) out.push_back(a + (b - a) * t);
     }
     return out;
 }
 
+namespace {
+
+// The convex polygon `poly` (counter-clockwise) cut to the side of the line through a, b where
+// cross(b - a, p - a) >= 0 (Sutherland-Hodgman, one edge).
+void clip_to_half_plane(std::vector<Vec2>& poly, Vec2 a, Vec2 b, std::vector<Vec2>& scratch) {
+    scratch.clear();
+    const Vec2 d = b - a;
+    for (size_t k = 0, n = poly.size(); k < n; ++k) {
+        const Vec2 p = poly[k], q = poly[(k + 1) % n];
+        const double sp = cross(d, p - a), sq = cross(d, q - a);
+        if (sp >= 0) scratch.push_back(p);
+        if ((sp >= 0) != (sq >= 0)) scratch.push_back(p + (q - p) * (sp / (sp - sq)));
+    }
+    poly.swap(scratch);
+}
+
+// Adds triangle (a, b, c) to `out` cut into its pieces over the field's cell triangles, so that
+// each piece lies in one plane of the drawn ground and the draped surface follows it exactly.
+// A triangle reaching beyond the grid is draped at its corners only (nothing is drawn there but
+// the skirt).
+void add_draped_triangle(const Scene& scene, Vec2 a, Vec2 b, Vec2 c, double lift, DrapedPolygon& out) {
+    const HeightField& f = scene.terrain;
+    auto add_point = [&](Vec2 p) {
+        out.points.push_back({p.x, p.y, ground_height(scene, p.x, p.y) + lift});
+        return static_cast<uint32_t>(out.points.size() - 1);
+    };
+    const double u0 = (std::min({a.x, b.x, c.x}) - f.origin.x) / f.cell, u1 = (std::max({a.x, b.x, c.x}) - f.origin.x) / f.cell;
+    const double v0 = (std::min({a.y, b.y, c.y}) - f.origin.y) / f.cell, v1 = (std::max({a.y, b.y, c.y}) - f.origin.y) / f.cell;
+    if (u0 < 0 || v0 < 0 || u1 > f.nx - 1.0 || v1 > f.ny - 1.0 || cross(b - a, c - a) <= 0) {
+        out.triangles.push_back({add_point(a), add_point(b), add_point(c)});
+        return;
+    }
+    std::vector<Vec2> poly, scratch;
+    const uint32_t i_end = std::min(f.nx - 2, static_cast<uint32_t>(u1)), j_end = std::min(f.ny - 2, static_cast<uint32_t>(v1));
+    for (uint32_t j = static_cast<uint32_t>(v0); j <= j_end; ++j)
+        for (uint32_t i = static_cast<uint32_t>(u0); i <= i_end; ++i) {
+            const Vec3 n00 = field_node(f, i, j), n11 = field_node(f, i + 1, j + 1);
+            const Vec2 p00{n00.x, n00.y}, p10{n11.x, n00.y}, p11{n11.x, n11.y}, p01{n00.x, n11.y};
+            // The cell's two triangles, as field_surface_height splits it.
+            for (const auto& tri : {std::array<Vec2, 3>{p00, p10, p11}, std::array<Vec2, 3>{p00, p11, p01}}) {
+                poly = {a, b, c};
+                for (int e = 0; e < 3 && poly.size() >= 3; ++e) clip_to_half_plane(poly, tri[e], tri[(e + 1) % 3], scratch);
+                if (poly.size() < 3) continue;
+                double area = 0;
+                for (size_t k = 1; k + 1 < poly.size(); ++k) area += cross(poly[k] - poly[0], poly[k + 1] - poly[0]);
+                if (area <= 1e-9) continue;
+                const uint32_t first = add_point(poly[0]);
+                uint32_t previous = add_point(poly[1]);
+                for (size_t k = 2; k < poly.size(); ++k) {
+                    const uint32_t next = add_point(poly[k]);
+                    out.triangles.push_back({first, previous, next});
+                    previous = next;
+                }
+            }
+        }
+}
+
+}  // namespace
+
 DrapedPolygon drape_polygon(const Scene& scene, const Ring& outer, const std::vector<Ring>& holes, double lift) {
-    std::vector<Ring> cut_holes;
-    for (const Ring& h : holes) cut_holes.push_back(subdivided_for_ground(scene, h));
-    const PolygonTriangulation tri = triangulate_polygon(subdivided_for_ground(scene, outer), cut_holes);
+    const PolygonTriangulation tri = triangulate_polygon(outer, holes);
     DrapedPolygon out;
-    out.points.reserve(tri.points.size());
-    for (Vec2 p : tri.points) out.points.push_back({p.x, p.y, ground_height(scene, p.x, p.y) + lift});
-    out.triangles = tri.triangles;
+    for (const auto& t : tri.triangles)
+        add_draped_triangle(scene, tri.points[t[0]], tri.points[t[1]], tri.points[t[2]], lift, out);
     return out;
 }
 

@@ -38,13 +38,14 @@ inline Vec3 field_node(const HeightField& field, uint32_t i, uint32_t j) {
 // so they reach the ground all round. Shared by both modes, lights and facade frames.
 double building_base(const Scene& scene, const Building& building);
 
-// The ring with its edges cut so that no piece is longer than the field's cell (unchanged
-// without a field): where a flat polygon is draped over the ground.
-Ring subdivided_for_ground(const Scene& scene, const Ring& ring);
+// The ring with its edges cut where they cross the field's cell lines and diagonals (unchanged
+// without a field): between its points the drawn ground under an edge is linear (curb faces).
+Ring split_at_field_lines(const Scene& scene, const Ring& ring);
 
-// A flat polygon laid on the field: its rings subdivided_for_ground and triangulated, each
-// point's z = ground_height + lift (the triangles counter-clockwise, front side up). Callers keep
-// their flat polygon without a field.
+// A flat polygon laid on the field: triangulated, each triangle cut into its pieces over the
+// field's cell triangles, each point's z = ground_height + lift, so the surface lies exactly
+// `lift` above the drawn ground (triangles counter-clockwise, front side up). Callers keep their
+// flat polygon without a field.
 struct DrapedPolygon {
     std::vector<Vec3> points;
     std::vector<std::array<uint32_t, 3>> triangles;

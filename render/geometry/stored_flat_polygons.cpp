@@ -61,7 +61,7 @@ std::vector<CurbFace> draped_curb_faces(const Scene& scene, const SidewalkShape&
     std::vector<CurbFace> faces;
     if (!shape.has_curb()) return faces;
     const double curb = shape.top_z - shape.road_z;
-    const Ring ring = subdivided_for_ground(scene, shape.ring);
+    const Ring ring = split_at_field_lines(scene, shape.ring);
     for (size_t k = 0, n = ring.size(); k < n; ++k) {
         const Vec2 a = ring[k], b = ring[(k + 1) % n];
         if (a == b) continue;

@@ -44,7 +44,7 @@ struct SidewalkShape {
 };
 bool sidewalk_shape(const Scene& scene, uint32_t index, SidewalkShape* shape);
 // On a field: the curb faces of a sidewalk piece, each vertical quad (foot a, foot b, top b,
-// top a) facing out, over the ring subdivided_for_ground (the top is draped the same way).
+// top a) facing out, over the ring split_at_field_lines, so each foot follows the drawn ground.
 using CurbFace = std::array<Vec3, 4>;
 std::vector<CurbFace> draped_curb_faces(const Scene& scene, const SidewalkShape& shape);
 

@@ -161,12 +161,17 @@ TEST(TerrainGeometry, LampsRoadsAndTreesLieOnTheGround) {
     for (const GeometryModes& modes : {GeometryModes{}, GeometryModes::all(GeometryMode::Procedural)}) {
         const auto scene = build_render_scene(s, modes, FacadeOptions{});
         Hit hit;
-        // Down onto the road: near the ground under it (its triangles span the field's cells,
-        // so within a few cm), not at z = 0 inside the hill.
+        // Down onto the road: exactly its lift above the ground under it, not at z = 0 inside the hill.
         const Vec2 r = s.roads[0].quad[0] * 0.5 + s.roads[0].quad[2] * 0.5;
         ASSERT_TRUE(scene->intersect(Ray{{r.x, r.y, 200}, {0, 0, -1}, 0, 1e30}, hit));
         EXPECT_EQ(hit.kind, ObjectKind::Road);
-        EXPECT_NEAR(200 - hit.t, ground_height(s, r.x, r.y) + kRoadLift, 0.1);
+        EXPECT_NEAR(200 - hit.t, ground_height(s, r.x, r.y) + kRoadLift, 1e-3);
+        // And everywhere along it, off the field's nodes and diagonals.
+        for (double x = -47.3; x < 48; x += 3.7) {
+            ASSERT_TRUE(scene->intersect(Ray{{x, -25.1, 200}, {0, 0, -1}, 0, 1e30}, hit));
+            EXPECT_EQ(hit.kind, ObjectKind::Road);
+            EXPECT_NEAR(200 - hit.t, ground_height(s, x, -25.1) + kRoadLift, 1e-3) << x;
+        }
         // Sideways at the tree's trunk, a metre above the hill's ground.
         ASSERT_TRUE(scene->intersect(Ray{{20, 0, g + 1}, {1, 0, 0}, 0, 1e30}, hit));
         EXPECT_EQ(hit.kind, ObjectKind::Tree);
