@@ -24,6 +24,7 @@
 #include "render/film/image_output.h"
 #include "render/film/render_image.h"
 #include "render/geometry/build_render_scene.h"
+#include "render/geometry/ground.h"
 #include "render/lights/scene_lights.h"
 #include "render/lights/sky.h"
 #include "render/materials/bsdf.h"
@@ -227,10 +228,17 @@ Animation make_animation(const Options& o, const Job& job, const Camera& camera,
     animation.output_pattern = o.output;
     if (o.orbit) {
         const Vec3 start = camera.position(), forward = camera.forward();
-        const double along = forward.z < -1e-6 ? (scene.ground.z - start.z) / forward.z : 100.0;
-        const Vec3 centre = start + forward * along;
-        animation.view = [=, fov = o.fov, seconds = o.orbit_seconds](double t) {
-            return orbit_at(start, centre, fov, seconds, t);
+        // On a field, the ground's height where the sight line meets the flat ground there, refined.
+        Vec3 centre = start + forward * 100.0;
+        double ground_z = scene.ground.z;
+        for (int round = 0; round < 4 && forward.z < -1e-6; ++round) {
+            centre = start + forward * ((ground_z - start.z) / forward.z);
+            ground_z = ground_height(scene, centre.x, centre.y);
+        }
+        animation.view = [=, &scene, fov = o.fov, seconds = o.orbit_seconds](double t) {
+            CameraKey key = orbit_at(start, centre, fov, seconds, t);
+            key.position = above_ground(scene, key.position);  // never inside a hill
+            return key;
         };
     } else {
         const CameraPath& path = job.camera_path;
@@ -244,9 +252,10 @@ int run(const Options& o) {
     RenderSettings& settings = job.settings;
     PhaseSeconds phases;
     const Clock::time_point start = Clock::now();
-    const Scene scene = load_scene(o.scene_path);
+    Scene scene = load_scene(o.scene_path);
     phases.load = seconds_since(start);
     if (o.print_scene_info) print_scene_info(scene, o.scene_path, stdout);
+    sink_field_under_sea(scene);  // before anything stands on the field
 
     // User textures are read before the long geometry build, so a bad --texture-dir fails fast.
     std::unique_ptr<BuildingTextures> textures;

@@ -31,4 +31,13 @@ run ./render city.scene -o "$gallery/stored.jpg" "${size[@]}" --spp 32 "${closer
 run ./render city.scene -o "$gallery/procedural.jpg" "${size[@]}" --spp 32 "${closer[@]}" --procedural
 run ./render city.scene -o "$gallery/raw16.jpg" "${size[@]}" --spp 16 "${street[@]}"
 run ./render city.scene -o "$gallery/denoised16.jpg" "${size[@]}" --spp 16 "${street[@]}" --denoise
+# Monaco on its DEM, when the shared data is there.
+data="$OLDPWD/../shared/data"
+if [ -f "$data/osm/monaco.osm.pbf" ] && [ -f "$data/dem/N43E007.hgt.zip" ]; then
+    run ./osmparse "$data/osm/monaco.osm.pbf" -o monaco.scene --dem "$data/dem/N43E007.hgt.zip" -q
+    monaco=(--width 480 --height 270 -q --spp 16 --denoise)
+    run ./render monaco.scene -o "$gallery/monaco_sea.png" "${monaco[@]}" --camera 700,-1500,120 --look-at -150,-650,50
+    run ./render monaco.scene -o "$gallery/monaco_town.png" "${monaco[@]}" --camera 200,-1100,180 --look-at -400,0,40
+    run ./render monaco.scene -o "$gallery/monaco_street.png" "${monaco[@]}" --camera -255,-146,53 --look-at -500,-330,95
+fi
 echo "wrote $(ls "$gallery" | wc -l) images to $out" >&2

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "render/geometry/ground.h"
+
 namespace citygen {
 
 Camera Camera::look_at(Vec3 position, Vec3 target, double vertical_fov_deg, int width, int height) {
@@ -73,14 +75,16 @@ TownExtent town_extent(const Scene& scene) {
         box.extend(scene.header.bounds_max);
     }
     town.radius = std::max(20.0, 0.5 * std::hypot(box.max.x - box.min.x, box.max.y - box.min.y));
-    for (const Building& b : scene.buildings)
+    for (const Building& b : scene.buildings) {
+        const double base = building_base(scene, b);
         for (Vec2 p : b.outer) {
-            town.corners.push_back({p.x, p.y, scene.ground.z});
-            town.corners.push_back({p.x, p.y, scene.ground.z + std::min(b.height, 2 * town.radius)});
+            town.corners.push_back({p.x, p.y, base});
+            town.corners.push_back({p.x, p.y, base + std::min(b.height, 2 * town.radius)});
         }
+    }
     if (town.corners.empty())
         for (double x : {box.min.x, box.max.x})
-            for (double y : {box.min.y, box.max.y}) town.corners.push_back({x, y, scene.ground.z});
+            for (double y : {box.min.y, box.max.y}) town.corners.push_back({x, y, ground_height(scene, x, y)});
     return town;
 }
 
@@ -137,6 +141,11 @@ struct FramingView {
 
 }  // namespace
 
+Vec3 above_ground(const Scene& scene, Vec3 position) {
+    return {position.x, position.y,
+            std::max(position.z, ground_height(scene, position.x, position.y) + kCameraClearance)};
+}
+
 Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, int height) {
     const TownExtent town = town_extent(scene);
     const Vec2 centre = (town.box.min + town.box.max) * 0.5;
@@ -144,7 +153,7 @@ Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, in
     // always shows some sky above the horizon.
     const double half_fov = 0.5 * vertical_fov_deg * kPi / 180;
     const double pitch = std::clamp(half_fov - 5 * kPi / 180, 3 * kPi / 180, 20 * kPi / 180);
-    Vec3 target{centre.x, centre.y, scene.ground.z + 0.15 * std::min(town.top, town.radius)};
+    Vec3 target{centre.x, centre.y, ground_height(scene, centre.x, centre.y) + 0.15 * std::min(town.top, town.radius)};
     const Vec2 from_south_west = normalize(Vec2{-1, -1.6});
     const Vec3 back{from_south_west.x * std::cos(pitch), from_south_west.y * std::cos(pitch), std::sin(pitch)};
     const double tan_v = 0.9 * std::tan(half_fov), tan_h = tan_v * width / height;
@@ -155,7 +164,7 @@ Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, in
     // the image (a town seen from above fills the lower half otherwise). The direction, and so
     // the strip of sky at the top, stays the same.
     for (int round = 0; round < 8; ++round) target = view.recentred(target, view.nearest_fit(target, town.radius));
-    const Vec3 position = target + back * view.nearest_fit(target, town.radius);
+    const Vec3 position = above_ground(scene, target + back * view.nearest_fit(target, town.radius));
     return Camera::look_at(position, target, vertical_fov_deg, width, height);
 }
 

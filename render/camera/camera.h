@@ -30,6 +30,11 @@ private:
 
 // An elevated three-quarter view from the south-west that frames the scene's bounds and its
 // tallest building, with the horizon (and some sky) near the top of the image.
+// Never inside a hill: at least kCameraClearance above ground_height (render/geometry/ground.h).
 Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, int height);
+
+constexpr double kCameraClearance = 5.0;  // metres
+// `position` raised to kCameraClearance above the ground under it, when it is lower.
+Vec3 above_ground(const Scene& scene, Vec3 position);
 
 }  // namespace citygen

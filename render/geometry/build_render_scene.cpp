@@ -8,6 +8,7 @@
 #include "render/geometry/procedural_lamps.h"
 #include "render/geometry/road_markings.h"
 #include "render/geometry/stored_geometry.h"
+#include "render/geometry/terrain_geometry.h"
 #include "render/geometry/tree_geometry.h"
 
 namespace citygen {
@@ -21,7 +22,9 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     auto procedural = [&](GeometryClass c) { return modes[c] == GeometryMode::Procedural; };
     if (procedural(GeometryClass::Buildings)) render_scene->add(build_procedural_buildings(scene, facades, &geometry_progress));
     else render_scene->add(stored(build_stored_buildings(scene, facades, &geometry_progress)));
-    if (procedural(GeometryClass::Terrain)) render_scene->add(build_procedural_terrain(scene));
+    if (procedural(GeometryClass::Terrain) && !scene.terrain.empty())
+        render_scene->add(build_procedural_field_terrain(scene));
+    else if (procedural(GeometryClass::Terrain)) render_scene->add(build_procedural_terrain(scene));
     else render_scene->add(stored(build_stored_terrain(scene)));
     // Markings and asphalt grain are painted at shading time (road_markings.h), in both modes.
     if (procedural(GeometryClass::Roads)) render_scene->add(with_road_markings(build_procedural_roads(scene), scene));

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "render/geometry/ground.h"
+
 namespace citygen {
 
 namespace {
@@ -13,6 +15,10 @@ constexpr double kCapRadius = 0.28;
 constexpr double kCapThickness = 0.08;
 constexpr double kMinHeight = 1.0 + 2 * kGlobeRadius;
 }  // namespace
+
+double lamp_ground(const Scene& scene, const Lamp& lamp) {
+    return ground_height(scene, lamp.position.x, lamp.position.y);
+}
 
 LampShape lamp_shape(const Lamp& lamp, double ground_z) {
     LampShape s;

@@ -28,6 +28,8 @@ struct LampShape {
 // The shape of lamp `lamp` standing on a scene whose ground plane is at ground_z. The globe's
 // top touches the cap at the lamp's tagged height; lamps lower than 1 m keep a 1 m pole.
 LampShape lamp_shape(const Lamp& lamp, double ground_z);
+// The ground under a lamp: what both geometry modes and the lights pass as ground_z.
+double lamp_ground(const Scene& scene, const Lamp& lamp);
 
 enum class LampPart : uint8_t { Pole = 0, Globe, Cap };
 

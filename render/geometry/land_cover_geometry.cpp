@@ -71,11 +71,19 @@ double lattice(int64_t x, int64_t y, uint32_t seed) {
     return static_cast<double>(h >> 11) * 0x1.0p-53;
 }
 
+void add_flat_polygon_with_holes(const LandCover& c, double z, uint32_t object, TriangleMesh& mesh) {
+    const PolygonTriangulation tri = triangulate_polygon(c.outer, c.holes);
+    const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
+    for (Vec2 p : tri.points) mesh.add_vertex({p.x, p.y, z});
+    for (const auto& t : tri.triangles)
+        mesh.add_triangle(first + t[0], first + t[1], first + t[2], object, land_cover_material(c.cover));
+}
+
 }  // namespace
 
-double land_cover_z(const Scene& scene, LandCoverClass c) {
-    return scene.ground.z + kLandCoverStep * (1 + land_cover_priority(c));
-}
+double land_cover_lift(LandCoverClass c) { return kLandCoverStep * (1 + land_cover_priority(c)); }
+
+double land_cover_z(const Scene& scene, LandCoverClass c) { return scene.ground.z + land_cover_lift(c); }
 
 uint16_t land_cover_material(LandCoverClass c) {
     switch (c) {
@@ -97,12 +105,11 @@ TriangleMesh build_stored_land_cover(const Scene& scene) {
     for (uint32_t i = 0; i < scene.land_cover.size(); ++i) {
         const LandCover& c = scene.land_cover[i];
         if (c.outer.size() < 3) continue;
-        const double z = land_cover_z(scene, c.cover);
-        const PolygonTriangulation tri = triangulate_polygon(c.outer, c.holes);
-        const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
-        for (Vec2 p : tri.points) mesh.add_vertex({p.x, p.y, z});
-        for (const auto& t : tri.triangles)
-            mesh.add_triangle(first + t[0], first + t[1], first + t[2], i, land_cover_material(c.cover));
+        if (c.cover == LandCoverClass::Sea) {  // at sea level, on a field too
+            add_flat_polygon_with_holes(c, land_cover_z(scene, c.cover), i, mesh);
+            continue;
+        }
+        add_ground_polygon(scene, c.outer, c.holes, land_cover_lift(c.cover), i, land_cover_material(c.cover), mesh);
     }
     return mesh;
 }
@@ -116,6 +123,10 @@ std::unique_ptr<ProceduralGeometry> build_procedural_land_cover(const Scene& sce
         if (c.outer.size() < 3) continue;
         const double z = land_cover_z(scene, c.cover);
         const uint16_t material = land_cover_material(c.cover);
+        if (!scene.terrain.empty() && c.cover != LandCoverClass::Sea) {
+            add_ground_polygon(scene, c.outer, c.holes, land_cover_lift(c.cover), i, material, *geometry);
+            continue;
+        }
         const size_t n = vertex_count(c);
         if (n <= kTileVertices) {
             geometry->add_polygon(i, c.outer, c.holes, z, material);

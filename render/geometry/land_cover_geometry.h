@@ -14,6 +14,9 @@ namespace citygen {
 
 // Height of a class's surface above the ground: 2 mm steps by priority, all below kRoadLift.
 double land_cover_z(const Scene& scene, LandCoverClass c);
+// Its height above the ground (land_cover_z = scene.ground.z + this); on a field every class but
+// the sea is draped this far above the ground, the sea stays at land_cover_z.
+double land_cover_lift(LandCoverClass c);
 uint16_t land_cover_material(LandCoverClass c);
 
 // Stored: each polygon triangulated (holes kept).

@@ -40,25 +40,25 @@ uint16_t path_material(PathClass c) {
     return kPathPaving;
 }
 
-double path_z(const Scene& scene, const PathEdge& path) {
-    return scene.ground.z + (path.path_class == PathClass::Tram ? kTramLift : kPathLift);
-}
+double path_lift(const PathEdge& path) { return path.path_class == PathClass::Tram ? kTramLift : kPathLift; }
+
+double path_z(const Scene& scene, const PathEdge& path) { return scene.ground.z + path_lift(path); }
 
 TriangleMesh build_stored_paths(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Path;
     for (uint32_t i = 0; i < scene.paths.size(); ++i)
-        add_flat_polygon(scene.paths[i].quad, path_z(scene, scene.paths[i]), i, path_material(scene.paths[i].path_class),
-                         mesh);
+        add_ground_polygon(scene, scene.paths[i].quad, {}, path_lift(scene.paths[i]), i,
+                           path_material(scene.paths[i].path_class), mesh);
     return mesh;
 }
 
 TriangleMesh build_stored_path_joints(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::PathJoint;
-    const double z = scene.ground.z + kPathLift;
     for (uint32_t i = 0; i < scene.path_joints.size(); ++i)
-        add_flat_polygon(scene.path_joints[i].polygon, z, i, joint_material(scene, scene.path_joints[i]), mesh);
+        add_ground_polygon(scene, scene.path_joints[i].polygon, {}, kPathLift, i, joint_material(scene, scene.path_joints[i]),
+                           mesh);
     return mesh;
 }
 
@@ -66,17 +66,17 @@ std::unique_ptr<ProceduralGeometry> build_procedural_paths(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Path, walls());
     for (uint32_t i = 0; i < scene.paths.size(); ++i)
         if (scene.paths[i].quad.size() >= 3)
-            geometry->add_polygon(i, scene.paths[i].quad, {}, path_z(scene, scene.paths[i]),
-                                  path_material(scene.paths[i].path_class));
+            add_ground_polygon(scene, scene.paths[i].quad, {}, path_lift(scene.paths[i]), i,
+                               path_material(scene.paths[i].path_class), *geometry);
     return geometry;
 }
 
 std::unique_ptr<ProceduralGeometry> build_procedural_path_joints(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::PathJoint, walls());
-    const double z = scene.ground.z + kPathLift;
     for (uint32_t i = 0; i < scene.path_joints.size(); ++i)
         if (scene.path_joints[i].polygon.size() >= 3)
-            geometry->add_polygon(i, scene.path_joints[i].polygon, {}, z, joint_material(scene, scene.path_joints[i]));
+            add_ground_polygon(scene, scene.path_joints[i].polygon, {}, kPathLift, i,
+                               joint_material(scene, scene.path_joints[i]), *geometry);
     return geometry;
 }
 

@@ -18,6 +18,7 @@ constexpr double kTramLift = 0.023;  // tram tracks lie in the street: just abov
 
 // Height of a path's strip: trams above the road they run in (paved, with rails), others below.
 double path_z(const Scene& scene, const PathEdge& path);
+double path_lift(const PathEdge& path);  // path_z = scene.ground.z + this; draped this far above a field
 
 uint16_t path_material(PathClass c);
 TriangleMesh build_stored_paths(const Scene& scene);

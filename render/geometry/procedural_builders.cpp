@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "render/facade/facade_materials.h"
+#include "render/geometry/ground.h"
 #include "render/geometry/procedural_geometry.h"
 #include "render/geometry/stored_geometry.h"
 #include "render/materials/materials.h"
@@ -19,14 +20,25 @@ ProceduralGeometry::SurfaceMaterials all_surfaces(uint16_t material) {
 
 }  // namespace
 
+void add_ground_polygon(const Scene& scene, const Ring& outer, const std::vector<Ring>& holes, double lift,
+                        uint32_t object, uint16_t material, ProceduralGeometry& geometry) {
+    if (scene.terrain.empty()) {
+        geometry.add_polygon(object, outer, holes, scene.ground.z + lift, material);
+        return;
+    }
+    const DrapedPolygon draped = drape_polygon(scene, outer, holes, lift);
+    for (const auto& t : draped.triangles)
+        geometry.add_face(object, {draped.points[t[0]], draped.points[t[1]], draped.points[t[2]]}, material);
+}
+
 std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades,
                                                                Progress* progress) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Building, facade_surface_materials());
-    const double ground = scene.ground.z;
     for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
         if (progress) progress->advance();
         const Building& b = scene.buildings[index];
         if (!has_volume(b)) continue;
+        const double ground = building_base(scene, b);
         const double bottom = ground + b.min_height, top = ground + b.height;
         const BuildingWalls walls(b);
         for (size_t w = 0, n = walls.count(); w < n; ++w) {
@@ -47,16 +59,15 @@ std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scen
 
 std::unique_ptr<ProceduralGeometry> build_procedural_roads(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Road, all_surfaces(kAsphalt));
-    const double z = scene.ground.z + kRoadLift;
-    for (uint32_t i = 0; i < scene.roads.size(); ++i) geometry->add_polygon(i, scene.roads[i].quad, {}, z, kAsphalt);
+    for (uint32_t i = 0; i < scene.roads.size(); ++i)
+        add_ground_polygon(scene, scene.roads[i].quad, {}, kRoadLift, i, kAsphalt, *geometry);
     return geometry;
 }
 
 std::unique_ptr<ProceduralGeometry> build_procedural_joints(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Joint, all_surfaces(kAsphalt));
-    const double z = scene.ground.z + kRoadLift;
     for (uint32_t i = 0; i < scene.joints.size(); ++i)
-        geometry->add_polygon(i, scene.joints[i].polygon, {}, z, kAsphalt);
+        add_ground_polygon(scene, scene.joints[i].polygon, {}, kRoadLift, i, kAsphalt, *geometry);
     return geometry;
 }
 
@@ -65,6 +76,13 @@ std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scen
     SidewalkShape shape;
     for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
         if (!sidewalk_shape(scene, i, &shape)) continue;
+        if (!scene.terrain.empty()) {
+            add_ground_polygon(scene, shape.ring, {}, kRoadLift + (shape.top_z - shape.road_z), i, kSidewalk,
+                               *geometry);
+            for (const CurbFace& f : draped_curb_faces(scene, shape))
+                geometry->add_face(i, {f[0], f[1], f[2], f[3]}, kCurb);
+            continue;
+        }
         geometry->add_polygon(i, shape.ring, {}, shape.top_z, kSidewalk);
         if (!shape.has_curb()) continue;
         const Ring& ring = shape.ring;

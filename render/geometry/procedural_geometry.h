@@ -149,4 +149,9 @@ std::unique_ptr<ProceduralGeometry> build_procedural_joints(const Scene& scene);
 std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scene);
 std::unique_ptr<ProceduralGeometry> build_procedural_terrain(const Scene& scene);
 
+// The procedural twin of add_ground_polygon (stored_geometry.h): one flat polygon without a
+// field, the draped triangles as faces with one.
+void add_ground_polygon(const Scene& scene, const Ring& outer, const std::vector<Ring>& holes, double lift,
+                        uint32_t object, uint16_t material, ProceduralGeometry& geometry);
+
 }  // namespace citygen

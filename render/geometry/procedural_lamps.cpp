@@ -21,7 +21,7 @@ uint16_t material_of(LampPart part) {
 
 std::unique_ptr<ProceduralLamps> build_procedural_lamps(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralLamps>();
-    for (const Lamp& lamp : scene.lamps) geometry->add(lamp_shape(lamp, scene.ground.z));
+    for (const Lamp& lamp : scene.lamps) geometry->add(lamp_shape(lamp, lamp_ground(scene, lamp)));
     return geometry;
 }
 

@@ -4,6 +4,7 @@
 #include "render/facade/facade_materials.h"
 #include "render/facade/facade_mesh.h"
 #include "render/geometry/face_plane.h"
+#include "render/geometry/ground.h"
 #include "render/geometry/stored_geometry.h"
 #include "render/geometry/triangulate_polygon.h"
 #include "render/materials/materials.h"
@@ -127,11 +128,11 @@ TriangleMesh build_stored_buildings(const Scene& scene, const FacadeOptions& fac
     mesh.kind = ObjectKind::Building;
     reserve_buildings(scene, facades, mesh);
     FacadeMesh scratch;
-    const double ground = scene.ground.z;
     for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
         if (progress) progress->advance();
         const Building& b = scene.buildings[index];
         if (!has_volume(b)) continue;
+        const double ground = building_base(scene, b);
         const double bottom = ground + b.min_height, top = ground + b.height;
         add_facade_walls(b, index, bottom, facades, scratch, mesh);
 

@@ -1,6 +1,8 @@
 #include <algorithm>
 
+#include "render/geometry/ground.h"
 #include "render/geometry/stored_geometry.h"
+#include "render/geometry/terrain_geometry.h"
 #include "render/geometry/triangulate_polygon.h"
 #include "render/materials/materials.h"
 
@@ -13,20 +15,35 @@ void add_flat_polygon(const Ring& ring, double z, uint32_t object, uint16_t mate
     for (const auto& t : tri.triangles) mesh.add_triangle(first + t[0], first + t[1], first + t[2], object, material);
 }
 
+void add_ground_polygon(const Scene& scene, const Ring& outer, const std::vector<Ring>& holes, double lift,
+                        uint32_t object, uint16_t material, TriangleMesh& mesh) {
+    if (scene.terrain.empty()) {
+        const double z = scene.ground.z + lift;
+        const PolygonTriangulation tri = triangulate_polygon(outer, holes);
+        const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
+        for (Vec2 p : tri.points) mesh.add_vertex({p.x, p.y, z});
+        for (const auto& t : tri.triangles) mesh.add_triangle(first + t[0], first + t[1], first + t[2], object, material);
+        return;
+    }
+    const DrapedPolygon draped = drape_polygon(scene, outer, holes, lift);
+    const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
+    for (const Vec3& p : draped.points) mesh.add_vertex(p);
+    for (const auto& t : draped.triangles) mesh.add_triangle(first + t[0], first + t[1], first + t[2], object, material);
+}
+
 TriangleMesh build_stored_roads(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Road;
-    const double z = scene.ground.z + kRoadLift;
-    for (uint32_t i = 0; i < scene.roads.size(); ++i) add_flat_polygon(scene.roads[i].quad, z, i, kAsphalt, mesh);
+    for (uint32_t i = 0; i < scene.roads.size(); ++i)
+        add_ground_polygon(scene, scene.roads[i].quad, {}, kRoadLift, i, kAsphalt, mesh);
     return mesh;
 }
 
 TriangleMesh build_stored_joints(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Joint;
-    const double z = scene.ground.z + kRoadLift;
     for (uint32_t i = 0; i < scene.joints.size(); ++i)
-        add_flat_polygon(scene.joints[i].polygon, z, i, kAsphalt, mesh);
+        add_ground_polygon(scene, scene.joints[i].polygon, {}, kRoadLift, i, kAsphalt, mesh);
     return mesh;
 }
 
@@ -40,12 +57,39 @@ bool sidewalk_shape(const Scene& scene, uint32_t index, SidewalkShape* shape) {
     return true;
 }
 
+std::vector<CurbFace> draped_curb_faces(const Scene& scene, const SidewalkShape& shape) {
+    std::vector<CurbFace> faces;
+    if (!shape.has_curb()) return faces;
+    const double curb = shape.top_z - shape.road_z;
+    const Ring ring = split_at_field_lines(scene, shape.ring);
+    for (size_t k = 0, n = ring.size(); k < n; ++k) {
+        const Vec2 a = ring[k], b = ring[(k + 1) % n];
+        if (a == b) continue;
+        const double za = ground_height(scene, a.x, a.y) + kRoadLift, zb = ground_height(scene, b.x, b.y) + kRoadLift;
+        faces.push_back({Vec3{a.x, a.y, za}, Vec3{b.x, b.y, zb}, Vec3{b.x, b.y, zb + curb}, Vec3{a.x, a.y, za + curb}});
+    }
+    return faces;
+}
+
+namespace {
+
+void add_draped_sidewalk(const Scene& scene, const SidewalkShape& shape, uint32_t index, TriangleMesh& mesh) {
+    add_ground_polygon(scene, shape.ring, {}, kRoadLift + (shape.top_z - shape.road_z), index, kSidewalk, mesh);
+    for (const CurbFace& f : draped_curb_faces(scene, shape)) mesh.add_quad(f[0], f[1], f[2], f[3], index, kCurb);
+}
+
+}  // namespace
+
 TriangleMesh build_stored_sidewalks(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Sidewalk;
     SidewalkShape shape;
     for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
         if (!sidewalk_shape(scene, i, &shape)) continue;
+        if (!scene.terrain.empty()) {
+            add_draped_sidewalk(scene, shape, i, mesh);
+            continue;
+        }
         add_flat_polygon(shape.ring, shape.top_z, i, kSidewalk, mesh);
         if (!shape.has_curb()) continue;
         // Curb faces on every edge, facing out of the (counter-clockwise) polygon.
@@ -80,6 +124,7 @@ Box2 terrain_extent(const Scene& scene) {
 }
 
 TriangleMesh build_stored_terrain(const Scene& scene) {
+    if (!scene.terrain.empty()) return build_stored_field_terrain(scene);
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Terrain;
     const Box2 e = terrain_extent(scene);

@@ -2,6 +2,9 @@
 // a triangle mesh whose faces remember (object index, material).
 #pragma once
 
+#include <array>
+#include <vector>
+
 #include "common/progress.h"
 #include "common/scene.h"
 #include "render/facade/facade.h"
@@ -40,6 +43,10 @@ struct SidewalkShape {
     bool has_curb() const { return top_z > road_z; }
 };
 bool sidewalk_shape(const Scene& scene, uint32_t index, SidewalkShape* shape);
+// On a field: the curb faces of a sidewalk piece, each vertical quad (foot a, foot b, top b,
+// top a) facing out, over the ring split_at_field_lines, so each foot follows the drawn ground.
+using CurbFace = std::array<Vec3, 4>;
+std::vector<CurbFace> draped_curb_faces(const Scene& scene, const SidewalkShape& shape);
 
 // A roof face's points standing on the ground at ground_z (the scene's faces stand on z = 0),
 // and its material: roof faces kRoof, gable walls kFacade. Shared by both geometry modes.
@@ -48,6 +55,11 @@ uint16_t roof_face_material(const RoofFace& face);
 
 // A flat polygon at height z as triangles, front side up (roads, joints, sidewalk tops, paths).
 void add_flat_polygon(const Ring& ring, double z, uint32_t object, uint16_t material, TriangleMesh& mesh);
+
+// A flat polygon `lift` above the ground: at scene.ground.z + lift without a field (as
+// add_flat_polygon), draped over the field (ground.h's drape_polygon) with one.
+void add_ground_polygon(const Scene& scene, const Ring& outer, const std::vector<Ring>& holes, double lift,
+                        uint32_t object, uint16_t material, TriangleMesh& mesh);
 
 // The rectangle build_stored_terrain covers (shared with the procedural terrain).
 Box2 terrain_extent(const Scene& scene);

@@ -72,7 +72,7 @@ TriangleMesh build_stored_lamps(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Lamp;
     for (uint32_t i = 0; i < scene.lamps.size(); ++i) {
-        const LampShape s = lamp_shape(scene.lamps[i], scene.ground.z);
+        const LampShape s = lamp_shape(scene.lamps[i], lamp_ground(scene, scene.lamps[i]));
         add_cylinder(s.base, s.pole_radius, s.base.z, s.pole_top, kPoleSides, i, kLampPole, mesh);
         add_sphere(s.globe_center, s.globe_radius, i, kLampGlobe, mesh);
         add_cylinder(s.base, s.cap_radius, s.cap_bottom, s.cap_top, kCapSides, i, kLampCap, mesh);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/rng.h"
+#include "render/geometry/ground.h"
 #include "render/materials/materials.h"
 #include "render/scene/triangle_mesh.h"
 #include "render/scene/user_geometry.h"
@@ -206,11 +207,12 @@ bool intersect_tree(const TreeShape& s, Vec3 o, Vec3 d, double tmin, double tmax
 
 class ProceduralTrees : public RenderGeometry {
 public:
-    explicit ProceduralTrees(const Scene& scene) : ground_z_(scene.ground.z) {
+    explicit ProceduralTrees(const Scene& scene) {
         trees_.reserve(scene.trees.size());
         for (const Tree& t : scene.trees)
             trees_.push_back({static_cast<float>(t.position.x), static_cast<float>(t.position.y),
                               static_cast<float>(t.height), static_cast<float>(t.crown_diameter),
+                              static_cast<float>(ground_height(scene, t.position.x, t.position.y)),
                               static_cast<uint8_t>(t.leaf_type)});
     }
     ObjectKind kind() const override { return ObjectKind::Tree; }
@@ -252,18 +254,17 @@ public:
     }
 
 private:
-    // What a tree costs here: 20 bytes (the shape is derived on the fly).
+    // What a tree costs here: 24 bytes (the shape is derived on the fly).
     struct Compact {
-        float x, y, height, crown;
+        float x, y, height, crown, ground_z;
         uint8_t leaf_type;
     };
     TreeShape shape(unsigned prim) const {
         const Compact& c = trees_[prim];
         return tree_shape(c.x, c.y, c.height, c.crown, c.leaf_type == static_cast<uint8_t>(LeafType::Needleleaved),
-                          ground_z_, prim);
+                          c.ground_z, prim);
     }
 
-    double ground_z_;
     std::vector<Compact> trees_;
 };
 
@@ -329,7 +330,8 @@ void add_shell(TriangleMesh& mesh, std::vector<uint8_t>& cut_out, uint8_t cut, V
 TreeShape tree_shape(const Scene& scene, uint32_t index) {
     const Tree& t = scene.trees[index];
     return tree_shape(static_cast<float>(t.position.x), static_cast<float>(t.position.y), static_cast<float>(t.height),
-                      static_cast<float>(t.crown_diameter), t.leaf_type == LeafType::Needleleaved, scene.ground.z,
+                      static_cast<float>(t.crown_diameter), t.leaf_type == LeafType::Needleleaved,
+                      ground_height(scene, t.position.x, t.position.y),
                       index);
 }
 

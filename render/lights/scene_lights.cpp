@@ -5,6 +5,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "render/geometry/ground.h"
 #include "render/geometry/lamp_shape.h"
 #include "render/lights/photometry.h"
 #include "render/lights/window_glow.h"
@@ -48,7 +49,7 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
 
 void SceneLights::gather_lamps(std::vector<LightBounds>& bounds) {
     for (const citygen::Lamp& lamp : scene_->lamps) {
-        const LampShape s = lamp_shape(lamp, scene_->ground.z);
+        const LampShape s = lamp_shape(lamp, lamp_ground(*scene_, lamp));
         const Vec3 c = s.globe_center;
         const double r = s.globe_radius;
         lamps_.push_back({{float(c.x), float(c.y), float(c.z)}, float(r)});
@@ -191,7 +192,7 @@ bool SceneLights::derive_wall_geometry(const BuildingWalls& walls, uint32_t buil
     walls.wall(wall, &p, &q);
     if (p == q) return false;
     out->layout = make_wall_layout(facades_, walls.input(wall));
-    out->frame = wall_frame(p, q, scene_->ground.z + b.min_height);
+    out->frame = wall_frame(p, q, building_base(*scene_, b) + b.min_height);
     out->building_key = facade_building_key(b);
     out->wall = wall;
     return true;

@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "render/facade/facade_mesh.h"
 #include "render/geometry/stored_geometry.h"
+#include "render/geometry/terrain_geometry.h"
 #include "render/geometry/tree_geometry.h"
 
 namespace citygen {
@@ -133,6 +134,13 @@ MemoryEstimate estimate_render_memory(const Scene& scene, const GeometryModes& m
         } else {
             e.procedural_primitives += static_cast<double>(scene.trees.size());
         }
+    }
+    // The height field: two triangles a cell, or a primitive a block of cells plus the heights.
+    if (!scene.terrain.empty()) {
+        const double nodes = static_cast<double>(scene.terrain.nx) * scene.terrain.ny;
+        const double cells = static_cast<double>(scene.terrain.nx - 1) * (scene.terrain.ny - 1);
+        if (modes[GeometryClass::Terrain] == GeometryMode::Stored) e.stored_triangles += 2 * cells;
+        else e.procedural_primitives += cells / (kTerrainBlock * kTerrainBlock) + nodes * sizeof(float) / kBytesPerPrimitive;
     }
     const double pixels = static_cast<double>(settings.width) * settings.height;
     // rgb floats, the AOVs (10 floats), the encoded copy and OpenImageIO's conversion buffer.

@@ -25,6 +25,16 @@ void print_memory_info(const RenderScene& scene, FILE* out) {
                  scene.embree_peak_bytes(), buffers);
     std::fprintf(out, "geometry_bytes: %" PRId64 "\npeak_rss_bytes: %" PRIu64 "\n",
                  embree + static_cast<int64_t>(buffers), peak_rss_bytes());
+    // Our buffers per class (a class may have several geometries), e.g. terrain stored vs procedural.
+    std::vector<size_t> per_kind;
+    for (const auto& g : scene.geometries()) {
+        const size_t k = static_cast<size_t>(g->kind());
+        if (per_kind.size() <= k) per_kind.resize(k + 1, 0);
+        per_kind[k] += g->buffer_bytes();
+    }
+    for (size_t k = 0; k < per_kind.size(); ++k)
+        if (per_kind[k] > 0)
+            std::fprintf(out, "buffer_bytes_%s: %zu\n", to_string(static_cast<ObjectKind>(k)), per_kind[k]);
 }
 
 void print_geometry_info(const RenderScene& scene, FILE* out) {

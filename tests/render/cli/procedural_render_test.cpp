@@ -270,6 +270,44 @@ TEST(ProceduralRender, SameTreesAsStored) {
     }
 }
 
+TEST(ProceduralRender, SameTerrainAsStored) {
+    // A real extract on made-up hills: the stored field mesh and the procedural block walker
+    // (and everything standing or draped on them) give the same ids, at the same depth (1 cm).
+    const std::string osm = tiny_roundabout_osm();
+    if (!std::filesystem::exists(osm)) GTEST_SKIP() << osm << " not available";
+    TempDir dir;
+    citygen::Scene scene = citygen::load_scene(parse_to_scene(dir, osm));
+    citygen::HeightField& f = scene.terrain;
+    f.cell = 4;
+    f.origin = {std::floor(scene.header.bounds_min.x / 4) * 4 - 8, std::floor(scene.header.bounds_min.y / 4) * 4 - 8};
+    f.nx = static_cast<uint32_t>((scene.header.bounds_max.x - f.origin.x) / 4) + 3;
+    f.ny = static_cast<uint32_t>((scene.header.bounds_max.y - f.origin.y) / 4) + 3;
+    for (uint32_t j = 0; j < f.ny; ++j)
+        for (uint32_t i = 0; i < f.nx; ++i) {
+            const double x = f.origin.x + 4.0 * i, y = f.origin.y + 4.0 * j;
+            f.heights.push_back(static_cast<float>(8 + 0.06 * x + 6 * std::sin(x / 23) * std::cos(y / 31)));
+        }
+    const std::string hilly = dir.file("hilly.scene");
+    citygen::save_scene(scene, hilly);
+    const std::string view = "--camera=-150,-200,90 --look-at=0,0,5 --fov 50";
+    const Exr stored = render(dir, hilly, "stored", "", 2, view);
+    const Exr procedural = render(dir, hilly, "procedural", "--procedural", 2, view);
+    ASSERT_GT(stored.width, 0);
+    ASSERT_EQ(stored.pixels.size(), procedural.pixels.size());
+    const int kind = stored.channel("id.kind"), index = stored.channel("id.index"), depth = stored.channel("Z");
+    const int pixels = stored.width * stored.height;
+    int terrain = 0, same_id = 0, same_depth = 0;
+    for (int p = 0; p < pixels; ++p) {
+        terrain += stored.at(p, kind) == 5.0f;  // ObjectKind::Terrain
+        if (stored.at(p, kind) != procedural.at(p, kind) || stored.at(p, index) != procedural.at(p, index)) continue;
+        ++same_id;
+        same_depth += std::abs(stored.at(p, depth) - procedural.at(p, depth)) <= 0.01f;
+    }
+    EXPECT_GT(terrain, pixels / 20) << "the hills should show";
+    EXPECT_GE(same_id, std::ceil(0.999 * pixels)) << pixels - same_id << " pixels differ in id";
+    EXPECT_GE(same_depth, std::ceil(0.999 * pixels)) << same_id - same_depth << " pixels differ in depth by over 1 cm";
+}
+
 TEST(ProceduralRender, SameNightPictureAsStored) {
     // At night the picture is lamps, lit windows and their light: the same lit windows, the same
     // lamp globes and the same light samples in both modes.

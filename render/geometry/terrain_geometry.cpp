@@ -1,0 +1,257 @@
+#include "render/geometry/terrain_geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "render/geometry/ground.h"
+#include "render/geometry/stored_geometry.h"
+#include "render/materials/materials.h"
+#include "render/scene/user_geometry.h"
+
+namespace citygen {
+
+size_t terrain_skirt_count(const HeightField& field) { return 2 * (field.nx - 1) + 2 * (field.ny - 1) + 4; }
+
+// South edges, north edges, west edges, east edges, then the corners SW, SE, NE, NW.
+std::array<Vec3, 4> terrain_skirt_quad(const HeightField& f, const Box2& e, size_t k) {
+    const uint32_t ni = f.nx - 1, nj = f.ny - 1;
+    auto out = [](Vec3 p, double x, double y) { return Vec3{x, y, p.z}; };
+    if (k < 2 * size_t{ni}) {
+        const uint32_t i = static_cast<uint32_t>(k % ni);
+        if (k < ni) {
+            const Vec3 s0 = field_node(f, i, 0), s1 = field_node(f, i + 1, 0);
+            return {out(s0, s0.x, e.min.y), out(s1, s1.x, e.min.y), s1, s0};
+        }
+        const Vec3 n0 = field_node(f, i, nj), n1 = field_node(f, i + 1, nj);
+        return {n0, n1, out(n1, n1.x, e.max.y), out(n0, n0.x, e.max.y)};
+    }
+    k -= 2 * size_t{ni};
+    if (k < 2 * size_t{nj}) {
+        const uint32_t j = static_cast<uint32_t>(k % nj);
+        if (k < nj) {
+            const Vec3 w0 = field_node(f, 0, j), w1 = field_node(f, 0, j + 1);
+            return {out(w0, e.min.x, w0.y), w0, w1, out(w1, e.min.x, w1.y)};
+        }
+        const Vec3 e0 = field_node(f, ni, j), e1 = field_node(f, ni, j + 1);
+        return {e0, out(e0, e.max.x, e0.y), out(e1, e.max.x, e1.y), e1};
+    }
+    k -= 2 * size_t{nj};
+    const Vec3 sw = field_node(f, 0, 0), se = field_node(f, ni, 0), nw = field_node(f, 0, nj), ne = field_node(f, ni, nj);
+    switch (k) {
+        case 0: return {out(sw, e.min.x, e.min.y), out(sw, sw.x, e.min.y), sw, out(sw, e.min.x, sw.y)};
+        case 1: return {out(se, se.x, e.min.y), out(se, e.max.x, e.min.y), out(se, e.max.x, se.y), se};
+        case 2: return {ne, out(ne, e.max.x, ne.y), out(ne, e.max.x, e.max.y), out(ne, ne.x, e.max.y)};
+        default: return {out(nw, e.min.x, nw.y), nw, out(nw, nw.x, e.max.y), out(nw, e.min.x, e.max.y)};
+    }
+}
+
+std::vector<std::array<Vec3, 4>> terrain_skirt(const Scene& scene) {
+    const Box2 extent = terrain_extent(scene);
+    std::vector<std::array<Vec3, 4>> quads;
+    for (size_t k = 0, n = terrain_skirt_count(scene.terrain); k < n; ++k)
+        quads.push_back(terrain_skirt_quad(scene.terrain, extent, k));
+    return quads;
+}
+
+TriangleMesh build_stored_field_terrain(const Scene& scene) {
+    const HeightField& f = scene.terrain;
+    TriangleMesh mesh;
+    mesh.kind = ObjectKind::Terrain;
+    for (uint32_t j = 0; j < f.ny; ++j)
+        for (uint32_t i = 0; i < f.nx; ++i) mesh.add_vertex(field_node(f, i, j));
+    for (uint32_t j = 0; j + 1 < f.ny; ++j)
+        for (uint32_t i = 0; i + 1 < f.nx; ++i) {
+            const uint32_t v00 = j * f.nx + i, v10 = v00 + 1, v01 = v00 + f.nx, v11 = v01 + 1;
+            // The diagonal rule of field_surface_height: (00, 10, 11) and (00, 11, 01).
+            mesh.add_triangle(v00, v10, v11, 0, kGround);
+            mesh.add_triangle(v00, v11, v01, 0, kGround);
+        }
+    for (const auto& q : terrain_skirt(scene)) mesh.add_quad(q[0], q[1], q[2], q[3], 0, kGround);
+    return mesh;
+}
+
+namespace {
+
+// Ray against triangle (a, b, c), Moeller-Trumbore in double; the normal is the
+// counter-clockwise side's, as StoredMeshGeometry reports it.
+bool ray_triangle(Vec3 a, Vec3 b, Vec3 c, Vec3 o, Vec3 d, double tmin, double tmax, UserHit* hit) {
+    const Vec3 e1 = b - a, e2 = c - a;
+    const Vec3 p = cross(d, e2);
+    const double det = dot(e1, p);
+    if (std::abs(det) < 1e-300) return false;
+    const double inv = 1.0 / det;
+    const Vec3 s = o - a;
+    const double u = dot(s, p) * inv;
+    if (u < 0 || u > 1) return false;
+    const Vec3 q = cross(s, e1);
+    const double v = dot(d, q) * inv;
+    if (v < 0 || u + v > 1) return false;
+    const double t = dot(e2, q) * inv;
+    if (!(t >= tmin && t <= tmax)) return false;
+    hit->t = t;
+    hit->normal = normalize(cross(e1, e2));
+    hit->material = kGround;
+    return true;
+}
+
+class ProceduralTerrain : public RenderGeometry {
+public:
+    explicit ProceduralTerrain(const Scene& scene)
+        : field_(scene.terrain), extent_(terrain_extent(scene)), skirt_count_(terrain_skirt_count(field_)) {
+        blocks_x_ = (field_.nx - 2) / kTerrainBlock + 1;
+        blocks_y_ = (field_.ny - 2) / kTerrainBlock + 1;
+        block_range_.resize(static_cast<size_t>(blocks_x_) * blocks_y_);
+        for (uint32_t by = 0; by < blocks_y_; ++by)
+            for (uint32_t bx = 0; bx < blocks_x_; ++bx) {
+                float lo = std::numeric_limits<float>::max(), hi = -lo;
+                for (uint32_t j = by * kTerrainBlock; j <= std::min(field_.ny - 1, (by + 1) * kTerrainBlock); ++j)
+                    for (uint32_t i = bx * kTerrainBlock; i <= std::min(field_.nx - 1, (bx + 1) * kTerrainBlock); ++i) {
+                        lo = std::min(lo, field_.heights[static_cast<size_t>(j) * field_.nx + i]);
+                        hi = std::max(hi, field_.heights[static_cast<size_t>(j) * field_.nx + i]);
+                    }
+                block_range_[static_cast<size_t>(by) * blocks_x_ + bx] = {lo, hi};
+            }
+    }
+    ObjectKind kind() const override { return ObjectKind::Terrain; }
+    GeometryMode mode() const override { return GeometryMode::Procedural; }
+    uint64_t primitive_count() const override { return block_range_.size() + skirt_count_; }
+    uint64_t triangle_count() const override { return 0; }
+    size_t buffer_bytes() const override {
+        return field_.heights.capacity() * sizeof(float) + block_range_.capacity() * sizeof(BlockRange);
+    }
+    RTCGeometry create_embree_geometry(RTCDevice device) override {
+        return new_user_geometry(device, this, primitive_count());
+    }
+    void complete_hit(const RTCHit& embree_hit, Hit& hit) const override {
+        complete_user_hit(embree_hit, ObjectKind::Terrain, 0, hit);
+    }
+
+    void bounds(unsigned prim, RTCBounds* out) const;
+    bool intersect(unsigned prim, Vec3 o, Vec3 d, double tmin, double tmax, UserHit* hit) const;
+    bool occluded(unsigned prim, Vec3 o, Vec3 d, double tmin, double tmax) const {
+        UserHit hit;
+        return intersect(prim, o, d, tmin, tmax, &hit);
+    }
+
+private:
+    struct BlockRange {
+        float lo, hi;
+    };
+    // Cells [i0, i1) x [j0, j1) of block `prim`.
+    void block_cells(unsigned prim, uint32_t* i0, uint32_t* i1, uint32_t* j0, uint32_t* j1) const {
+        const uint32_t bx = prim % blocks_x_, by = prim / blocks_x_;
+        *i0 = bx * kTerrainBlock;
+        *j0 = by * kTerrainBlock;
+        *i1 = std::min(field_.nx - 1, *i0 + kTerrainBlock);
+        *j1 = std::min(field_.ny - 1, *j0 + kTerrainBlock);
+    }
+    bool intersect_cell(uint32_t i, uint32_t j, Vec3 o, Vec3 d, double tmin, double tmax, UserHit* hit) const {
+        const Vec3 a = field_node(field_, i, j), b = field_node(field_, i + 1, j);
+        const Vec3 c = field_node(field_, i + 1, j + 1), e = field_node(field_, i, j + 1);
+        UserHit first, second;
+        const bool h1 = ray_triangle(a, b, c, o, d, tmin, tmax, &first);
+        const bool h2 = ray_triangle(a, c, e, o, d, tmin, tmax, &second);
+        if (!h1 && !h2) return false;
+        *hit = (h1 && (!h2 || first.t <= second.t)) ? first : second;
+        return true;
+    }
+    bool intersect_block(unsigned prim, Vec3 o, Vec3 d, double tmin, double tmax, UserHit* hit) const;
+
+    HeightField field_;
+    Box2 extent_;
+    size_t skirt_count_;
+    std::vector<BlockRange> block_range_;
+    uint32_t blocks_x_ = 0, blocks_y_ = 0;
+};
+
+void ProceduralTerrain::bounds(unsigned prim, RTCBounds* out) const {
+    Vec3 lo, hi;
+    if (prim < block_range_.size()) {
+        uint32_t i0, i1, j0, j1;
+        block_cells(prim, &i0, &i1, &j0, &j1);
+        const Vec3 a = field_node(field_, i0, j0), b = field_node(field_, i1, j1);
+        lo = {a.x, a.y, block_range_[prim].lo};
+        hi = {b.x, b.y, block_range_[prim].hi};
+    } else {
+        const auto q = terrain_skirt_quad(field_, extent_, prim - block_range_.size());
+        lo = hi = q[0];
+        for (const Vec3& p : q) {
+            lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+            hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+        }
+    }
+    // Padded outward: float rounding must not cut off the surface.
+    const double pad = 1e-3 + 1e-6 * std::max({std::abs(lo.x), std::abs(lo.y), std::abs(hi.x), std::abs(hi.y)});
+    out->lower_x = static_cast<float>(lo.x - pad);
+    out->lower_y = static_cast<float>(lo.y - pad);
+    out->lower_z = static_cast<float>(lo.z - pad);
+    out->upper_x = static_cast<float>(hi.x + pad);
+    out->upper_y = static_cast<float>(hi.y + pad);
+    out->upper_z = static_cast<float>(hi.z + pad);
+}
+
+bool ProceduralTerrain::intersect(unsigned prim, Vec3 o, Vec3 d, double tmin, double tmax, UserHit* hit) const {
+    if (prim < block_range_.size()) return intersect_block(prim, o, d, tmin, tmax, hit);
+    const auto q = terrain_skirt_quad(field_, extent_, prim - block_range_.size());
+    UserHit first, second;
+    const bool h1 = ray_triangle(q[0], q[1], q[2], o, d, tmin, tmax, &first);
+    const bool h2 = ray_triangle(q[0], q[2], q[3], o, d, tmin, tmax, &second);
+    if (!h1 && !h2) return false;
+    *hit = (h1 && (!h2 || first.t <= second.t)) ? first : second;
+    return true;
+}
+
+// A 2D DDA over the block's cells in grid units: cells come in the ray's order, so the first
+// cell with a hit holds the nearest one.
+bool ProceduralTerrain::intersect_block(unsigned prim, Vec3 o, Vec3 d, double tmin, double tmax,
+                                        UserHit* hit) const {
+    uint32_t i0, i1, j0, j1;
+    block_cells(prim, &i0, &i1, &j0, &j1);
+    const double u = (o.x - field_.origin.x) / field_.cell, v = (o.y - field_.origin.y) / field_.cell;
+    const double du = d.x / field_.cell, dv = d.y / field_.cell;
+    double t0 = tmin, t1 = tmax;
+    auto clip = [&](double start, double delta, double lo, double hi) {
+        if (std::abs(delta) < 1e-300) return start >= lo && start <= hi;
+        double ta = (lo - start) / delta, tb = (hi - start) / delta;
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        return t0 <= t1;
+    };
+    if (!clip(u, du, i0, i1) || !clip(v, dv, j0, j1)) return false;
+    const double inf = std::numeric_limits<double>::infinity();
+    auto start_cell = [&](double s, double ds, uint32_t lo, uint32_t hi) {
+        const double at = std::floor(s + ds * t0);
+        return static_cast<uint32_t>(std::clamp(at, static_cast<double>(lo), hi - 1.0));
+    };
+    uint32_t i = start_cell(u, du, i0, i1), j = start_cell(v, dv, j0, j1);
+    const int step_i = du > 0 ? 1 : -1, step_j = dv > 0 ? 1 : -1;
+    double next_u = du > 0 ? (i + 1 - u) / du : du < 0 ? (i - u) / du : inf;
+    double next_v = dv > 0 ? (j + 1 - v) / dv : dv < 0 ? (j - v) / dv : inf;
+    const double delta_u = du != 0 ? std::abs(1 / du) : inf, delta_v = dv != 0 ? std::abs(1 / dv) : inf;
+    for (;;) {
+        if (intersect_cell(i, j, o, d, tmin, tmax, hit)) return true;
+        if (next_u < next_v) {
+            if (next_u > t1) return false;
+            const long ni = static_cast<long>(i) + step_i;
+            if (ni < static_cast<long>(i0) || ni >= static_cast<long>(i1)) return false;
+            i = static_cast<uint32_t>(ni);
+            next_u += delta_u;
+        } else {
+            if (next_v > t1) return false;
+            const long nj = static_cast<long>(j) + step_j;
+            if (nj < static_cast<long>(j0) || nj >= static_cast<long>(j1)) return false;
+            j = static_cast<uint32_t>(nj);
+            next_v += delta_v;
+        }
+    }
+}
+
+}  // namespace
+
+std::unique_ptr<RenderGeometry> build_procedural_field_terrain(const Scene& scene) {
+    return std::make_unique<ProceduralTerrain>(scene);
+}
+
+}  // namespace citygen
