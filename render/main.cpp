@@ -247,6 +247,15 @@ Animation make_animation(const Options& o, const Job& job, const Camera& camera,
     return animation;
 }
 
+// An explicit camera under the ground sees the inside of a hill (the automatic view and the
+// orbit are kept above it): say so on one line and render what was asked.
+void note_camera_below_ground(const Scene& scene, Vec3 camera) {
+    const double below = ground_height(scene, camera.x, camera.y) - camera.z;
+    if (below > 0)
+        std::fprintf(stderr, "render: note: the camera is %.1f m below the ground at %.1f,%.1f\n", below, camera.x,
+                     camera.y);
+}
+
 int run(const Options& o) {
     Job job = prepare_job(o);
     RenderSettings& settings = job.settings;
@@ -291,6 +300,7 @@ int run(const Options& o) {
         job.want_camera ? Camera::look_at(parse_point(o.camera, "--camera"), parse_point(o.look_at, "--look-at"),
                                           o.fov, settings.width, settings.height)
                         : framing_camera(scene, o.fov, settings.width, settings.height);
+    if (job.want_camera) note_camera_below_ground(scene, parse_point(o.camera, "--camera"));
     settings.integrator.fog.density = o.fog;
     settings.integrator.fog.top_z = scene.ground.z + o.fog_height;
     settings.integrator.haze_extinction = o.visibility_km > 0 ? 3.912 / (o.visibility_km * 1000) : 0;

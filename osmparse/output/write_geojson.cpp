@@ -1,7 +1,9 @@
 #include "osmparse/output/write_geojson.h"
 
 #include <cstdio>
+#include <optional>
 
+#include "common/ground.h"
 #include "common/scene_io.h"
 #include "osmparse/core/projection.h"
 
@@ -9,31 +11,46 @@ namespace citygen {
 
 namespace {
 
+// With a height field every coordinate carries z, metres above the field's vertical datum:
+// a vertex on the ground at the ground height under it (common/ground.h, the surface render
+// draws), or a given height (a building's base). Without a field coordinates stay 2D.
 class GeoJsonWriter {
 public:
-    explicit GeoJsonWriter(const Projection& p) : projection_(p) { text_ = "{\"type\":\"FeatureCollection\",\"features\":[\n"; }
+    GeoJsonWriter(const Projection& p, const Scene& scene) : projection_(p), scene_(scene) {
+        text_ = "{\"type\":\"FeatureCollection\",\"features\":[\n";
+    }
 
+    // Each vertex at the ground under it.
     void polygon(const std::vector<const Ring*>& rings, const std::string& properties) {
+        polygon_at(rings, properties, std::nullopt);
+    }
+    // Every vertex at `height` (relative to the field's reference altitude, like the field).
+    void polygon_at_height(const std::vector<const Ring*>& rings, const std::string& properties, double height) {
+        polygon_at(rings, properties, height);
+    }
+    // At the ground under it.
+    void point_feature(Vec2 p, const std::string& properties) {
+        begin("Point");
+        text_ += coordinates(p, std::nullopt);
+        end(properties);
+    }
+    std::string finish() { return text_ + "\n]}\n"; }
+
+private:
+    void polygon_at(const std::vector<const Ring*>& rings, const std::string& properties,
+                    std::optional<double> height) {
         begin("Polygon");
         for (size_t r = 0; r < rings.size(); ++r) {
             text_ += r ? ",[" : "[";
             const Ring& ring = *rings[r];
             for (size_t i = 0; i <= ring.size(); ++i) {  // GeoJSON rings repeat the first point
                 if (i) text_ += ",";
-                point(ring[i % ring.size()]);
+                text_ += "[" + coordinates(ring[i % ring.size()], height) + "]";
             }
             text_ += "]";
         }
         end(properties);
     }
-    void point_feature(Vec2 p, const std::string& properties) {
-        begin("Point");
-        text_ += lon_lat(p);
-        end(properties);
-    }
-    std::string finish() { return text_ + "\n]}\n"; }
-
-private:
     void begin(const char* type) {
         if (count_++) text_ += ",\n";
         text_ += "{\"type\":\"Feature\",\"geometry\":{\"type\":\"";
@@ -41,15 +58,21 @@ private:
         text_ += "\",\"coordinates\":[";
     }
     void end(const std::string& properties) { text_ += "]},\"properties\":{" + properties + "}}"; }
-    std::string lon_lat(Vec2 p) const {
+    // "lon,lat" without a field, "lon,lat,z" with one.
+    std::string coordinates(Vec2 p, std::optional<double> height) const {
         double lat, lon;
         projection_.to_wgs84(p, lat, lon);
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%.8f,%.8f", lon, lat);
+        char buf[96];
+        if (scene_.terrain.empty()) {
+            std::snprintf(buf, sizeof buf, "%.8f,%.8f", lon, lat);
+        } else {
+            const double z = scene_.terrain.reference_altitude + (height ? *height : ground_height(scene_, p.x, p.y));
+            std::snprintf(buf, sizeof buf, "%.8f,%.8f,%.3f", lon, lat, z);
+        }
         return buf;
     }
-    void point(Vec2 p) { text_ += "[" + lon_lat(p) + "]"; }
     const Projection& projection_;
+    const Scene& scene_;
     std::string text_;
     size_t count_ = 0;
 };
@@ -87,15 +110,17 @@ std::string building_look_properties(const Building& b) {
 
 std::string scene_to_geojson(const Scene& scene) {
     const Projection projection(scene.header.origin_lat, scene.header.origin_lon);
-    GeoJsonWriter w(projection);
+    GeoJsonWriter w(projection, scene);
     static const char* height_sources[] = {"tagged", "levels", "random"};
     for (const Building& b : scene.buildings) {
         std::vector<const Ring*> rings{&b.outer};
         for (const Ring& h : b.holes) rings.push_back(&h);
-        w.polygon(rings, "\"kind\":\"building\",\"osm\":" + str(to_string(b.osm)) + ",\"height\":" + num(b.height) +
-                             ",\"min_height\":" + num(b.min_height) + ",\"levels\":" + std::to_string(b.levels) +
-                             ",\"height_source\":\"" + height_sources[static_cast<int>(b.height_source)] +
-                             "\",\"part\":" + (b.is_part ? "true" : "false") + building_look_properties(b));
+        const std::string properties =
+            "\"kind\":\"building\",\"osm\":" + str(to_string(b.osm)) + ",\"height\":" + num(b.height) +
+            ",\"min_height\":" + num(b.min_height) + ",\"levels\":" + std::to_string(b.levels) +
+            ",\"height_source\":\"" + height_sources[static_cast<int>(b.height_source)] +
+            "\",\"part\":" + (b.is_part ? "true" : "false") + building_look_properties(b);
+        w.polygon_at_height(rings, properties, building_base(scene, b));
     }
     for (const RoadEdge& r : scene.roads)
         w.polygon({&r.quad}, "\"kind\":\"road\",\"osm\":" + str(to_string(r.osm)) + ",\"from_node\":" +

@@ -72,3 +72,86 @@ TEST(RoadGeoJson, CliWritesItAndFailsCleanlyOnABadPath) {
     EXPECT_EQ(count(bad.err, "\n"), 1u) << bad.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("missing-dir/t.geojson")));
 }
+
+namespace {
+
+// A scene on a plane slope, ground = 2 + 0.1 x + 0.05 y above a reference of 100 m (the cell
+// triangles of a plane are the plane), with one building, one road and one tree.
+Scene sloping_scene() {
+    Scene s;
+    s.header.origin_lat = 43.73;
+    s.header.origin_lon = 7.42;
+    HeightField& f = s.terrain;
+    f.origin = {-50, -50};
+    f.cell = 10;
+    f.nx = f.ny = 11;
+    f.reference_altitude = 100;
+    f.vertical_datum = "EGM96";
+    for (uint32_t j = 0; j < f.ny; ++j)
+        for (uint32_t i = 0; i < f.nx; ++i)
+            f.heights.push_back(static_cast<float>(2 + 0.1 * (-50 + 10.0 * i) + 0.05 * (-50 + 10.0 * j)));
+    Building b;
+    b.outer = {{3, 4}, {13, 4}, {13, 12}, {3, 12}};
+    b.height = 10;
+    s.buildings.push_back(b);
+    RoadEdge r;
+    r.quad = {{-20.5, -7.25}, {20.5, -7.25}, {20.5, -3.75}, {-20.5, -3.75}};
+    r.width = 3.5;
+    s.roads.push_back(r);
+    Tree t;
+    t.position = {-12, 31};
+    s.trees.push_back(t);
+    return s;
+}
+
+double plane(Vec2 p) { return 100 + 2 + 0.1 * p.x + 0.05 * p.y; }
+
+// Every [lon,lat,z] of the feature of `kind`, mapped back to scene coordinates.
+std::vector<Vec3> feature_points(const std::string& text, const Scene& s, const std::string& kind) {
+    const size_t at = text.find("\"kind\":\"" + kind + "\"");
+    const size_t begin = text.rfind("\"coordinates\":", at), end = text.find("]}", begin);
+    const Projection projection(s.header.origin_lat, s.header.origin_lon);
+    std::vector<Vec3> points;
+    for (size_t k = text.find_first_of("-0123456789", begin); k < end;) {
+        double lon = 0, lat = 0, z = 0;
+        int used = 0;
+        if (std::sscanf(text.c_str() + k, "%lf,%lf,%lf%n", &lon, &lat, &z, &used) != 3) break;
+        const Vec2 p = projection.to_local(lat, lon);
+        points.push_back({p.x, p.y, z});
+        k = text.find_first_of("-0123456789", k + used);
+    }
+    return points;
+}
+
+}  // namespace
+
+TEST(TerrainGeoJson, BuildingsAtTheirLowestCornerRoadsAndTreesOnTheGround) {
+    const Scene s = sloping_scene();
+    const std::string text = scene_to_geojson(s);
+    const std::vector<Vec3> building = feature_points(text, s, "building");
+    ASSERT_EQ(building.size(), 5u);  // the ring repeats its first point
+    for (const Vec3& p : building) EXPECT_NEAR(p.z, plane({3, 4}), 1e-3) << "every vertex at the lowest corner";
+    const std::vector<Vec3> road = feature_points(text, s, "road");
+    ASSERT_EQ(road.size(), 5u);
+    for (const Vec3& p : road) EXPECT_NEAR(p.z, plane({p.x, p.y}), 2e-3) << p.x << "," << p.y;
+    EXPECT_NEAR(road[1].z - road[0].z, 0.1 * 41, 2e-3) << "the slope along the road";
+    const std::vector<Vec3> tree = feature_points(text, s, "tree");
+    ASSERT_EQ(tree.size(), 1u);
+    EXPECT_NEAR(tree[0].z, plane({-12, 31}), 1e-3);
+}
+
+TEST(TerrainGeoJson, WithoutAFieldCoordinatesStayTwoDimensional) {
+    Scene s = sloping_scene();
+    s.terrain = HeightField{};
+    const std::string text = scene_to_geojson(s);
+    EXPECT_TRUE(feature_points(text, s, "building").empty()) << "no third number";
+    EXPECT_EQ(count(text, "]]]"), 2u);
+    EXPECT_NE(text.find("[[[7.42"), std::string::npos);
+    const std::string point = "\"type\":\"Point\",\"coordinates\":[";
+    const size_t tree = text.find(point);
+    ASSERT_NE(tree, std::string::npos);
+    double lon = 0, lat = 0;
+    char after = 0;
+    ASSERT_EQ(std::sscanf(text.c_str() + tree + point.size(), "%lf,%lf%c", &lon, &lat, &after), 3);
+    EXPECT_EQ(after, ']') << "two numbers";
+}

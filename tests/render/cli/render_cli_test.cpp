@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
 
+#include "common/scene_io.h"
 #include "render/scene/geometry_mode.h"
 #include "tests/test_support.h"
 
@@ -133,6 +134,27 @@ TEST_F(RenderCli, ExportPlyHasOneFacePerTriangleWithMaterials) {
     const size_t vertices_at = ply.find("element vertex ") + 15;
     const long vertices = std::stol(ply.substr(vertices_at));
     EXPECT_EQ(ply.size() - header_end, static_cast<size_t>(vertices * 12 + triangles * 15));
+}
+
+TEST_F(RenderCli, NotesACameraBelowTheGroundAndRendersAnyway) {
+    // The fixture on a level field 30 m up (the cell triangles of a plane are the plane).
+    Scene s = load_scene(scene());
+    HeightField& f = s.terrain;
+    f.cell = 10;
+    f.origin = {std::floor(s.header.bounds_min.x / 10) * 10 - 20, std::floor(s.header.bounds_min.y / 10) * 10 - 20};
+    f.nx = static_cast<uint32_t>((s.header.bounds_max.x - f.origin.x) / 10) + 3;
+    f.ny = static_cast<uint32_t>((s.header.bounds_max.y - f.origin.y) / 10) + 3;
+    f.heights.assign(static_cast<size_t>(f.nx) * f.ny, 30.0f);
+    const std::string level = file("level.scene");
+    save_scene(s, level);
+    const std::string args = quoted(level) + " --width 32 --height 18 --spp 1 -q --look-at 50,0,0 -o ";
+    const CommandResult below = render(args + quoted(file("below.png")) + " --camera 1,2,20");
+    ASSERT_EQ(below.exit_code, 0) << below.err;
+    EXPECT_EQ(below.err, "render: note: the camera is 10.0 m below the ground at 1.0,2.0\n");
+    EXPECT_TRUE(std::filesystem::exists(file("below.png")));
+    const CommandResult above = render(args + quoted(file("above.png")) + " --camera 1,2,31");
+    ASSERT_EQ(above.exit_code, 0) << above.err;
+    EXPECT_EQ(above.err, "");
 }
 
 TEST_F(RenderCli, BadInputGivesOneLineAndNoOutput) {
