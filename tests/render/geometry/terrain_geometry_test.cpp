@@ -91,8 +91,11 @@ TEST(TerrainGeometry, RaysHitTheProceduralTerrainWhereTheyHitTheStoredMesh) {
         ++hits;
         EXPECT_EQ(a.kind, ObjectKind::Terrain);
         EXPECT_EQ(b.kind, ObjectKind::Terrain);
-        if (std::abs(a.t - b.t) > 0.01) ++grazing;
-        if (std::abs(a.t - b.t) <= 0.01) EXPECT_GT(dot(a.geometric_normal, b.geometric_normal), 0.999) << k;
+        if (std::abs(a.t - b.t) > 0.01) {
+            ++grazing;
+        } else {
+            EXPECT_GT(dot(a.geometric_normal, b.geometric_normal), 0.999) << k;
+        }
     }
     EXPECT_GT(hits, 3000);
     EXPECT_LE(grazing, 4) << "hits more than 1 cm apart";
