@@ -12,7 +12,7 @@ namespace citygen {
 namespace {
 
 uint16_t joint_material(const Scene& scene, const Joint& j) {
-    return j.edges.empty() ? kPathPaving : path_material(scene.paths[j.edges.front()].path_class);
+    return j.edges.empty() ? static_cast<uint16_t>(kPathPaving) : path_material(scene.paths[j.edges.front()].path_class);
 }
 
 ProceduralGeometry::SurfaceMaterials walls() {

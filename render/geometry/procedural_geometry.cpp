@@ -263,12 +263,7 @@ void ProceduralGeometry::bounds(unsigned prim_id, RTCBounds* out) const {
     }
     // Pad so that float rounding of the bounds never cuts off a surface on their faces.
     const double pad = 1e-3;
-    out->lower_x = static_cast<float>(lo.x - pad);
-    out->lower_y = static_cast<float>(lo.y - pad);
-    out->lower_z = static_cast<float>(lo.z - pad);
-    out->upper_x = static_cast<float>(hi.x + pad);
-    out->upper_y = static_cast<float>(hi.y + pad);
-    out->upper_z = static_cast<float>(hi.z + pad);
+    set_bounds(out, {lo.x - pad, lo.y - pad, lo.z - pad}, {hi.x + pad, hi.y + pad, hi.z + pad});
 }
 
 RTCGeometry ProceduralGeometry::create_embree_geometry(RTCDevice device) {

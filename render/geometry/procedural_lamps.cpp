@@ -28,12 +28,7 @@ std::unique_ptr<ProceduralLamps> build_procedural_lamps(const Scene& scene) {
 void ProceduralLamps::bounds(unsigned prim, RTCBounds* out) const {
     const LampShape& s = lamps_[prim];
     const double r = s.outer_radius() + 1e-3, pad = 1e-3;
-    out->lower_x = static_cast<float>(s.base.x - r);
-    out->lower_y = static_cast<float>(s.base.y - r);
-    out->lower_z = static_cast<float>(s.base.z - pad);
-    out->upper_x = static_cast<float>(s.base.x + r);
-    out->upper_y = static_cast<float>(s.base.y + r);
-    out->upper_z = static_cast<float>(s.top() + pad);
+    set_bounds(out, {s.base.x - r, s.base.y - r, s.base.z - pad}, {s.base.x + r, s.base.y + r, s.top() + pad});
 }
 
 bool ProceduralLamps::intersect(unsigned prim, Vec3 origin, Vec3 direction, double tmin, double tmax,

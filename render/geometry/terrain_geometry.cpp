@@ -183,12 +183,7 @@ void ProceduralTerrain::bounds(unsigned prim, RTCBounds* out) const {
     }
     // Padded outward: float rounding must not cut off the surface.
     const double pad = 1e-3 + 1e-6 * std::max({std::abs(lo.x), std::abs(lo.y), std::abs(hi.x), std::abs(hi.y)});
-    out->lower_x = static_cast<float>(lo.x - pad);
-    out->lower_y = static_cast<float>(lo.y - pad);
-    out->lower_z = static_cast<float>(lo.z - pad);
-    out->upper_x = static_cast<float>(hi.x + pad);
-    out->upper_y = static_cast<float>(hi.y + pad);
-    out->upper_z = static_cast<float>(hi.z + pad);
+    set_bounds(out, {lo.x - pad, lo.y - pad, lo.z - pad}, {hi.x + pad, hi.y + pad, hi.z + pad});
 }
 
 bool ProceduralTerrain::intersect(unsigned prim, Vec3 o, Vec3 d, double tmin, double tmax, UserHit* hit) const {

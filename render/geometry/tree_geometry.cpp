@@ -233,12 +233,8 @@ public:
         // The facets' vertices lie a little outside the crown's ellipsoid.
         const UnitShell& shell = shell_facets();
         const double r = std::max(s.crown_radius * shell.outer_r, s.trunk_radius) + 1e-3;
-        out->lower_x = static_cast<float>(s.base.x - r);
-        out->lower_y = static_cast<float>(s.base.y - r);
-        out->lower_z = static_cast<float>(s.base.z - 1e-3);
-        out->upper_x = static_cast<float>(s.base.x + r);
-        out->upper_y = static_cast<float>(s.base.y + r);
-        out->upper_z = static_cast<float>(s.crown_centre.z + s.crown_half_height * shell.outer_h + 1e-3);
+        set_bounds(out, {s.base.x - r, s.base.y - r, s.base.z - 1e-3},
+                   {s.base.x + r, s.base.y + r, s.crown_centre.z + s.crown_half_height * shell.outer_h + 1e-3});
     }
     bool intersect(unsigned prim, Vec3 origin, Vec3 direction, double tmin, double tmax, UserHit* hit) const {
         TreeHit found;

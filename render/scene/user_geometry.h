@@ -26,6 +26,16 @@ struct UserHit {
     uint32_t cell = 0;
 };
 
+// A primitive's box, from double-precision corners (callers pad them for float rounding).
+inline void set_bounds(RTCBounds* out, Vec3 lo, Vec3 hi) {
+    out->lower_x = static_cast<float>(lo.x);
+    out->lower_y = static_cast<float>(lo.y);
+    out->lower_z = static_cast<float>(lo.z);
+    out->upper_x = static_cast<float>(hi.x);
+    out->upper_y = static_cast<float>(hi.y);
+    out->upper_z = static_cast<float>(hi.z);
+}
+
 namespace user_geometry {
 
 template <typename Geometry>
