@@ -35,6 +35,8 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
     id_ = ++instances;  // never 0: an empty cache slot belongs to no instance
     std::vector<LightBounds> bounds;
     if (options.lamps && options.lamp_lumens > 0) gather_lamps(bounds);
+    building_bases_.reserve(scene.buildings.size());
+    for (const Building& b : scene.buildings) building_bases_.push_back(building_base(scene, b));
     if (options.lit_windows > 0) gather_window_strips(bounds);
     lamps_.shrink_to_fit();
     strips_.shrink_to_fit();
@@ -192,7 +194,7 @@ bool SceneLights::derive_wall_geometry(const BuildingWalls& walls, uint32_t buil
     walls.wall(wall, &p, &q);
     if (p == q) return false;
     out->layout = make_wall_layout(facades_, walls.input(wall));
-    out->frame = wall_frame(p, q, building_base(*scene_, b) + b.min_height);
+    out->frame = wall_frame(p, q, building_bases_[building] + b.min_height);
     out->building_key = facade_building_key(b);
     out->wall = wall;
     return true;

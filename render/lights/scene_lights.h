@@ -165,6 +165,9 @@ private:
     // (ascending): finding a wall again on each cache miss would cost O(rings) for these.
     std::vector<uint32_t> many_ring_buildings_;
     std::vector<BuildingWalls> many_ring_walls_;
+    // Per building, the ground its walls stand on (building_base walks the whole outline over
+    // the height field: worked out once, not at each wall-cache miss while rendering).
+    std::vector<double> building_bases_;
     uint64_t lit_windows_ = 0, windows_ = 0;
     // With the tree, lamps and window strips have a light BVH each: in one tree over both, the
     // thousands of dim strips widened the clusters holding the lamps, and the lamp choice at the
