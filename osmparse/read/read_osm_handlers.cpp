@@ -166,7 +166,7 @@ void RailwayHandler::way(const osmium::Way& way) {
 void BuildingAreaHandler::way(const osmium::Way& way) {
     if (!is_building_tags(way.tags())) return;
     report_.read(ReportKind::BuildingWays);
-    if (!way.is_closed()) {
+    if (way.nodes().empty() || !way.is_closed()) {  // is_closed asserts on a way of no nodes
         report_.dropped(ReportKind::BuildingWays, ReportReason::NotClosed);
         return;
     }
