@@ -191,6 +191,7 @@ def make_city():
 
 BUILDINGS, ROADS, WATER = make_city()
 BUILDING_BY_ID = {b["id"]: b for b in BUILDINGS}
+ROAD_ID0 = 500000  # road k is way ROAD_ID0 + k
 
 
 def rounded(poly):
@@ -445,8 +446,9 @@ class Viewer:
         if kind == "sky":
             return {"kind": "sky"}
         if kind == "road":
-            rid = 500000 + (b["id"] % 997)
-            return {"kind": "road", "osm": f"w{rid}", "osm_type": "way", "osm_id": rid, "index": rid % 1000,
+            k = b["id"] % len(ROADS)
+            rid = ROAD_ID0 + k
+            return {"kind": "road", "osm": f"w{rid}", "osm_type": "way", "osm_id": rid, "index": k,
                     "fields": {"highway": "residential", "width": "7.0 m", "lanes": "2", "surface": "asphalt"}}
         levels = max(1, int(b["height"] / 3))
         return {"kind": "building", "osm": f"w{b['id']}", "osm_type": "way", "osm_id": b["id"],
@@ -484,6 +486,10 @@ def goto(q):
             cx, cy = sum(xs) / len(xs), sum(ys) / len(ys)
             return {"x": cx, "y": cy, "z": BUILDING_BY_ID[osm_id]["height"] / 2,
                     "radius": math.hypot(max(xs) - min(xs), max(ys) - min(ys)) / 2}
+        if q[0] == "w" and 0 <= osm_id - ROAD_ID0 < len(ROADS):
+            r = ROADS[osm_id - ROAD_ID0]
+            return {"x": (r[0] + r[-2]) / 2, "y": (r[1] + r[-1]) / 2, "z": 0.0,
+                    "radius": math.hypot(r[-2] - r[0], r[-1] - r[1]) / 2}
         if q[0] == "n" and osm_id < 10**6:  # nodes: somewhere in the city, a point
             x = BOUNDS["min"][0] + (osm_id * 37 % 1000) / 1000 * (BOUNDS["max"][0] - BOUNDS["min"][0])
             y = BOUNDS["min"][1] + (osm_id * 91 % 1000) / 1000 * (BOUNDS["max"][1] - BOUNDS["min"][1])
