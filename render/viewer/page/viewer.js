@@ -56,7 +56,9 @@
     state, frames: 0, lastFrame: null, lastPick: null,
     setTime: (t) => { setControl("time", t); settingsChanged(true); },
     setView: (camera, lookAt, fov) => {
-      state.camera = camera.slice(); state.lookAt = lookAt.slice(); if (fov) state.fov = fov;
+      state.camera = camera.slice();
+      state.lookAt = lookAt.slice();
+      if (fov) { state.fov = +fov; setControl("fov", state.fov); }
       viewChanged(false);
     },
     buildArgs: () => buildArgs(),
