@@ -208,6 +208,7 @@ if (!loaded) {
   const err = await page.$eval("#error", (e) => e.textContent).catch(() => "");
   console.log(`# the page shows: ${err || "(no error line)"}`);
   await browser.close();
+  console.log(`${passes} passed, ${failures} failed`);
   process.exit(1);
 }
 await settle(0);
@@ -398,6 +399,17 @@ await check("Copy command shows the command of the view", async () => {
   assert(s.command && s.shown === s.command, `shown "${s.shown}"`);
   assert(/--camera /.test(s.shown) && /--look-at /.test(s.shown), s.shown);
   return s.shown.length > 70 ? s.shown.slice(0, 70) + "…" : s.shown;
+});
+
+await check("the settings panel folds away and back", async () => {
+  const inView = () => page.$eval("#panel", (e) => e.getBoundingClientRect().left < window.innerWidth - 1);
+  assert(await inView(), "the panel is not open at the start");
+  await page.click("#panel-toggle");
+  await sleep(400);
+  assert(!(await inView()), "the panel is still in view");
+  await page.click("#panel-toggle");
+  await sleep(400);
+  assert(await inView(), "the panel did not come back");
 });
 
 if (opts.screenshot) {
