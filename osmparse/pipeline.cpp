@@ -19,7 +19,7 @@
 #include "osmparse/buildings/building_colours.h"
 #include "osmparse/buildings/building_tags.h"
 #include "osmparse/buildings/infer_heights.h"
-#include "osmparse/core/projection.h"
+#include "common/projection.h"
 #include "osmparse/map/assemble_sea.h"
 #include "osmparse/map/build_land_cover.h"
 #include "osmparse/map/fill_empty_blocks.h"

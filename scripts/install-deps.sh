@@ -31,6 +31,9 @@ RUNTIME=(
   libopenimageio-dev openimageio-tools
   # render --export-gltf (Debian ships tinygltf as a shared library).
   libtinygltf-dev
+  # render --serve, the viewer: a small HTTP server (cpp-httplib: one header and a library, no
+  # framework; Boost.Beast would bring Boost for the same job) and a JSON library for its API.
+  libcpp-httplib-dev nlohmann-json3-dev
 )
 TEST=(
   # Every test binary is a GoogleTest executable; some use GMock matchers.
@@ -50,6 +53,11 @@ CI=(
   slurm-wlm munge ffmpeg
   # tests/blender/blender_gltf_test.sh imports render's glTF with Blender, whose importer needs numpy.
   blender python3-numpy
+  # tests/render/viewer/browser: the viewer's page driven in headless Chromium by puppeteer-core
+  # (from npm, pinned in its package-lock.json; installed below).
+  # (npm comes with nodejs from NodeSource, as on our machines; with Debian's nodejs it is a
+  # package of its own, installed below if missing.)
+  chromium nodejs
 )
 
 usage() { echo "usage: $0 [runtime|test|ci]   or   $0 --list runtime|test|ci" >&2; exit 2; }
@@ -85,9 +93,23 @@ missing() {
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || echo "$p"
   done
 }
+# The browser test's npm packages (ci profile), once the Debian ones are there.
+browser_dir="$(cd "$(dirname "$0")/.." && pwd)/tests/render/viewer/browser"
+install_browser_packages() {
+  [ "$profile" = ci ] || return 0
+  [ -d "$browser_dir/node_modules/puppeteer-core" ] && return 0
+  if ! command -v npm >/dev/null; then
+    ${SUDO:-$([ "$(id -u)" -ne 0 ] && echo sudo)} apt-get install -y -qq npm >/dev/null
+  fi
+  echo "install-deps (ci): npm ci in tests/render/viewer/browser" >&2
+  (cd "$browser_dir" && npm ci --no-audit --no-fund --loglevel=error >/dev/null)
+}
 mapfile -t missing_lean < <(missing $(packages "$profile" runtime) $(packages "$profile" test))
 mapfile -t missing_ci < <(missing $(packages "$profile" ci))
-[ ${#missing_lean[@]} -eq 0 ] && [ ${#missing_ci[@]} -eq 0 ] && exit 0
+if [ ${#missing_lean[@]} -eq 0 ] && [ ${#missing_ci[@]} -eq 0 ]; then
+  install_browser_packages
+  exit 0
+fi
 
 SUDO=""
 [ "$(id -u)" -ne 0 ] && SUDO="sudo"
@@ -103,3 +125,4 @@ fi
 if [ ${#missing_ci[@]} -gt 0 ]; then
   $SUDO apt-get install -y -qq "${missing_ci[@]}" >/dev/null
 fi
+install_browser_packages

@@ -4,9 +4,10 @@
 #               and its slow stages need clang, Slurm and Blender; a local run wants the same
 #               suite CI runs (without them the farm and Blender tests would only be skipped).
 #   build       gcc, Release, everything (tests included) into build/
-#   fast tests  ctest -LE slow: every test but the two labelled slow (tests/CMakeLists.txt)
+#   fast tests  ctest -LE slow: every test but the three labelled slow (tests/CMakeLists.txt)
 #   farm        the slurm_farm test (a single-node Slurm started by the test)
 #   blender     the blender_gltf_import test (Blender imports render's glTF)
+#   browser     the viewer_browser test (the viewer's page in headless Chromium)
 #   asan build  scripts/check-sanitizers.sh build: clang, ASan+UBSan, with the fuzzers
 #   asan tests  scripts/check-sanitizers.sh test: the suite sanitized, less farm, Blender and
 #               the real extracts
@@ -55,6 +56,7 @@ stage build scripts/build.sh ci
 stage "fast tests" ctest_in_build -LE slow
 stage farm ctest_in_build -R '^slurm_farm$'
 stage blender ctest_in_build -R '^blender_gltf_import$'
+stage browser ctest_in_build -R '^viewer_browser$'
 if [ "${CITYGEN_SKIP_SANITIZERS:-0}" != 1 ]; then
     stage "asan build" scripts/check-sanitizers.sh build
     stage "asan tests" scripts/check-sanitizers.sh test

@@ -5,7 +5,7 @@
 
 #include "common/ground.h"
 #include "common/scene_io.h"
-#include "osmparse/core/projection.h"
+#include "common/projection.h"
 
 namespace citygen {
 

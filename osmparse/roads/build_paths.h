@@ -10,7 +10,7 @@
 #include "common/scene.h"
 #include "osmparse/core/osm_data.h"
 #include "osmparse/core/params.h"
-#include "osmparse/core/projection.h"
+#include "common/projection.h"
 #include "osmparse/core/report.h"
 
 namespace citygen {

@@ -6,7 +6,7 @@
 
 #include "common/scene.h"
 #include "osmparse/core/params.h"
-#include "osmparse/core/projection.h"
+#include "common/projection.h"
 #include "osmparse/core/report.h"
 #include "osmparse/terrain/dem_grid.h"
 

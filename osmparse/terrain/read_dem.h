@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "common/geometry.h"
-#include "osmparse/core/projection.h"
+#include "common/projection.h"
 #include "osmparse/terrain/dem_grid.h"
 
 namespace citygen {

@@ -52,9 +52,37 @@ float tone_map(float linear, double exposure) {
     return srgb_encode(static_cast<float>(y));
 }
 
-void write_image(const Film& film, const std::string& path, double exposure) {
+namespace {
+
+const char* name_for(ImageFormat format) {
+    return format == ImageFormat::Png ? "image.png" : format == ImageFormat::Jpeg ? "image.jpg" : "image.exr";
+}
+
+// Encodes `data` (of `type`, laid out as `spec` says) in memory; throws citygen::Error.
+std::vector<unsigned char> encode(const OIIO::ImageSpec& spec, OIIO::TypeDesc type, const void* data,
+                                  ImageFormat format) {
     using namespace OIIO;
-    const ImageFormat format = image_format_for(path);
+    // The image libraries do not all report a full disk (libpng did not), and libjpeg prints its
+    // own line, so encoding goes to memory and write_file_atomically checks every write.
+    std::vector<unsigned char> bytes;
+    Filesystem::IOVecOutput memory(bytes);
+    const std::string name = name_for(format);
+    auto out = ImageOutput::create(name);
+    bool ok = out && out->supports("ioproxy") && out->set_ioproxy(&memory) && out->open(name, spec) &&
+              out->write_image(type, data);
+    std::string reason = out ? out->geterror() : OIIO::geterror();
+    if (out) ok = out->close() && ok;
+    if (!ok) {
+        if (reason.empty()) reason = "encoding failed";
+        throw Error("cannot encode image (" + reason.substr(0, reason.find('\n')) + ")");
+    }
+    return bytes;
+}
+
+}  // namespace
+
+std::vector<unsigned char> encode_image(const Film& film, ImageFormat format, double exposure) {
+    using namespace OIIO;
     const size_t pixels = static_cast<size_t>(film.width) * film.height;
 
     std::vector<float> data;
@@ -98,21 +126,24 @@ void write_image(const Film& film, const std::string& path, double exposure) {
     // write time unless DateTime is set, and it leaves out an empty one.
     spec.attribute("DateTime", "");
 
-    // The image is encoded in memory and then written by write_file_atomically, which checks
-    // every write, the flush and the close, and removes its temporary file on failure: the
-    // image libraries do not all report a full disk (libpng did not), and libjpeg prints its
-    // own line.
+    return encode(spec, TypeDesc::FLOAT, data.data(), format);
+}
+
+std::vector<unsigned char> encode_rgb8(int width, int height, const std::vector<unsigned char>& rgb,
+                                       ImageFormat format, int jpeg_quality) {
+    using namespace OIIO;
+    ImageSpec spec(width, height, 3, TypeDesc::UINT8);
+    if (format == ImageFormat::Jpeg) spec.attribute("Compression", "jpeg:" + std::to_string(jpeg_quality));
+    spec.attribute("DateTime", "");
+    return encode(spec, TypeDesc::UINT8, rgb.data(), format);
+}
+
+void write_image(const Film& film, const std::string& path, double exposure) {
     std::vector<unsigned char> bytes;
-    Filesystem::IOVecOutput memory(bytes);
-    auto out = ImageOutput::create(path);
-    bool ok = out && out->supports("ioproxy") && out->set_ioproxy(&memory) && out->open(path, spec) &&
-              out->write_image(TypeDesc::FLOAT, data.data());
-    std::string reason = out ? out->geterror() : OIIO::geterror();
-    if (out) ok = out->close() && ok;
-    if (!ok) {
-        if (reason.empty()) reason = "encoding failed";
-        const size_t newline = reason.find('\n');
-        throw Error(path + ": cannot write image (" + reason.substr(0, newline) + ")");
+    try {
+        bytes = encode_image(film, image_format_for(path), exposure);
+    } catch (const Error& e) {
+        throw Error(path + ": " + e.what());
     }
     write_file_atomically(path, bytes.data(), bytes.size());
 }

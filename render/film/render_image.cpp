@@ -19,6 +19,18 @@
 
 namespace citygen {
 
+// A pixel's own random stream and the sum of its samples so far: the same numbers whichever
+// thread renders it, and whether its samples come in one go or one pass at a time.
+struct PixelSamples {
+    Rng rng;
+    uint64_t jitter_key = 0;  // where in the pixel its samples go (pixel_jitter)
+    uint32_t count = 0;       // samples taken so far
+    Color sum{0, 0, 0};
+    double luminance_squares = 0;  // sum of the samples' squared luminance (for the variance)
+    Color direct_sum{0, 0, 0};     // direct_light_at along the sample rays (for --denoise)
+    Color globe_sum{0, 0, 0};      // the small globes' light the film gathered (small_globes.h)
+};
+
 namespace {
 
 constexpr int kTileSize = 16;
@@ -127,18 +139,6 @@ void fill_guides(const PathContext& context, const Camera& camera, int x, int y,
     }
     film.guide_depth[i] = static_cast<float>(depth * inv);
 }
-
-// A pixel's own random stream and the sum of its samples so far: the same numbers whichever
-// thread renders it, and whether its samples come in one go or one pass at a time.
-struct PixelSamples {
-    Rng rng;
-    uint64_t jitter_key = 0;  // where in the pixel its samples go (pixel_jitter)
-    uint32_t count = 0;       // samples taken so far
-    Color sum{0, 0, 0};
-    double luminance_squares = 0;  // sum of the samples' squared luminance (for the variance)
-    Color direct_sum{0, 0, 0};     // direct_light_at along the sample rays (for --denoise)
-    Color globe_sum{0, 0, 0};      // the small globes' light the film gathered (small_globes.h)
-};
 
 PixelSamples start_pixel(const RenderSettings& settings, int x, int y) {
     const uint64_t key = hash_keys(settings.seed, static_cast<uint64_t>(x), static_cast<uint64_t>(y));
@@ -259,34 +259,26 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Passes of one sample per pixel until the time limit (or settings.spp); every pixel keeps its
-// stream and sum between passes, so n passes add exactly the samples, in the same order, of a
-// fixed n-spp render. Returns the samples per pixel taken.
-int render_time_limited(const PathContext& context, const Camera& camera, const RenderSettings& settings,
-                        std::chrono::steady_clock::time_point start, std::atomic<uint64_t>& total_rays, Film& film) {
-    const size_t pixels = static_cast<size_t>(film.width) * film.height;
-    std::vector<PixelSamples> state;
-    state.reserve(pixels);
-    for (int fy = 0; fy < film.height; ++fy)
-        for (int fx = 0; fx < film.width; ++fx) state.push_back(start_pixel(settings, film.x0 + fx, film.y0 + fy));
+// Passes of one sample per pixel until the time limit (or settings.spp). Returns the film and
+// sets `spp` to the samples per pixel taken.
+Film render_time_limited(const PathContext& context, const Camera& camera, const RenderSettings& settings,
+                         std::chrono::steady_clock::time_point start, std::atomic<uint64_t>& total_rays, int& spp) {
+    ProgressiveRender passes(context, camera, settings);
     const uint64_t limit_ms = static_cast<uint64_t>(settings.time_limit_seconds * 1000);
     Progress progress("render (time limit)", limit_ms, settings.quiet);
     uint64_t shown_ms = 0;
-    int spp = 0;
     double last_pass = 0;
-    while (spp < settings.spp && (spp == 0 || seconds_since(start) + last_pass <= settings.time_limit_seconds)) {
+    while (passes.spp() < settings.spp &&
+           (passes.spp() == 0 || seconds_since(start) + last_pass <= settings.time_limit_seconds)) {
         const double pass_start = seconds_since(start);
-        for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
-            add_samples(context, camera, x, y, 1, state[i], rays, settings.denoise_guides);
-        });
-        ++spp;
+        total_rays += passes.add_pass();
         last_pass = seconds_since(start) - pass_start;
         const uint64_t now_ms = std::min(limit_ms, static_cast<uint64_t>(seconds_since(start) * 1000));
         if (now_ms > shown_ms) progress.advance(now_ms - shown_ms), shown_ms = now_ms;
     }
     progress.finish();
-    for (size_t i = 0; i < pixels; ++i) store_pixel(state[i], spp, i, film);
-    return spp;
+    spp = passes.spp();
+    return passes.film();
 }
 
 }  // namespace
@@ -314,7 +306,7 @@ Film render_image(const PathContext& scene_context, const Camera& camera, const 
         });
         progress.finish();
     } else {
-        spp = render_time_limited(context, camera, settings, start, total_rays, film);
+        film = render_time_limited(scene_context, camera, settings, start, total_rays, spp);
     }
     if (settings.aovs) {
         for_each_tile(film, nullptr, total_rays, [&](int x, int y, size_t i, uint64_t& rays) {
@@ -335,6 +327,34 @@ Film render_image(const PathContext& scene_context, const Camera& camera, const 
         stats->rays = total_rays.load();
         stats->spp = spp;
     }
+    return film;
+}
+
+ProgressiveRender::ProgressiveRender(const PathContext& context, const Camera& camera, const RenderSettings& settings)
+    : context_(context), camera_(camera), settings_(settings), film_(make_film(render_region(settings), settings)) {
+    if (context_.lights && context_.lights->lamp_count() > 0) {
+        small_globes_ = std::make_unique<SmallGlobes>(*context_.lights, camera);
+        context_.small_globes = small_globes_.get();
+    }
+    pixels_.reserve(static_cast<size_t>(film_.width) * film_.height);
+    for (int fy = 0; fy < film_.height; ++fy)
+        for (int fx = 0; fx < film_.width; ++fx) pixels_.push_back(start_pixel(settings, film_.x0 + fx, film_.y0 + fy));
+}
+
+ProgressiveRender::~ProgressiveRender() = default;
+
+uint64_t ProgressiveRender::add_pass() {
+    std::atomic<uint64_t> rays{0};
+    for_each_tile(film_, nullptr, rays, [&](int x, int y, size_t i, uint64_t& pixel_rays) {
+        add_samples(context_, camera_, x, y, 1, pixels_[i], pixel_rays, settings_.denoise_guides);
+    });
+    ++spp_;
+    return rays.load();
+}
+
+Film ProgressiveRender::film() const {
+    Film film = film_;
+    for (size_t i = 0; i < pixels_.size(); ++i) store_pixel(pixels_[i], spp_, i, film);
     return film;
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "render/camera/camera.h"
@@ -70,5 +71,34 @@ PixelRegion render_region(const RenderSettings& settings);
 
 Film render_image(const PathContext& context, const Camera& camera, const RenderSettings& settings,
                   RenderStats* stats = nullptr);
+
+struct PixelSamples;
+
+// An image rendered a pass at a time, one sample per pixel each: every pixel keeps its random
+// stream and its sum between passes, so after n passes film() equals the rgb of render_image
+// with spp = n, byte for byte (--time-limit and the viewer's still frames). No AOVs or guides.
+class ProgressiveRender {
+public:
+    // `context` and `camera` must outlive this object.
+    ProgressiveRender(const PathContext& context, const Camera& camera, const RenderSettings& settings);
+    ~ProgressiveRender();
+    ProgressiveRender(const ProgressiveRender&) = delete;
+    ProgressiveRender& operator=(const ProgressiveRender&) = delete;
+
+    // One more sample in every pixel of the region; returns the rays it traced.
+    uint64_t add_pass();
+    int spp() const { return spp_; }
+    // The mean of the samples so far (zero before the first pass).
+    Film film() const;
+
+private:
+    PathContext context_;
+    const Camera& camera_;
+    RenderSettings settings_;
+    std::unique_ptr<SmallGlobes> small_globes_;
+    Film film_;  // the region; rgb filled by film()
+    std::vector<PixelSamples> pixels_;
+    int spp_ = 0;
+};
 
 }  // namespace citygen

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "osmparse/core/projection.h"
+#include "common/projection.h"
 #include "osmparse/polygons/cgal_footprint.h"
 #include "osmparse/polygons/clean_footprint.h"
 #include "osmparse/polygons/polygon_overlap.h"

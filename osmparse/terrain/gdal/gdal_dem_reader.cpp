@@ -173,7 +173,7 @@ DemSource dem_source(const std::string& path) {
     return s;
 }
 
-// The scene's transverse Mercator (osmparse/core/projection.h) on its origin, as GDAL's WKT.
+// The scene's transverse Mercator (common/projection.h) on its origin, as GDAL's WKT.
 std::string scene_wkt(double origin_lat, double origin_lon) {
     char proj[256];
     std::snprintf(proj, sizeof proj, "+proj=tmerc +lat_0=%.12g +lon_0=%.12g +k=1 +x_0=0 +y_0=0 +datum=WGS84 +units=m +no_defs",

@@ -6,7 +6,7 @@
   const $ = (id) => document.getElementById(id);
   const canvas = $("view");
   const ctx = canvas.getContext("2d");
-  const token = window.CITYGEN_TOKEN || new URLSearchParams(location.search).get("token") || "";
+  const token = new URLSearchParams(location.search).get("token") || "";
 
   // Built-in defaults of the CLI (main.cpp); /api/info `defaults` overrides them where given.
   const CLI_DEFAULTS = {
@@ -210,14 +210,16 @@
         continue;
       }
       if (input.value === "") continue;
-      const d = defaultOf(c);
+      // Against the CLI's own defaults (not the server's start options): the command line
+      // must say everything that differs from a plain `render` run.
+      const d = c.key in CLI_DEFAULTS ? CLI_DEFAULTS[c.key] : c.def;
       const same = c.kind === "select" ? input.value === String(d) : Math.abs(+input.value - +d) < 1e-9;
       if (!same) args.push("--" + c.key, input.value);
     }
-    for (const name of (state.info && state.info.classes) || []) {
-      const v = $("opt-geometry-" + name).value;
-      if (v !== defaultOf({ key: "geometry-" + name, def: "stored" })) args.push("--geometry-" + name, v);
-    }
+    const classes = (state.info && state.info.classes) || [];
+    const modes = classes.map((name) => $("opt-geometry-" + name).value);
+    if (classes.length && modes.every((v) => v === "procedural")) args.push("--procedural");
+    else classes.forEach((name, i) => { if (modes[i] !== "stored") args.push("--geometry-" + name, modes[i]); });
     args.push(...$("opt-extra").value.trim().split(/\s+/).filter(Boolean));
     return args;
   }
@@ -235,7 +237,8 @@
     let w = Math.max(1, Math.round(canvas.clientWidth * dpr * s));
     let h = Math.max(1, Math.round(canvas.clientHeight * dpr * s));
     const lim = (state.info && state.info.limits) || {};
-    const f = Math.min(1, (lim.max_width || Infinity) / w, (lim.max_height || Infinity) / h);
+    const f = Math.min(1, (lim.max_width || Infinity) / w, (lim.max_height || Infinity) / h,
+      Math.sqrt((lim.max_pixels || Infinity) / (w * h)));
     return { width: Math.max(1, Math.floor(w * f)), height: Math.max(1, Math.floor(h * f)) };
   }
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "osmparse/core/projection.h"
+#include "common/projection.h"
 #include "osmparse/output/write_geojson.h"
 #include "osmparse/pipeline.h"
 #include "tests/osmparse/parse_quietly.h"

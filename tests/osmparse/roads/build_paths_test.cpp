@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "osmparse/core/projection.h"
+#include "common/projection.h"
 #include "osmparse/pipeline.h"
 #include "osmparse/polygons/ring_is_simple.h"
 #include "osmparse/read/read_osm.h"

@@ -13,6 +13,7 @@
 #include "common/scene_io.h"
 #include "render/camera/camera.h"
 #include "render/film/image_output.h"
+#include "render/scene/geometry_mode.h"
 #include "tests/render/test_exr.h"
 #include "tests/test_support.h"
 
@@ -161,7 +162,12 @@ TEST(ProceduralRender, SameRoofsAndColoursOnTheBundledExample) {
             ++buildings;
             building_albedos.push_back(stored.at(p, albedo));
         }
-        same += stored.at(p, kind) == procedural.at(p, kind) && stored.at(p, index) == procedural.at(p, index) &&
+        // Overlapping land cover polygons of one class lie at one height: which of them a ray
+        // meets first is a tie that Embree's triangle and our own intersector may break apart
+        // (it differs with the CPU's vector width), with the same picture either way.
+        const bool tie = stored.at(p, kind) == static_cast<float>(citygen::ObjectKind::LandCover);
+        same += stored.at(p, kind) == procedural.at(p, kind) &&
+                (stored.at(p, index) == procedural.at(p, index) || tie) &&
                 std::abs(stored.at(p, depth) - procedural.at(p, depth)) <= 1e-3f &&
                 std::abs(stored.at(p, albedo) - procedural.at(p, albedo)) <= 1e-3f;
     }

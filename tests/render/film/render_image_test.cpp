@@ -6,6 +6,7 @@
 
 #include "render/film/render_image.h"
 #include "render/geometry/build_render_scene.h"
+#include "render/lights/scene_lights.h"
 #include "tests/render/small_town.h"
 
 using namespace citygen;
@@ -34,4 +35,35 @@ TEST(Determinism, SameSeedGivesIdenticalPixelsWithOneOrTwoThreads) {
     r.seed = 2;
     const Film other_seed = render_image(context, view_of_town(r), r);
     EXPECT_NE(0, std::memcmp(one.rgb.data(), other_seed.rgb.data(), one.rgb.size() * sizeof(float)));
+}
+
+// The viewer's still frames: n passes of ProgressiveRender are the n-spp image, byte for byte,
+// at night too (lamps, small globes gathered by the film).
+TEST(ProgressiveRender, PassesAddUpToTheFixedSppImage) {
+    Scene town = small_town();
+    Lamp lamp;
+    lamp.position = {0, -30, 0};
+    town.lamps.push_back(lamp);
+    const auto scene = build_render_scene(town, GeometryModes{});
+    const MaterialTable materials = default_materials();
+    const Sky sky = Sky::daylight(TimeOfDay::Night);
+    const SceneLights lights(town, FacadeOptions{}, LightOptions{});
+    RenderSettings r = tiny(3);
+    r.width = 40;
+    r.height = 36;
+    const PathContext context{*scene, materials, sky, r.integrator, nullptr, &lights};
+    const Camera camera = view_of_town(r);
+    ProgressiveRender passes(context, camera, r);
+    EXPECT_EQ(0, passes.spp());
+    uint64_t rays = 0;
+    for (int pass = 0; pass < 3; ++pass) rays += passes.add_pass();
+    EXPECT_EQ(3, passes.spp());
+    EXPECT_GT(rays, 40u * 36u * 3u);
+    const Film progressive = passes.film();
+    const Film fixed = render_image(context, camera, r);
+    ASSERT_EQ(fixed.rgb.size(), progressive.rgb.size());
+    EXPECT_EQ(0, std::memcmp(fixed.rgb.data(), progressive.rgb.data(), fixed.rgb.size() * sizeof(float)));
+    r.spp = 2;  // and not any other spp's
+    const Film two = render_image(context, camera, r);
+    EXPECT_NE(0, std::memcmp(two.rgb.data(), progressive.rgb.data(), two.rgb.size() * sizeof(float)));
 }

@@ -1,4 +1,4 @@
-#include "osmparse/core/projection.h"
+#include "common/projection.h"
 
 #include <GeographicLib/TransverseMercator.hpp>
 

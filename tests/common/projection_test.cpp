@@ -4,7 +4,7 @@
 
 #include <GeographicLib/Geodesic.hpp>
 
-#include "osmparse/core/projection.h"
+#include "common/projection.h"
 
 using namespace citygen;
 
