@@ -60,12 +60,61 @@ struct TownExtent {
     std::vector<Vec3> corners;
 };
 
+// The square window of kDensestWindow metres (on a grid of kDensestCell) holding the most
+// building floor area, by each building's first corner; everything when the buildings fit in
+// one window. A whole island or region is seen at its busiest town, not as a haze.
+constexpr double kDensestWindow = 800, kDensestCell = 50;
+
+Box2 densest_window(const Scene& scene) {
+    Box2 all;
+    for (const Building& b : scene.buildings)
+        if (!b.outer.empty()) all.extend(b.outer.front());
+    if (all.empty() || (all.max.x - all.min.x <= kDensestWindow && all.max.y - all.min.y <= kDensestWindow)) {
+        Box2 everything;  // no limit
+        everything.extend({-1e300, -1e300});
+        everything.extend({1e300, 1e300});
+        return everything;
+    }
+    const int nx = static_cast<int>((all.max.x - all.min.x) / kDensestCell) + 1;
+    const int ny = static_cast<int>((all.max.y - all.min.y) / kDensestCell) + 1;
+    // Floor area summed over [0, i) x [0, j) cells (a summed-area table).
+    std::vector<double> sum(static_cast<size_t>(nx + 1) * (ny + 1), 0.0);
+    auto at = [&](int i, int j) -> double& { return sum[static_cast<size_t>(j) * (nx + 1) + i]; };
+    for (const Building& b : scene.buildings) {
+        if (b.outer.empty() || b.is_part) continue;
+        const int i = static_cast<int>((b.outer.front().x - all.min.x) / kDensestCell);
+        const int j = static_cast<int>((b.outer.front().y - all.min.y) / kDensestCell);
+        at(i + 1, j + 1) += std::fabs(signed_area(b.outer));
+    }
+    for (int j = 1; j <= ny; ++j)
+        for (int i = 1; i <= nx; ++i) at(i, j) += at(i - 1, j) + at(i, j - 1) - at(i - 1, j - 1);
+    const int w = static_cast<int>(kDensestWindow / kDensestCell);
+    double best = -1;
+    int best_i = 0, best_j = 0;
+    for (int j = 0; j + std::min(w, ny) <= ny; ++j)
+        for (int i = 0; i + std::min(w, nx) <= nx; ++i) {
+            const int i1 = std::min(nx, i + w), j1 = std::min(ny, j + w);
+            const double area = at(i1, j1) - at(i, j1) - at(i1, j) + at(i, j);
+            if (area > best) best = area, best_i = i, best_j = j;
+        }
+    Box2 window;
+    window.extend({all.min.x + best_i * kDensestCell, all.min.y + best_j * kDensestCell});
+    window.extend({all.min.x + (best_i + w) * kDensestCell, all.min.y + (best_j + w) * kDensestCell});
+    return window;
+}
+
+bool inside(const Box2& box, Vec2 p) { return p.x >= box.min.x && p.x <= box.max.x && p.y >= box.min.y && p.y <= box.max.y; }
+
 TownExtent town_extent(const Scene& scene) {
     TownExtent town;
     Box2& box = town.box;
-    for (const Building& b : scene.buildings) {
-        for (Vec2 p : b.outer) box.extend(p);
-        town.top = std::max(town.top, b.height);
+    const Box2 window = densest_window(scene);
+    std::vector<const Building*> buildings;
+    for (const Building& b : scene.buildings)
+        if (!b.outer.empty() && inside(window, b.outer.front())) buildings.push_back(&b);
+    for (const Building* b : buildings) {
+        for (Vec2 p : b->outer) box.extend(p);
+        town.top = std::max(town.top, b->height);
     }
     if (box.empty())
         for (const RoadEdge& r : scene.roads)
@@ -75,11 +124,11 @@ TownExtent town_extent(const Scene& scene) {
         box.extend(scene.header.bounds_max);
     }
     town.radius = std::max(20.0, 0.5 * std::hypot(box.max.x - box.min.x, box.max.y - box.min.y));
-    for (const Building& b : scene.buildings) {
-        const double base = building_base(scene, b);
-        for (Vec2 p : b.outer) {
+    for (const Building* b : buildings) {
+        const double base = building_base(scene, *b);
+        for (Vec2 p : b->outer) {
             town.corners.push_back({p.x, p.y, base});
-            town.corners.push_back({p.x, p.y, base + std::min(b.height, 2 * town.radius)});
+            town.corners.push_back({p.x, p.y, base + std::min(b->height, 2 * town.radius)});
         }
     }
     if (town.corners.empty())

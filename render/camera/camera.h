@@ -28,8 +28,9 @@ private:
     int width_ = 1, height_ = 1;
 };
 
-// An elevated three-quarter view from the south-west that frames the scene's bounds and its
-// tallest building, with the horizon (and some sky) near the top of the image.
+// An elevated three-quarter view from the south-west that frames the buildings of the densest
+// 800 m square of the town (all of them in a smaller scene) and the tallest of them, with the
+// horizon (and some sky) near the top of the image.
 // Never inside a hill: at least kCameraClearance above ground_height (render/geometry/ground.h).
 Camera framing_camera(const Scene& scene, double vertical_fov_deg, int width, int height);
 

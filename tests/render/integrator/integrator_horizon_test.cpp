@@ -1,4 +1,4 @@
-// The automatic view of a scene tens of km across: the haze over the ground must meet the sky
+// A view of a whole scene tens of km across: the haze over the ground must meet the sky
 // without a dark line. The ground plane ends (far, but not at infinity): camera rays that pass
 // just over its edge, still below the horizon, once saw the sky's darkened below-horizon colour
 // instead of the haze the ground would have shown there.
@@ -64,7 +64,12 @@ void expect_no_dark_line(GeometryMode mode, TimeOfDay time, double side) {
     settings.quiet = true;
     settings.integrator.haze_extinction = 3.912 / 20000;  // render's default 20 km visibility
     const PathContext context{*render_scene, materials, sky, settings.integrator};
-    const Camera camera = framing_camera(scene, 50, settings.width, settings.height);
+    // The whole square from the south-west, 20 degrees down (as the automatic view framed a
+    // whole scene before it looked at the densest part only).
+    const double pitch = 20 * M_PI / 180;
+    const Vec2 from = normalize(Vec2{-1, -1.6});
+    const Vec3 back{from.x * std::cos(pitch), from.y * std::cos(pitch), std::sin(pitch)};
+    const Camera camera = Camera::look_at(back * (1.2 * side), {0, 0, 0}, 50, settings.width, settings.height);
     const Film film = render_image(context, camera, settings);
     const std::vector<double> rows = row_luminance(film);
     // Over the haze and the sky the rows change smoothly; a line is a row darker than both of
