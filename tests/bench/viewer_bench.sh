@@ -46,7 +46,7 @@ for city in "${cities[@]}"; do
             : > "$work/results"
             for run in $(seq "$runs"); do
                 python3 tests/bench/viewer_bench.py --port "$port" --seconds "$moving" --width "${size%x*}" \
-                    --height "${size#*x}" --extra "--time $time $mode_args" >> "$work/results"
+                    --height "${size#*x}" --extra="--time $time $mode_args" >> "$work/results"
             done
             row=()
             for key in moving_fps moving_width latency_ms still_16spp_s still_64spp_s; do
