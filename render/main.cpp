@@ -125,6 +125,9 @@ int run(const Options& o) {
     Scene scene = load_scene(o.scene_path);
     phases.load = seconds_since(start);
     if (o.print_scene_info) print_scene_info(scene, o.scene_path, stdout);
+    const bool builds = !o.output.empty() || !o.export_ply_path.empty() || !o.export_gltf_path.empty() ||
+                        o.print_memory_info || o.print_geometry_info;
+    if (!builds) return 0;  // the summary alone needs no geometry
     sink_field_under_sea(scene);  // before anything stands on the field
 
     // User textures are read before the long geometry build, so a bad --texture-dir fails fast.

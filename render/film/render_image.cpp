@@ -200,12 +200,15 @@ void store_pixel(const PixelSamples& pixel, int spp, size_t i, Film& film) {
 }
 
 // Calls visit(x, y, i) for every pixel of the film, tiles in parallel; `i` indexes the film.
+// Tiles not yet started are skipped once `cancel` is set.
 template <class Visit>
-void for_each_tile(const Film& film, Progress* progress, std::atomic<uint64_t>& total_rays, Visit visit) {
+void for_each_tile(const Film& film, Progress* progress, std::atomic<uint64_t>& total_rays, Visit visit,
+                   const std::atomic<bool>* cancel = nullptr) {
     const int tiles_x = (film.width + kTileSize - 1) / kTileSize;
     const int tiles_y = (film.height + kTileSize - 1) / kTileSize;
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles_x * tiles_y, 1), [&](const tbb::blocked_range<int>& range) {
         for (int tile = range.begin(); tile != range.end(); ++tile) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) continue;
             uint64_t rays = 0;
             const int fx0 = (tile % tiles_x) * kTileSize, fy0 = (tile / tiles_x) * kTileSize;
             for (int fy = fy0; fy < std::min(fy0 + kTileSize, film.height); ++fy)
@@ -343,11 +346,14 @@ ProgressiveRender::ProgressiveRender(const PathContext& context, const Camera& c
 
 ProgressiveRender::~ProgressiveRender() = default;
 
-uint64_t ProgressiveRender::add_pass() {
+uint64_t ProgressiveRender::add_pass(const std::atomic<bool>* cancel) {
     std::atomic<uint64_t> rays{0};
-    for_each_tile(film_, nullptr, rays, [&](int x, int y, size_t i, uint64_t& pixel_rays) {
-        add_samples(context_, camera_, x, y, 1, pixels_[i], pixel_rays, settings_.denoise_guides);
-    });
+    for_each_tile(
+        film_, nullptr, rays,
+        [&](int x, int y, size_t i, uint64_t& pixel_rays) {
+            add_samples(context_, camera_, x, y, 1, pixels_[i], pixel_rays, settings_.denoise_guides);
+        },
+        cancel);
     ++spp_;
     return rays.load();
 }

@@ -5,6 +5,7 @@
 // centre.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -85,8 +86,10 @@ public:
     ProgressiveRender(const ProgressiveRender&) = delete;
     ProgressiveRender& operator=(const ProgressiveRender&) = delete;
 
-    // One more sample in every pixel of the region; returns the rays it traced.
-    uint64_t add_pass();
+    // One more sample in every pixel of the region; returns the rays it traced. Once `cancel`
+    // is set the pass stops early and leaves the render unusable (the viewer drops it when a
+    // new view comes).
+    uint64_t add_pass(const std::atomic<bool>* cancel = nullptr);
     int spp() const { return spp_; }
     // The mean of the samples so far (zero before the first pass).
     Film film() const;

@@ -335,8 +335,11 @@ httplib::Server::HandlerResponse check_request(const Viewer& v, const ServeAddre
         // On loopback without a token: only pages served from this address may call it (a web
         // site whose name resolves to 127.0.0.1 must not).
         const std::string host = req.get_header_value("Host");
-        const std::string port = ":" + std::to_string(address.port);
-        if (host != "127.0.0.1" + port && host != "localhost" + port && host != "[::1]" + port) {
+        bool ours = false;
+        for (const char* name : {"127.0.0.1", "localhost", "[::1]"})
+            ours = ours || host == name + (":" + std::to_string(address.port)) ||
+                   (address.port == 80 && host == name);  // browsers leave :80 out
+        if (!ours) {
             send_error(res, 403, "unexpected Host header");
             return httplib::Server::HandlerResponse::Handled;
         }

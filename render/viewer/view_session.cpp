@@ -41,6 +41,7 @@ void ViewSession::stop() {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         stopping_ = true;
+        interrupt_ = true;
     }
     request_ready_.notify_all();
     frame_ready_.notify_all();
@@ -50,6 +51,7 @@ void ViewSession::stop() {
 uint64_t ViewSession::submit(ViewRequest request) {
     std::lock_guard<std::mutex> lock(mutex_);
     pending_ = std::move(request);
+    interrupt_ = true;
     request_ready_.notify_all();
     return ++generation_;
 }
@@ -109,6 +111,7 @@ void ViewSession::loop() {
                 next = std::move(pending_);
                 pending_.reset();
                 generation = generation_;
+                interrupt_ = false;
             }
             if (restart_) done = false;
             restart_ = false;
@@ -193,7 +196,12 @@ void ViewSession::render_still_pass(const ViewRequest& request, uint64_t generat
         rays = stats.rays;
         frame.spp = frame.target_spp;
     } else {
-        rays = still_->add_pass();
+        rays = still_->add_pass(&interrupt_);
+        if (interrupt_) {  // a newer view is waiting: this pass is incomplete, and so is the still
+            still_.reset();
+            still_context_.reset();
+            return;
+        }
         frame.spp = still_->spp();
         if (frame.spp >= settings.spp && request.options.denoise) {
             RenderSettings quiet = settings;

@@ -80,6 +80,7 @@ private:
     std::optional<ViewRequest> pending_;
     uint64_t generation_ = 0;
     bool stopping_ = false, restart_ = false;
+    std::atomic<bool> interrupt_{false};  // a new view or stop: the still pass in progress ends early
     Frame latest_;
     ViewerStats stats_;
 
