@@ -58,6 +58,7 @@ uint64_t ViewSession::submit(ViewRequest request) {
 
 std::optional<Frame> ViewSession::wait_frame(uint64_t after, int timeout_ms) {
     std::unique_lock<std::mutex> lock(mutex_);
+    if (after > latest_.seq) after = 0;  // a page that saw an earlier run of the server
     frame_ready_.wait_for(lock, std::chrono::milliseconds(timeout_ms),
                           [&] { return stopping_ || latest_.seq > after; });
     if (latest_.seq > after) return latest_;

@@ -54,7 +54,8 @@ public:
 
     // Queues the view (replacing any not yet started) and returns its generation.
     uint64_t submit(ViewRequest request);
-    // The newest frame once it is newer than `after`, waiting at most `timeout_ms`.
+    // The newest frame once it is newer than `after`, waiting at most `timeout_ms` (at once when
+    // `after` is beyond the newest: the page saw a server that has since restarted).
     std::optional<Frame> wait_frame(uint64_t after, int timeout_ms);
     // What the ray through pixel (x, y) of the current view's full frame hits; nullopt when
     // there is no view yet or the pixel is outside it.

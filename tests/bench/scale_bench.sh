@@ -46,10 +46,12 @@ for n in $sizes; do
     peak=$(awk '{print $4 / 1024}' "$work/parse_times" | median)
     "$render" "$work/metro.scene" --print-scene-info > "$work/info"
     buildings=$(sed -n 's/^buildings: *\([0-9]*\).*/\1/p' "$work/info" | head -1)
-    stages=$(awk '/^stage +seconds/ { on = 1; next } on && !/^sum/ && NF >= 2 { print $NF, $0 }' "$work/report" |
-             sort -gr | head -3 | awk '{ $1 = ""; sub(/^ /, ""); n = split($0, w, " "); s = w[1]; for (i = 2; i < n; i++) s = s " " w[i]; printf "%s %s, ", s, w[n] }')
+    # The three slowest stages of the report's table ("stage seconds" ... "sum of stages").
+    stages=$(awk '/^stage +seconds/ { on = 1; next } /^sum of stages/ { on = 0 }
+                  on && NF >= 2 { v = $NF; $NF = ""; sub(/ +$/, ""); print v "\t" $0 }' "$work/report" |
+             sort -gr | head -3 | awk -F'\t' '{ printf "%s%s %s", (NR > 1 ? ", " : ""), $2, $1 }')
     printf '%-4s %9s | %8.2f %8.2f %8.0f %7.1f | %-44s\n' "$n" "$buildings" "$wall" "$cpu" "$peak" \
-        "$(awk -v t="$wall" -v b="$buildings" 'BEGIN { print 1e6 * t / b }')" "${stages%, }"
+        "$(awk -v t="$wall" -v b="$buildings" 'BEGIN { print 1e6 * t / b }')" "$stages"
     # The 1x1 city's automatic view, kept for every size.
     if [ -z "$view" ]; then
         "$render" "$work/metro.scene" --procedural --width 64 --height 36 --spp 1 -q --stats -o "$work/v.png" > "$work/v"
