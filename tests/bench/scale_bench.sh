@@ -2,7 +2,7 @@
 # Scale benchmark (issue 25), run by hand (never from ctest): a real extract tiled N x N by
 # make_metropolis (SIZES, default 1 2 4 8), parsed and rendered procedural by day and at night
 # from the same view (the 1x1 city's automatic view: what the city shows, now with more city
-# around it), at WIDTHxHEIGHT and SPP. Prints, per size: buildings; the parse's wall and CPU
+# around it; the 1x1 city is the south-west tile), at WIDTHxHEIGHT and SPP. Prints, per size: buildings; the parse's wall and CPU
 # seconds, peak memory and microseconds per building, and its slowest stages; each render's wall
 # seconds (load, BVH build, tracing) and peak memory; at night the lamps, window strips and the
 # lights' memory. One run per size (the 8x8 takes minutes); RUNS=3 for medians of the small ones.
@@ -30,7 +30,7 @@ value() { sed -n "s/^$1: //p" "$2" | head -1; }   # a "key: value" line of --sta
 echo "scale benchmark: $(basename "$osm") tiled N x N, procedural render ${width}x${height} ${spp} spp, $(nproc) cores, $runs run(s)"
 echo
 
-view=""
+view="" first_corner="" first_camera="" first_look=""
 printf '%-4s %9s | %8s %8s %8s %7s | %-44s\n' N buildings parse_s cpu_s peak_MB us/bldg "slowest stages (s)"
 rows=()
 for n in $sizes; do
@@ -52,11 +52,17 @@ for n in $sizes; do
              sort -gr | head -3 | awk -F'\t' '{ printf "%s%s %s", (NR > 1 ? ", " : ""), $2, $1 }')
     printf '%-4s %9s | %8.2f %8.2f %8.0f %7.1f | %-44s\n' "$n" "$buildings" "$wall" "$cpu" "$peak" \
         "$(awk -v t="$wall" -v b="$buildings" 'BEGIN { print 1e6 * t / b }')" "$stages"
-    # The 1x1 city's automatic view, kept for every size.
+    # The 1x1 city's automatic view, kept for every size. Each scene is centred on its own data,
+    # and the 1x1 city is the south-west tile: the view moves with the bounds' south-west corner.
+    corner=$(sed -n 's/^bounds: \[\([^,]*\), \([^]]*\)\].*/\1 \2/p' "$work/info")
     if [ -z "$view" ]; then
         "$render" "$work/metro.scene" --procedural --width 64 --height 36 --spp 1 -q --stats -o "$work/v.png" > "$work/v"
-        view="--camera=$(value camera "$work/v") --look-at=$(value look_at "$work/v")"
+        first_corner=$corner
+        first_camera=$(value camera "$work/v") first_look=$(value look_at "$work/v")
     fi
+    moved() { echo "$1" | awk -F, -v c="$corner" -v f="$first_corner" \
+        'BEGIN { split(c, n, " "); split(f, o, " ") } { printf "%.3f,%.3f,%s", $1 - o[1] + n[1], $2 - o[2] + n[2], $3 }'; }
+    view="--camera=$(moved "$first_camera") --look-at=$(moved "$first_look")"
     for time in day night; do
         # shellcheck disable=SC2086  # $view is two whole words
         /usr/bin/time -f "%e %M" -o "$work/rtime" "$render" "$work/metro.scene" --procedural --time "$time" \
