@@ -77,10 +77,9 @@ bool object_info(const Scene& scene, const Hit& at, OsmRef& osm, json& fields) {
             return true;
         case ObjectKind::Sidewalk:
             if (i >= scene.sidewalks.size()) return false;
-            osm = i < scene.sidewalks.size() && scene.sidewalks[i].road >= 0 &&
-                          static_cast<size_t>(scene.sidewalks[i].road) < scene.roads.size()
-                      ? scene.roads[scene.sidewalks[i].road].osm
-                      : OsmRef{};
+            // A sidewalk is no OSM object of its own: it names its road's way.
+            if (const int road = scene.sidewalks[i].road; road >= 0 && static_cast<size_t>(road) < scene.roads.size())
+                osm = scene.roads[road].osm;
             fields["curb_height"] = metres(scene.sidewalks[i].curb_height);
             return true;
         case ObjectKind::Lamp:

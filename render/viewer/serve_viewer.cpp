@@ -10,9 +10,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <deque>
-#include <cstdlib>
 #include <fstream>
 #include <mutex>
 #include <random>
@@ -226,8 +226,6 @@ struct Viewer {
     SavedImages saved;
     std::string token;  // empty: none needed
     std::string info, map;
-    std::mutex command_mutex;
-    std::string last_command;
 };
 
 void add_page_routes(httplib::Server& server, Viewer&) {
@@ -419,7 +417,7 @@ int serve_viewer(const Options& cli) {
     world.update(first);
     ViewSession session(world);
     Viewer viewer{cli, scene, world, session, SavedImages(cli.serve_out), address.loopback ? "" : random_token(),
-                  "", scene_map_json(scene), {}, {}};
+                  "", scene_map_json(scene)};
     viewer.info = info_json(cli, scene, world).dump();
 
     httplib::Server server;
