@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <ctime>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <unistd.h>
 
