@@ -37,7 +37,6 @@ enum Salt : uint64_t {
 // Sizes (metres) that make a facade look like one.
 constexpr double kMinFloorHeight = 2.4;
 constexpr double kMinSlotWidth = 1.6;
-constexpr double kRoomInset = 0.08;
 constexpr double kMinRoomDepth = 0.2;  // even at the sharpest corner a window shows some room
 
 }  // namespace
@@ -95,12 +94,11 @@ bool lay_out_grid(const WallInput& wall, const FacadeDice& dice, WallLayout& lay
     layout.floor_height = floor_height;
     layout.recess = 0.12 + 0.13 * dice.building(kRecess);
     layout.room_depth = 1.8 + 0.8 * dice.building(kRoomDepth);
-    layout.room_inset = kRoomInset;
     // At an acute corner the neighbouring wall runs in behind the end cells at w = u * tan(angle):
     // keep the room boxes (which start edge_margin + inset from the corner) in front of it.
     const double corner = std::min(wall.start_angle, wall.end_angle);
     if (corner < 0.5 * kPi) {
-        const double deepest = 0.9 * (edge_margin + kRoomInset) * std::tan(corner);  // 10% to spare
+        const double deepest = 0.9 * (edge_margin + WallLayout::kRoomInset) * std::tan(corner);  // 10% to spare
         layout.room_depth = std::clamp(deepest - layout.recess, kMinRoomDepth, layout.room_depth);
     }
     return true;
@@ -134,12 +132,9 @@ void place_balconies(const WallInput& wall, const FacadeDice& dice, WallLayout& 
     layout.balconies = true;
     layout.balcony_every = dice.building(kBalconyEvery) < 0.5 ? 1 : 2;
     layout.balcony_depth = 1.0 + 0.4 * dice.building(kBalconyDepth);
-    layout.slab_thickness = 0.18;
-    layout.fence_height = std::min(1.0, floor_height - 1.0);
-    layout.balcony_margin = 0.1;
     const double door_width = std::min(0.9 + 0.3 * dice.building(kDoorWidth), slot_width - 0.5);
-    const double door_top = std::min(layout.slab_thickness + 2.1, floor_height - 0.3);
-    layout.door = {0.5 * (slot_width - door_width), 0.5 * (slot_width + door_width), layout.slab_thickness, door_top};
+    const double door_top = std::min(WallLayout::kSlabThickness + 2.1, floor_height - 0.3);
+    layout.door = {0.5 * (slot_width - door_width), 0.5 * (slot_width + door_width), WallLayout::kSlabThickness, door_top};
 }
 
 // Shop front: a row of large panes on the ground floor of buildings that stand on the ground.
@@ -150,7 +145,6 @@ void place_shop_front(const FacadeOptions& options, const WallInput& wall, const
                                                                        : options.shop_probability;
     if (wall.bottom_z < 0.5 && layout.floor_height >= 2.8 && dice.building(kShop) < shop_probability) {
         layout.shop = true;
-        layout.shop_window = {0.25, layout.slot_width - 0.25, 0.4, layout.floor_height - 0.5};
     }
 }
 
@@ -214,7 +208,7 @@ CellRect offset(CellRect r, double du, double dv) { return {r.u0 + du, r.u1 + du
 
 CellRect cell_opening(const WallLayout& layout, int floor, int slot) {
     const CellKind kind = cell_kind(layout, floor, slot);
-    return offset(kind == CellKind::Shop      ? layout.shop_window
+    return offset(kind == CellKind::Shop      ? layout.shop_window()
                   : kind == CellKind::Balcony ? layout.door
                                               : layout.window,
                   layout.grid_u0 + slot * layout.slot_width, layout.grid_v0 + floor * layout.floor_height);
@@ -231,17 +225,17 @@ int cell_rects(const WallLayout& layout, int floor, int slot, FacadeRect* out, i
                                                            : FacadeSurface::Glass;
     const double d = layout.recess;
     const double back = d + layout.room_depth;
-    const double inset = layout.room_inset;
+    const double inset = WallLayout::kRoomInset;
     const CellRect room{cell.u0 + inset, cell.u1 - inset, cell.v0 + inset, cell.v1 - inset};
     int layer_ends[kCellLayers];
     int n = 0;
 
     // Layer 0: a slab at the bottom of the cell sticking out of the wall, a railing round its edge.
     if (kind == CellKind::Balcony) {
-        const double bu0 = cell.u0 + layout.balcony_margin, bu1 = cell.u1 - layout.balcony_margin;
+        const double bu0 = cell.u0 + WallLayout::kBalconyMargin, bu1 = cell.u1 - WallLayout::kBalconyMargin;
         const double front = -layout.balcony_depth;
-        const double top = cv + layout.slab_thickness;
-        const double rail = top + layout.fence_height;
+        const double top = cv + WallLayout::kSlabThickness;
+        const double rail = top + layout.fence_height();
         out[n++] = v_plane(top, bu0, bu1, front, 0.0, +1, FacadeSurface::BalconySlab);
         out[n++] = v_plane(cv, bu0, bu1, front, 0.0, -1, FacadeSurface::BalconySlab);
         out[n++] = w_plane(front, bu0, bu1, cv, top, -1, FacadeSurface::BalconySlab);
@@ -292,16 +286,7 @@ int margin_rects(const WallLayout& layout, FacadeRect* out) {
     return 4;
 }
 
-WallFrame wall_frame(Vec2 a, Vec2 b, double bottom_z) {
-    Vec2 along = normalize(b - a);
-    Vec2 inward = perp_left(along);
-    WallFrame frame;
-    frame.origin = {a.x, a.y, bottom_z};
-    frame.u_axis = {along.x, along.y, 0};
-    frame.v_axis = {0, 0, 1};
-    frame.w_axis = {inward.x, inward.y, 0};
-    return frame;
-}
+WallFrame wall_frame(Vec2 a, Vec2 b, double bottom_z) { return wall_frame({a.x, a.y, bottom_z}, normalize(b - a)); }
 
 size_t building_wall_count(const Building& building) {
     size_t n = building.outer.size();

@@ -12,6 +12,8 @@
 // which is what lets the intersector walk only the cells a ray crosses.
 #pragma once
 
+#include <algorithm>
+
 #include <cstdint>
 #include <vector>
 
@@ -70,23 +72,27 @@ enum class CellKind : uint8_t { Window = 0, Balcony = 1, Shop = 2 };
 
 // Everything needed to build or intersect one wall: a few numbers, no per-window storage.
 struct WallLayout {
+    // Sizes every gridded wall shares, and those that follow from the grid: kept out of the
+    // struct so that the million walls of a metropolis hold only what differs between them.
+    static constexpr double kRoomInset = 0.08;     // room box = cell shrunk by this on every side
+    static constexpr double kSlabThickness = 0.18;
+    static constexpr double kBalconyMargin = 0.1;  // slab is the cell width minus this on each side
+
     double length = 0, height = 0;
     int floors = 0, slots = 0;            // 0 when the wall is plain
     double grid_u0 = 0, grid_v0 = 0;      // lower-left corner of the cell grid (the margins)
     double slot_width = 0, floor_height = 0;
     double recess = 0;                    // depth of the pane behind the facade plane
     double room_depth = 0;                // depth of the room box behind the pane
-    double room_inset = 0;                // room box = cell shrunk by this on every side
     CellRect window;                      // cell-relative opening of a window
-    bool balconies = false;
     int balcony_every = 1;                // balcony in slots where slot % every == 0 (floors >= 1)
-    double balcony_depth = 0;             // how far the slab sticks out (towards -w)
-    double slab_thickness = 0, fence_height = 0;
-    double balcony_margin = 0;            // slab is the cell width minus this on each side
-    CellRect door;                        // cell-relative balcony door opening
+    bool balconies = false;
     bool shop = false;                    // floor 0 is a row of shop windows
-    CellRect shop_window;                 // cell-relative shop opening
+    double balcony_depth = 0;             // how far the slab sticks out (towards -w)
+    CellRect door;                        // cell-relative balcony door opening
 
+    double fence_height() const { return std::min(1.0, floor_height - 1.0); }
+    CellRect shop_window() const { return {0.25, slot_width - 0.25, 0.4, floor_height - 0.5}; }  // cell-relative
     bool plain() const { return floors <= 0 || slots <= 0; }
     double grid_u1() const { return grid_u0 + slots * slot_width; }
     double grid_v1() const { return grid_v0 + floors * floor_height; }
@@ -160,6 +166,15 @@ struct WallFrame {
 // The frame of the wall from a to b (a footprint edge) standing on z = bottom_z: u along a->b,
 // v up, w to the left of a->b, i.e. into the building for CCW outer rings and CW holes.
 WallFrame wall_frame(Vec2 a, Vec2 b, double bottom_z);
+// The same frame from its origin (a at bottom_z) and the unit direction a->b.
+inline WallFrame wall_frame(Vec3 origin, Vec2 along) {
+    WallFrame frame;
+    frame.origin = origin;
+    frame.u_axis = {along.x, along.y, 0};
+    frame.v_axis = {0, 0, 1};
+    frame.w_axis = {-along.y, along.x, 0};  // perp_left(along)
+    return frame;
+}
 
 // Walls of a building: outer ring edges, then every hole's edges.
 size_t building_wall_count(const Building& building);

@@ -34,6 +34,10 @@ void add_ground_polygon(const Scene& scene, const Ring& outer, const std::vector
 std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades,
                                                                Progress* progress) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Building, facade_surface_materials());
+    size_t walls = 0;
+    for (const Building& b : scene.buildings)
+        if (has_volume(b)) walls += building_wall_count(b);
+    geometry->reserve_walls(walls);
     for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
         if (progress) progress->advance();
         const Building& b = scene.buildings[index];
@@ -46,8 +50,7 @@ std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scen
             walls.wall(w, &p, &q);
             const WallInput input = walls.input(w);
             if (p == q || !(input.height > 0)) continue;  // no wall under a roof that starts at the bottom
-            geometry->add_wall(index, make_wall_layout(facades, input), wall_frame(p, q, bottom),
-                               static_cast<uint32_t>(w));
+            geometry->add_wall(index, make_wall_layout(facades, input), p, q, bottom, static_cast<uint32_t>(w));
         }
         if (b.roof_faces.empty()) geometry->add_polygon(index, b.outer, b.holes, top, kRoof, +1);
         for (const RoofFace& face : b.roof_faces)

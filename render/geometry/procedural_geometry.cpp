@@ -8,13 +8,19 @@
 
 namespace citygen {
 
-void ProceduralGeometry::add_wall(uint32_t object, const WallLayout& layout, const WallFrame& frame,
+void ProceduralGeometry::add_wall(uint32_t object, const WallLayout& layout, Vec2 a, Vec2 b, double bottom,
                                   uint32_t wall_index) {
-    walls_.push_back({layout, frame, object, wall_index});
+    uint32_t layout_index = kPlainLayout;
+    if (!layout.plain()) {
+        layout_index = static_cast<uint32_t>(layouts_.size());
+        layouts_.push_back(layout);
+    }
+    walls_.push_back({{a.x, a.y, bottom}, normalize(b - a), layout.length, layout.height, object, wall_index,
+                      layout_index});
 }
 
 void ProceduralGeometry::add_plain_wall(uint32_t object, Vec2 a, Vec2 b, double bottom, double height) {
-    plain_walls_.push_back({{a.x, a.y, bottom}, normalize(b - a), length(b - a), height, object});
+    walls_.push_back({{a.x, a.y, bottom}, normalize(b - a), length(b - a), height, object, 0, kPlainLayout});
 }
 
 void ProceduralGeometry::add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z,
@@ -104,7 +110,7 @@ void ProceduralGeometry::add_face(uint32_t object, const std::vector<Vec3>& poin
 }
 
 size_t ProceduralGeometry::buffer_bytes() const {
-    return walls_.capacity() * sizeof(Wall) + plain_walls_.capacity() * sizeof(PlainWall) +
+    return walls_.capacity() * sizeof(Wall) + layouts_.capacity() * sizeof(WallLayout) +
            faces_.capacity() * sizeof(Face) + face_points_.capacity() * sizeof(Vec2) +
            polygons_.capacity() * sizeof(Polygon) +
            points_.capacity() * sizeof(Vec2) + ring_ends_.capacity() * sizeof(uint32_t) +
@@ -164,48 +170,21 @@ bool ProceduralGeometry::intersect_face(const Face& face, Vec3 origin, Vec3 dire
     return true;
 }
 
-bool ProceduralGeometry::wall_of(unsigned prim_id, WallLayout* layout, WallFrame* frame) const {
-    if (prim_id < walls_.size()) {
-        *layout = walls_[prim_id].layout;
-        *frame = walls_[prim_id].frame;
-        return true;
-    }
-    prim_id -= static_cast<unsigned>(walls_.size());
-    if (prim_id >= plain_walls_.size()) return false;
-    const PlainWall& plain = plain_walls_[prim_id];
-    layout->length = plain.length;
-    layout->height = plain.height;
-    frame->origin = plain.origin;
-    frame->u_axis = {plain.along.x, plain.along.y, 0};
-    frame->v_axis = {0, 0, 1};
-    frame->w_axis = {-plain.along.y, plain.along.x, 0};
-    return true;
-}
-
 bool ProceduralGeometry::intersect(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax,
                                    PrimitiveHit* hit) const {
-    if (prim_id < walls_.size()) {  // the common case: no copy of the layout
-        const Wall& wall = walls_[prim_id];
+    if (prim_id < walls_.size()) {
         WallHit wall_hit;
-        if (!intersect_wall(wall.layout, wall.frame, origin, direction, tmin, tmax, &wall_hit)) return false;
+        const bool hit_wall = with_wall(walls_[prim_id], [&](const WallLayout& layout, const WallFrame& frame) {
+            return intersect_wall(layout, frame, origin, direction, tmin, tmax, &wall_hit);
+        });
+        if (!hit_wall) return false;
         hit->t = wall_hit.t;
         hit->normal = wall_hit.normal;
         hit->material = wall_materials_[static_cast<int>(wall_hit.surface)];
         hit->cell = wall_hit.floor < 0 ? 0 : static_cast<uint32_t>(wall_hit.floor) * 65536u + wall_hit.slot + 1;
         return true;
     }
-    WallLayout layout;
-    WallFrame frame;
-    if (wall_of(prim_id, &layout, &frame)) {
-        WallHit wall_hit;
-        if (!intersect_wall(layout, frame, origin, direction, tmin, tmax, &wall_hit)) return false;
-        hit->t = wall_hit.t;
-        hit->normal = wall_hit.normal;
-        hit->material = wall_materials_[static_cast<int>(wall_hit.surface)];
-        hit->cell = 0;
-        return true;
-    }
-    const size_t polygon_index = prim_id - walls_.size() - plain_walls_.size();
+    const size_t polygon_index = prim_id - walls_.size();
     if (polygon_index >= polygons_.size()) {
         const Face& face = faces_[polygon_index - polygons_.size()];
         double t;
@@ -230,12 +209,10 @@ bool ProceduralGeometry::intersect(unsigned prim_id, Vec3 origin, Vec3 direction
 
 bool ProceduralGeometry::occluded(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax) const {
     if (prim_id < walls_.size()) {
-        const Wall& wall = walls_[prim_id];
-        return wall_occluded(wall.layout, wall.frame, origin, direction, tmin, tmax);
+        return with_wall(walls_[prim_id], [&](const WallLayout& layout, const WallFrame& frame) {
+            return wall_occluded(layout, frame, origin, direction, tmin, tmax);
+        });
     }
-    WallLayout layout;
-    WallFrame frame;
-    if (wall_of(prim_id, &layout, &frame)) return wall_occluded(layout, frame, origin, direction, tmin, tmax);
     PrimitiveHit hit;
     return intersect(prim_id, origin, direction, tmin, tmax, &hit);
 }
@@ -246,18 +223,18 @@ void ProceduralGeometry::bounds(unsigned prim_id, RTCBounds* out) const {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     };
-    WallLayout layout;
-    WallFrame frame;
-    if (wall_of(prim_id, &layout, &frame)) {
-        for (double u : {0.0, layout.length})
-            for (double v : {0.0, layout.height})
-                for (double w : {layout.w_min(), layout.w_max()}) extend(frame.to_world(u, v, w));
-    } else if (prim_id >= walls_.size() + plain_walls_.size() + polygons_.size()) {
-        const Face& face = faces_[prim_id - walls_.size() - plain_walls_.size() - polygons_.size()];
+    if (prim_id < walls_.size()) {
+        with_wall(walls_[prim_id], [&](const WallLayout& layout, const WallFrame& frame) {
+            for (double u : {0.0, layout.length})
+                for (double v : {0.0, layout.height})
+                    for (double w : {layout.w_min(), layout.w_max()}) extend(frame.to_world(u, v, w));
+        });
+    } else if (prim_id >= walls_.size() + polygons_.size()) {
+        const Face& face = faces_[prim_id - walls_.size() - polygons_.size()];
         extend(face.lo);
         extend(face.hi);
     } else {
-        const Polygon& polygon = polygons_[prim_id - walls_.size() - plain_walls_.size()];
+        const Polygon& polygon = polygons_[prim_id - walls_.size()];
         extend({polygon.bounds.min.x, polygon.bounds.min.y, polygon.z});
         extend({polygon.bounds.max.x, polygon.bounds.max.y, polygon.z});
     }
@@ -269,7 +246,7 @@ void ProceduralGeometry::bounds(unsigned prim_id, RTCBounds* out) const {
 RTCGeometry ProceduralGeometry::create_embree_geometry(RTCDevice device) {
     // Building is over: give back what the vectors grew into (up to half their bytes).
     walls_.shrink_to_fit();
-    plain_walls_.shrink_to_fit();
+    layouts_.shrink_to_fit();
     polygons_.shrink_to_fit();
     faces_.shrink_to_fit();
     face_points_.shrink_to_fit();

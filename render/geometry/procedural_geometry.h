@@ -5,7 +5,8 @@
 //   - a wall: a WallLayout + WallFrame (render/facade/facade.h); the callback runs the cell-walking
 //     intersector (render/facade/wall_intersect.h), so windows, balconies and shop fronts exist only
 //     for the rays that reach them. Bounds = the wall's slab including recess and balcony depth.
-//   - a plain wall: a bare vertical rectangle over an edge (curb faces), a few numbers.
+//   - a plain wall (a facade too small for windows, a curb face): the same primitive without a
+//     layout, a bare vertical rectangle over an edge.
 //   - a flat polygon (roof, building underside, road, joint, sidewalk, ground): plane hit +
 //     point-in-polygon, holes included.
 // The builders mirror the stored builders (stored_geometry.h) surface for surface, so both
@@ -38,7 +39,9 @@ public:
 
     // `object` is the index of the scene object the primitive belongs to (reported for hits).
     // `wall_index` is the wall's number within its building (reported for pane hits).
-    void add_wall(uint32_t object, const WallLayout& layout, const WallFrame& frame, uint32_t wall_index = 0);
+    // The wall stands on the edge a->b from z = bottom (its frame is wall_frame(a, b, bottom)).
+    void add_wall(uint32_t object, const WallLayout& layout, Vec2 a, Vec2 b, double bottom, uint32_t wall_index = 0);
+    void reserve_walls(size_t count) { walls_.reserve(count); }  // no regrowth of the largest array
     // A bare vertical rectangle over the edge a->b from z = bottom up by `height`, facing right
     // of a->b; drawn with the Wall surface's material.
     void add_plain_wall(uint32_t object, Vec2 a, Vec2 b, double bottom, double height);
@@ -54,21 +57,18 @@ public:
     RTCGeometry create_embree_geometry(RTCDevice device) override;
     void complete_hit(const RTCHit& embree_hit, Hit& hit) const override;
     uint64_t primitive_count() const override {
-        return walls_.size() + plain_walls_.size() + polygons_.size() + faces_.size();
+        return walls_.size() + polygons_.size() + faces_.size();
     }
     uint64_t triangle_count() const override { return 0; }
     size_t buffer_bytes() const override;
 
     size_t wall_count() const { return walls_.size(); }
-    size_t plain_wall_count() const { return plain_walls_.size(); }
     size_t polygon_count() const { return polygons_.size(); }
     size_t face_count() const { return faces_.size(); }
-    // Primitive ids: facade walls, then plain walls, then polygons, then faces.
+    // Primitive ids: walls, then polygons, then faces.
     uint32_t object(unsigned prim_id) const {
         if (prim_id < walls_.size()) return walls_[prim_id].object;
         prim_id -= static_cast<unsigned>(walls_.size());
-        if (prim_id < plain_walls_.size()) return plain_walls_[prim_id].object;
-        prim_id -= static_cast<unsigned>(plain_walls_.size());
         if (prim_id < polygons_.size()) return polygons_[prim_id].object;
         return faces_[prim_id - polygons_.size()].object;
     }
@@ -80,18 +80,16 @@ public:
     bool occluded(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax) const;
 
 private:
+    // A wall keeps its frame as the numbers it is made of and its layout by index: a city holds
+    // millions of walls, a third of them plain.
     struct Wall {
-        WallLayout layout;
-        WallFrame frame;
-        uint32_t object;
-        uint32_t wall_index;
-    };
-    struct PlainWall {
         Vec3 origin;  // lower end of a
         Vec2 along;   // unit direction a->b
         double length, height;
-        uint32_t object;
+        uint32_t object, wall_index;
+        uint32_t layout;  // into layouts_, or kPlainLayout
     };
+    static constexpr uint32_t kPlainLayout = 0xffffffffu;
     struct Polygon {
         uint32_t first_ring, ring_count;  // into ring_ends_; the first ring is the outer one
         uint32_t hole_root;               // into hole_nodes_, or kNoHoleTree: the holes one by one
@@ -124,13 +122,21 @@ private:
     bool in_some_hole(uint32_t root, Vec2 p) const;
     bool intersect_face(const Face& face, Vec3 origin, Vec3 direction, double tmin, double tmax, double* t) const;
     bool inside_polygon(const Polygon& polygon, Vec2 p) const;
-    // The wall primitive prim_id as a layout and frame (plain walls are built on the fly).
-    bool wall_of(unsigned prim_id, WallLayout* layout, WallFrame* frame) const;
+    // f(layout, frame) of a wall; a plain wall's layout is made on the stack only for it.
+    template <class F>
+    auto with_wall(const Wall& wall, F&& f) const {
+        const WallFrame frame = wall_frame(wall.origin, wall.along);
+        if (wall.layout != kPlainLayout) return f(layouts_[wall.layout], frame);
+        WallLayout plain;
+        plain.length = wall.length;
+        plain.height = wall.height;
+        return f(plain, frame);
+    }
 
     ObjectKind kind_;
     SurfaceMaterials wall_materials_;
     std::vector<Wall> walls_;
-    std::vector<PlainWall> plain_walls_;
+    std::vector<WallLayout> layouts_;  // of the walls with windows
     std::vector<Polygon> polygons_;
     std::vector<Face> faces_;
     std::vector<Vec2> face_points_;    // all faces' projected points, back to back

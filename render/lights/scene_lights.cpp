@@ -212,7 +212,7 @@ double SceneLights::lit_window_weight(const WallGeometry& g, int floor, int slot
     const uint64_t key = window_key(facades_.seed, g.building_key, g.wall, floor, slot);
     // The opening's size from the rules' own rectangles (cheaper than building the cell's panes).
     const CellKind kind = cell_kind(g.layout, floor, slot);
-    const CellRect& r = kind == CellKind::Shop      ? g.layout.shop_window
+    const CellRect r = kind == CellKind::Shop      ? g.layout.shop_window()
                         : kind == CellKind::Balcony ? g.layout.door
                                                     : g.layout.window;
     return window_base_luminance(key, shop) * kWindowPatternMean * (r.u1 - r.u0) * (r.v1 - r.v0);

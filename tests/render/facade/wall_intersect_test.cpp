@@ -440,8 +440,8 @@ TEST(FacadeRules, RoomBoxesStayInsideFootprintsWithAcuteCorners) {
                 const WallFrame frame = wall_frame(p, q, 0);
                 if (l.plain()) continue;
                 for (int s = 0; s < l.slots; ++s) {
-                    const double u0 = l.grid_u0 + s * l.slot_width + l.room_inset;
-                    const double u1 = u0 + l.slot_width - 2 * l.room_inset;
+                    const double u0 = l.grid_u0 + s * l.slot_width + WallLayout::kRoomInset;
+                    const double u1 = u0 + l.slot_width - 2 * WallLayout::kRoomInset;
                     for (double u : {u0, u1}) {
                         Vec3 corner = frame.to_world(u, 1, l.recess + l.room_depth);
                         EXPECT_TRUE(point_in_ring({corner.x, corner.y}, b.outer))
