@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+
 #include "common/error.h"
 
 namespace citygen {
@@ -12,6 +15,7 @@ namespace {
 constexpr int kBuckets = 12;
 constexpr double kMostShare = 0.75;  // weight of the nearest-point share in a descent step
 constexpr int kMaxSahDepth = 40;  // below this, plain median splits
+constexpr size_t kParallelItems = 4096;  // nodes this large are built with both halves side by side
 
 // pbrt-v4's cost of a cluster for the split search: power x solid angle of its orientation
 // cone x surface area, stretched for thin boxes across the split axis.
@@ -100,9 +104,8 @@ BVHLightSampler::BVHLightSampler(const std::vector<LightBounds>& lights) : Light
     if (lights.empty()) return;
     std::vector<Item> items(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) items[i] = {lights[i], static_cast<uint32_t>(i)};
-    std::vector<BinaryNode> tree(1);
-    tree.reserve(2 * lights.size());
-    build(items, 0, items.size(), 0, 0, tree);
+    std::vector<BinaryNode> tree(2 * lights.size() - 1);
+    build(items, 0, items.size(), 0, 0, 1, tree);
     leaf_of_.assign(lights.size(), 0);
     nodes_.emplace_back();
     parents_.push_back(kRoot);
@@ -147,7 +150,7 @@ void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, 
 }
 
 void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint32_t self,
-                         std::vector<BinaryNode>& tree) {
+                            uint32_t next, std::vector<BinaryNode>& tree) {
     if (end - begin == 1) {
         tree[self].bounds = items[begin].bounds;
         tree[self].index = kLeaf | items[begin].light;
@@ -161,12 +164,16 @@ void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, 
     }
     // Split: the cheapest bucket boundary over the three axes (SAH-like, pbrt-v4's cost), or the
     // median along the widest axis when the centroids coincide or the tree grows deep.
+    // The three axes are costed side by side for large nodes; the best is chosen in axis order.
     int best_axis = -1, best_bucket = -1;
     double best_cost = 1e300;
+    const bool large = end - begin >= kParallelItems;
     if (depth < kMaxSahDepth) {
-        for (int axis = 0; axis < 3; ++axis) {
+        double axis_cost[3] = {1e300, 1e300, 1e300};
+        int axis_bucket[3] = {-1, -1, -1};
+        auto cost_axis = [&](int axis) {
             const double extent = cmax[axis] - cmin[axis];
-            if (!(extent > 0)) continue;
+            if (!(extent > 0)) return;
             LightBounds buckets[kBuckets];
             for (size_t i = begin; i < end; ++i) {
                 int b = static_cast<int>(kBuckets * (items[i].bounds.centroid()[axis] - cmin[axis]) / extent);
@@ -182,13 +189,20 @@ void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, 
             for (int split = 0; split < kBuckets - 1; ++split) {
                 if (below[split].phi <= 0 && above[split].phi <= 0) continue;
                 const double cost = cluster_cost(below[split], axis) + cluster_cost(above[split], axis);
-                if (cost < best_cost) {
-                    best_cost = cost;
-                    best_axis = axis;
-                    best_bucket = split;
+                if (cost < axis_cost[axis]) {
+                    axis_cost[axis] = cost;
+                    axis_bucket[axis] = split;
                 }
             }
-        }
+        };
+        if (large) tbb::parallel_for(0, 3, cost_axis);
+        else for (int axis = 0; axis < 3; ++axis) cost_axis(axis);
+        for (int axis = 0; axis < 3; ++axis)
+            if (axis_cost[axis] < best_cost) {
+                best_cost = axis_cost[axis];
+                best_axis = axis;
+                best_bucket = axis_bucket[axis];
+            }
     }
     size_t mid = begin;
     if (best_axis >= 0) {
@@ -209,10 +223,16 @@ void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, 
                              return ca < cb || (ca == cb && a.light < b.light);
                          });
     }
-    const uint32_t first = static_cast<uint32_t>(tree.size());
-    tree.resize(tree.size() + 2);
-    build(items, begin, mid, depth + 1, first, tree);
-    build(items, mid, end, depth + 1, first + 1, tree);
+    const uint32_t first = next;
+    const uint32_t after_left = first + 2 * static_cast<uint32_t>(mid - begin);  // the left half's 2m - 2 descendants
+    auto left = [&] { build(items, begin, mid, depth + 1, first, first + 2, tree); };
+    auto right = [&] { build(items, mid, end, depth + 1, first + 1, after_left, tree); };
+    if (large) {
+        tbb::parallel_invoke(left, right);
+    } else {
+        left();
+        right();
+    }
     tree[self].bounds = union_of(tree[first].bounds, tree[first + 1].bounds);
     tree[self].index = first;
 }

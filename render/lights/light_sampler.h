@@ -89,8 +89,10 @@ private:
     };
     // The probability of each of a node's lanes for q (empty lanes: 0).
     void lane_probabilities(const LightQuery& q, const Node& node, double p[4]) const;
-    // Builds the binary subtree of items [begin, end) in tree[self] (siblings side by side).
-    static void build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint32_t self,
+    // Builds the binary subtree of items [begin, end) in tree[self] (siblings side by side), its
+    // descendants from tree[next] on in depth-first order: a subtree of m lights has 2m - 1 nodes,
+    // so both halves know their place and large ones are built side by side, the same tree.
+    static void build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint32_t self, uint32_t next,
                       std::vector<BinaryNode>& tree);
     // Makes node `self` of the 4-wide tree from binary node `b` and its descendants.
     void collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self);

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <tuple>
 
+#include <tbb/parallel_invoke.h>
+
 #include "render/geometry/ground.h"
 #include "render/geometry/lamp_shape.h"
 #include "render/lights/photometry.h"
@@ -41,12 +43,14 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
     lamps_.shrink_to_fit();
     strips_.shrink_to_fit();
     split_ = options.sampler == LightSamplerKind::Tree && !lamps_.empty() && !strips_.empty();
-    if (split_) {
-        strip_sampler_ =
-            make_light_sampler(std::vector<LightBounds>(bounds.begin() + lamps_.size(), bounds.end()), options.sampler);
-        bounds.resize(lamps_.size());
+    if (!split_) {
+        sampler_ = make_light_sampler(bounds, options.sampler);
+        return;
     }
-    sampler_ = make_light_sampler(bounds, options.sampler);
+    const std::vector<LightBounds> strips(bounds.begin() + lamps_.size(), bounds.end());
+    bounds.resize(lamps_.size());
+    tbb::parallel_invoke([&] { strip_sampler_ = make_light_sampler(strips, options.sampler); },
+                         [&] { sampler_ = make_light_sampler(bounds, options.sampler); });
 }
 
 void SceneLights::gather_lamps(std::vector<LightBounds>& bounds) {
