@@ -197,7 +197,9 @@ LightBounds union_of(const LightBounds& a, const LightBounds& b) {
         u.cos_theta_o = std::min(a.cos_theta_o, b.cos_theta_o);
         return u;
     }
-    const double theta_a = safe_acos(a.cos_theta_o), theta_b = safe_acos(b.cos_theta_o);
+    // A single direction (a pane's) is the common cone: acos(1) is exactly 0, without the call.
+    auto theta = [](float cos_theta) { return cos_theta >= 1 ? 0.0 : safe_acos(cos_theta); };
+    const double theta_a = theta(a.cos_theta_o), theta_b = theta(b.cos_theta_o);
     const double theta_d = safe_acos(dot(a.axis(), b.axis()));
     if (std::min(theta_d + theta_b, kPi) <= theta_a) {
         u.set_axis(a.axis());

@@ -17,17 +17,34 @@ constexpr double kMostShare = 0.75;  // weight of the nearest-point share in a d
 constexpr int kMaxSahDepth = 40;  // below this, plain median splits
 constexpr size_t kParallelItems = 4096;  // nodes this large are built with both halves side by side
 
+// The solid angle term of pbrt-v4's cost, a function of the two cone angles only. Most of the
+// clusters a split search costs share their cones, so the last one is remembered.
+class OrientationMeasure {
+public:
+    double operator()(float cos_theta_o, float cos_theta_e) {
+        if (cos_theta_o == last_o_ && cos_theta_e == last_e_) return last_;
+        last_o_ = cos_theta_o;
+        last_e_ = cos_theta_e;
+        const double theta_o = std::acos(std::clamp(double(cos_theta_o), -1.0, 1.0));
+        const double theta_e = std::acos(std::clamp(double(cos_theta_e), -1.0, 1.0));
+        const double theta_w = std::min(theta_o + theta_e, kPi);
+        const double sin_o = std::sin(theta_o);
+        last_ = 2 * kPi * (1 - std::cos(theta_o)) +
+                kPi / 2 * (2 * theta_w * sin_o - std::cos(theta_o - 2 * theta_w) - 2 * theta_o * sin_o +
+                           std::cos(theta_o));
+        return last_;
+    }
+
+private:
+    float last_o_ = 2, last_e_ = 2;  // no cone's cosine
+    double last_ = 0;
+};
+
 // pbrt-v4's cost of a cluster for the split search: power x solid angle of its orientation
 // cone x surface area, stretched for thin boxes across the split axis.
-double cluster_cost(const LightBounds& b, int axis) {
+double cluster_cost(const LightBounds& b, int axis, OrientationMeasure& orientation) {
     if (b.phi <= 0) return 0;
-    const double theta_o = std::acos(std::clamp(double(b.cos_theta_o), -1.0, 1.0));
-    const double theta_e = std::acos(std::clamp(double(b.cos_theta_e), -1.0, 1.0));
-    const double theta_w = std::min(theta_o + theta_e, kPi);
-    const double sin_o = std::sin(theta_o);
-    const double m_omega = 2 * kPi * (1 - std::cos(theta_o)) +
-                           kPi / 2 * (2 * theta_w * sin_o - std::cos(theta_o - 2 * theta_w) -
-                                      2 * theta_o * sin_o + std::cos(theta_o));
+    const double m_omega = orientation(b.cos_theta_o, b.cos_theta_e);
     const Vec3 d = b.max() - b.min();
     const double longest = std::max({d.x, d.y, d.z});
     const double kr = d[axis] > 0 ? longest / d[axis] : 1;
@@ -186,9 +203,11 @@ void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, 
             for (int b = 1; b < kBuckets; ++b) below[b] = union_of(below[b - 1], buckets[b]);
             above[kBuckets - 2] = buckets[kBuckets - 1];
             for (int b = kBuckets - 3; b >= 0; --b) above[b] = union_of(above[b + 1], buckets[b + 1]);
+            OrientationMeasure orientation;
             for (int split = 0; split < kBuckets - 1; ++split) {
                 if (below[split].phi <= 0 && above[split].phi <= 0) continue;
-                const double cost = cluster_cost(below[split], axis) + cluster_cost(above[split], axis);
+                const double cost =
+                    cluster_cost(below[split], axis, orientation) + cluster_cost(above[split], axis, orientation);
                 if (cost < axis_cost[axis]) {
                     axis_cost[axis] = cost;
                     axis_bucket[axis] = split;

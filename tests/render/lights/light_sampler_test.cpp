@@ -45,7 +45,7 @@ std::unique_ptr<LightSampler> tree_with_threads(const std::vector<LightBounds>& 
 TEST(BVHLightSampler, SameTreeWithOneThreadAndWithMany) {
     const std::vector<LightBounds> lights = city_of_lights(30000);
     const auto one = tree_with_threads(lights, 1);
-    const auto many = tree_with_threads(lights, 4);
+    const auto many = tree_with_threads(lights, 2);
     EXPECT_EQ(one->bytes(), many->bytes());
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> unit(0, 1);
@@ -72,7 +72,7 @@ TEST(BVHLightSampler, SameTreeWithOneThreadAndWithMany) {
 // A tree built in parallel is a whole tree: every light reachable, the probabilities a distribution.
 TEST(BVHLightSampler, ProbabilitiesOfALargeTreeSumToOne) {
     const std::vector<LightBounds> lights = city_of_lights(20000);
-    const auto tree = tree_with_threads(lights, 4);
+    const auto tree = tree_with_threads(lights, 2);
     for (const Vec3 p : {Vec3{1000, 1000, 1.5}, Vec3{10, 1990, 20}}) {
         double sum = 0;
         for (uint32_t i = 0; i < lights.size(); ++i) sum += tree->pmf(p, {0, 0, 0}, i);
