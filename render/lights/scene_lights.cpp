@@ -5,6 +5,7 @@
 #include <cmath>
 #include <tuple>
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include "render/geometry/ground.h"
@@ -74,13 +75,33 @@ void SceneLights::gather_lamps(std::vector<LightBounds>& bounds) {
 }
 
 void SceneLights::gather_window_strips(std::vector<LightBounds>& bounds) {
-    for (uint32_t b = 0; b < scene_->buildings.size(); ++b) {
+    constexpr uint32_t kBuildingsPerBatch = 512;
+    const uint32_t n = static_cast<uint32_t>(scene_->buildings.size());
+    std::vector<StripBatch> batches((n + kBuildingsPerBatch - 1) / kBuildingsPerBatch);
+    tbb::parallel_for(size_t{0}, batches.size(), [&](size_t i) {
+        const uint32_t begin = static_cast<uint32_t>(i) * kBuildingsPerBatch;
+        gather_window_strips(begin, std::min(n, begin + kBuildingsPerBatch), batches[i]);
+    });
+    for (StripBatch& batch : batches) {
+        strips_.insert(strips_.end(), batch.strips.begin(), batch.strips.end());
+        bounds.insert(bounds.end(), batch.bounds.begin(), batch.bounds.end());
+        many_ring_buildings_.insert(many_ring_buildings_.end(), batch.many_ring_buildings.begin(),
+                                    batch.many_ring_buildings.end());
+        for (BuildingWalls& walls : batch.many_ring_walls) many_ring_walls_.push_back(std::move(walls));
+        windows_ += batch.windows;
+        lit_windows_ += batch.lit_windows;
+        batch = StripBatch{};
+    }
+}
+
+void SceneLights::gather_window_strips(uint32_t begin, uint32_t end, StripBatch& batch) const {
+    for (uint32_t b = begin; b < end; ++b) {
         const Building& building = scene_->buildings[b];
         if (!has_volume(building)) continue;
         const BuildingWalls walls(building);
         if (building.holes.size() + 1 > BuildingWalls::kInlineRings) {
-            many_ring_buildings_.push_back(b);
-            many_ring_walls_.push_back(walls);
+            batch.many_ring_buildings.push_back(b);
+            batch.many_ring_walls.push_back(walls);
         }
         for (uint32_t w = 0, n = static_cast<uint32_t>(walls.count()); w < n; ++w) {
             WallGeometry g;
@@ -88,7 +109,7 @@ void SceneLights::gather_window_strips(std::vector<LightBounds>& bounds) {
             const WallLayout& L = g.layout;
             for (int first = 0; first < L.floors; first += kFloorsPerStrip)
                 for (int first_slot = 0; first_slot < L.slots; first_slot += kSlotsPerStrip)
-                    add_window_strip(g, b, w, first, first_slot, bounds);
+                    add_window_strip(g, b, w, first, first_slot, batch);
         }
     }
 }
@@ -96,7 +117,7 @@ void SceneLights::gather_window_strips(std::vector<LightBounds>& bounds) {
 // The strip of windows from (first floor, first slot) on wall w of building b: kept with its
 // bounds if any of its windows is lit.
 void SceneLights::add_window_strip(const WallGeometry& g, uint32_t b, uint32_t w, int first, int first_slot,
-                                   std::vector<LightBounds>& bounds) {
+                                   StripBatch& batch) const {
     const WallLayout& L = g.layout;
     const int count = std::min(kFloorsPerStrip, L.floors - first);
     const int slot_count = std::min(kSlotsPerStrip, L.slots - first_slot);
@@ -104,10 +125,10 @@ void SceneLights::add_window_strip(const WallGeometry& g, uint32_t b, uint32_t w
     uint16_t lit = 0;
     for (int floor = first; floor < first + count; ++floor) {
         for (int slot = first_slot; slot < first_slot + slot_count; ++slot) {
-            ++windows_;
+            ++batch.windows;
             const double wgt = window_weight(g, floor, slot);
             if (!(wgt > 0)) continue;
-            ++lit_windows_;
+            ++batch.lit_windows;
             lit |= uint16_t(1u << ((floor - first) * slot_count + slot - first_slot));
             weight += wgt;
             max_weight = std::max(max_weight, wgt);
@@ -116,7 +137,7 @@ void SceneLights::add_window_strip(const WallGeometry& g, uint32_t b, uint32_t w
     if (!(weight > 0)) return;
     float max_rounded = static_cast<float>(max_weight);  // a bound for rejection: never below
     if (max_rounded < max_weight) max_rounded = std::nextafter(max_rounded, 1e30f);
-    strips_.push_back({b, w, static_cast<uint16_t>(first), static_cast<uint16_t>(first_slot),
+    batch.strips.push_back({b, w, static_cast<uint16_t>(first), static_cast<uint16_t>(first_slot),
                        static_cast<uint8_t>(count), static_cast<uint8_t>(slot_count), lit, float(weight), max_rounded});
     // Bounds: the strip's cells of the wall at the pane depth, facing out of the building.
     const double v0 = L.grid_v0 + first * L.floor_height, v1 = v0 + count * L.floor_height;
@@ -127,7 +148,7 @@ void SceneLights::add_window_strip(const WallGeometry& g, uint32_t b, uint32_t w
     lb.cos_theta_o = 1;
     lb.cos_theta_e = 0;
     lb.phi = static_cast<float>(kPi * weight * kNitsPerRadianceUnit);  // lumens, as the lamps
-    bounds.push_back(lb);
+    batch.bounds.push_back(lb);
 }
 
 bool SceneLights::choose_light(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {

@@ -139,11 +139,20 @@ private:
         uint64_t building_key;
         uint32_t wall;
     };
+    // The window strips of a run of buildings, gathered on their own thread and joined in order.
+    struct StripBatch {
+        std::vector<Strip> strips;
+        std::vector<LightBounds> bounds;
+        std::vector<uint32_t> many_ring_buildings;
+        std::vector<BuildingWalls> many_ring_walls;
+        uint64_t windows = 0, lit_windows = 0;
+    };
     // The constructor's parts: each adds its emitters and their bounds (in sampler order).
     void gather_lamps(std::vector<LightBounds>& bounds);
     void gather_window_strips(std::vector<LightBounds>& bounds);
+    void gather_window_strips(uint32_t begin, uint32_t end, StripBatch& batch) const;
     void add_window_strip(const WallGeometry& g, uint32_t b, uint32_t w, int first, int first_slot,
-                          std::vector<LightBounds>& bounds);
+                          StripBatch& batch) const;
     bool wall_geometry(uint32_t building, uint32_t wall, WallGeometry* out) const;  // cached per thread
     bool derive_wall_geometry(const BuildingWalls& walls, uint32_t building, uint32_t wall, WallGeometry* out) const;
     double window_weight(const WallGeometry& g, int floor, int slot) const;  // 0: dark
