@@ -48,10 +48,11 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
         sampler_ = make_light_sampler(bounds, options.sampler);
         return;
     }
-    const std::vector<LightBounds> strips(bounds.begin() + lamps_.size(), bounds.end());
-    bounds.resize(lamps_.size());
-    tbb::parallel_invoke([&] { strip_sampler_ = make_light_sampler(strips, options.sampler); },
-                         [&] { sampler_ = make_light_sampler(bounds, options.sampler); });
+    // The lamps' few bounds copied out, the strips' left in place (no second copy of the many).
+    const std::vector<LightBounds> lamp_bounds(bounds.begin(), bounds.begin() + lamps_.size());
+    bounds.erase(bounds.begin(), bounds.begin() + lamps_.size());
+    tbb::parallel_invoke([&] { strip_sampler_ = make_light_sampler(bounds, options.sampler); },
+                         [&] { sampler_ = make_light_sampler(lamp_bounds, options.sampler); });
 }
 
 void SceneLights::gather_lamps(std::vector<LightBounds>& bounds) {
