@@ -57,7 +57,15 @@ void intersect(const RTCIntersectFunctionNArguments* args) {
         if (!self->intersect(args->primID, origin, direction, RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i),
                              &found))
             continue;
-        RTCRayN_tfar(ray, N, i) = static_cast<float>(found.t);
+        // At the same distance as the hit so far (coplanar overlapping surfaces: two road quads,
+        // two sidewalk pieces), the lower (geometry, primitive) wins, so that the winner does
+        // not depend on the order the BVH visits them in.
+        const float t = static_cast<float>(found.t);
+        const unsigned held = RTCHitN_geomID(hit, N, i);
+        if (t == RTCRayN_tfar(ray, N, i) && held != RTC_INVALID_GEOMETRY_ID &&
+            (held < args->geomID || (held == args->geomID && RTCHitN_primID(hit, N, i) < args->primID)))
+            continue;
+        RTCRayN_tfar(ray, N, i) = t;
         RTCHitN_Ng_x(hit, N, i) = static_cast<float>(found.normal.x);
         RTCHitN_Ng_y(hit, N, i) = static_cast<float>(found.normal.y);
         RTCHitN_Ng_z(hit, N, i) = static_cast<float>(found.normal.z);

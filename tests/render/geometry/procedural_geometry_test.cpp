@@ -172,3 +172,36 @@ TEST(ProceduralGeometry, ManyCourtyardsSameWallsAndHitsAsAWalkOverTheRings) {
     EXPECT_GT(roof, 20000 / 2);  // most of the footprint is roof; 1/9 is courtyards
     EXPECT_LT(roof, 20000 * 19 / 20);
 }
+
+// Coplanar overlapping surfaces (two road quads over each other, as near-parallel roads give):
+// the same distance from both, and the lower primitive wins whatever order the BVH visits them
+// in, so a change elsewhere in the scene does not flip which one is seen.
+TEST(ProceduralGeometry, CoplanarOverlapGoesToTheLowerPrimitiveWhateverTheBvhOrder) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Road, ProceduralGeometry::SurfaceMaterials{});
+    constexpr int kPairs = 400;
+    // Pair k: square k (primitive k) and its copy (primitive kPairs + k), far apart in the
+    // primitive order so the BVH holds them in different leaves.
+    auto square = [](int k) {
+        const Vec2 c{(k % 20) * 10.0, (k / 20) * 10.0};
+        return Ring{c, c + Vec2{8, 0}, c + Vec2{8, 8}, c + Vec2{0, 8}};
+    };
+    for (int copy = 0; copy < 2; ++copy)
+        for (int k = 0; k < kPairs; ++k) geometry->add_polygon(static_cast<uint32_t>(copy * kPairs + k), square(k), {}, 0, 1);
+    RenderScene scene;
+    scene.add(std::move(geometry));
+    scene.commit();
+    Rng rng(5);
+    int hits = 0;
+    for (int i = 0; i < 4000; ++i) {
+        const Vec3 target{rng.next_double() * 200, rng.next_double() * 200, 0};
+        const Vec3 origin{rng.next_double() * 400 - 100, rng.next_double() * 400 - 100, 5 + rng.next_double() * 100};
+        Ray ray;
+        ray.origin = origin;
+        ray.direction = normalize(target - origin);
+        Hit hit;
+        if (!scene.intersect(ray, hit)) continue;
+        ++hits;
+        ASSERT_LT(hit.object, static_cast<uint32_t>(kPairs)) << "ray " << i;
+    }
+    EXPECT_GT(hits, 2000);
+}
