@@ -86,14 +86,8 @@ std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scen
                 geometry->add_face(i, {f[0], f[1], f[2], f[3]}, kCurb);
             continue;
         }
-        geometry->add_polygon(i, shape.ring, {}, shape.top_z, kSidewalk);
-        if (!shape.has_curb()) continue;
-        const Ring& ring = shape.ring;
-        for (size_t k = 0, n = ring.size(); k < n; ++k) {
-            const Vec2 a = ring[k], b = ring[(k + 1) % n];
-            if (a == b) continue;
-            geometry->add_plain_wall(i, a, b, shape.road_z, shape.top_z - shape.road_z);
-        }
+        if (shape.has_curb()) geometry->add_curbed_polygon(i, shape.ring, shape.top_z, kSidewalk, shape.road_z);
+        else geometry->add_polygon(i, shape.ring, {}, shape.top_z, kSidewalk);
     }
     return geometry;
 }

@@ -87,6 +87,13 @@ void ProceduralGeometry::add_polygon(uint32_t object, const Ring& outer, const s
     polygons_.push_back(polygon);
 }
 
+void ProceduralGeometry::add_curbed_polygon(uint32_t object, const Ring& outer, double z, uint16_t material,
+                                            double curb_bottom) {
+    add_polygon(object, outer, {}, z, material, +1);
+    polygons_.back().curbed = true;
+    polygons_.back().curb_bottom = curb_bottom;
+}
+
 void ProceduralGeometry::add_face(uint32_t object, const std::vector<Vec3>& points, uint16_t material) {
     FacePlane plane;
     if (!face_plane(points, &plane)) return;
@@ -196,15 +203,51 @@ bool ProceduralGeometry::intersect(unsigned prim_id, Vec3 origin, Vec3 direction
         return true;
     }
     const Polygon& polygon = polygons_[polygon_index];
-    if (direction.z == 0) return false;
-    const double t = (polygon.z - origin.z) / direction.z;
-    if (!(t >= tmin && t <= tmax)) return false;
-    if (!inside_polygon(polygon, {origin.x + direction.x * t, origin.y + direction.y * t})) return false;
-    hit->t = t;
-    hit->normal = {0, 0, double(polygon.normal_z)};
-    hit->material = polygon.material;
-    hit->cell = 0;
-    return true;
+    bool found = false;
+    if (direction.z != 0) {
+        const double t = (polygon.z - origin.z) / direction.z;
+        if (t >= tmin && t <= tmax && inside_polygon(polygon, {origin.x + direction.x * t, origin.y + direction.y * t})) {
+            hit->t = t;
+            hit->normal = {0, 0, double(polygon.normal_z)};
+            hit->material = polygon.material;
+            hit->cell = 0;
+            found = true;
+        }
+    }
+    PrimitiveHit curb_hit;
+    if (polygon.curbed && intersect_curbs(polygon, origin, direction, tmin, found ? hit->t : tmax, &curb_hit) &&
+        (!found || curb_hit.t < hit->t)) {
+        *hit = curb_hit;
+        found = true;
+    }
+    return found;
+}
+
+bool ProceduralGeometry::intersect_curbs(const Polygon& polygon, Vec3 origin, Vec3 direction, double tmin, double tmax,
+                                         PrimitiveHit* hit) const {
+    // Each edge as add_plain_wall would store it, so the faces are those of separate walls.
+    const uint32_t begin = polygon.first_ring == 0 ? 0 : ring_ends_[polygon.first_ring - 1];
+    const uint32_t n = ring_ends_[polygon.first_ring] - begin;
+    const Vec2* ring = points_.data() + begin;
+    bool found = false;
+    for (uint32_t k = 0; k < n; ++k) {
+        const Vec2 a = ring[k], b = ring[(k + 1) % n];
+        if (a == b) continue;
+        WallLayout curb;
+        curb.length = length(b - a);
+        curb.height = polygon.z - polygon.curb_bottom;
+        WallHit wall_hit;
+        const WallFrame frame = wall_frame(Vec3{a.x, a.y, polygon.curb_bottom}, normalize(b - a));
+        if (!intersect_wall(curb, frame, origin, direction, tmin, tmax, &wall_hit) || (found && !(wall_hit.t < tmax)))
+            continue;
+        tmax = wall_hit.t;
+        hit->t = wall_hit.t;
+        hit->normal = wall_hit.normal;
+        hit->material = wall_materials_[static_cast<int>(wall_hit.surface)];
+        hit->cell = 0;
+        found = true;
+    }
+    return found;
 }
 
 bool ProceduralGeometry::occluded(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax) const {
@@ -235,7 +278,7 @@ void ProceduralGeometry::bounds(unsigned prim_id, RTCBounds* out) const {
         extend(face.hi);
     } else {
         const Polygon& polygon = polygons_[prim_id - walls_.size()];
-        extend({polygon.bounds.min.x, polygon.bounds.min.y, polygon.z});
+        extend({polygon.bounds.min.x, polygon.bounds.min.y, polygon.curbed ? polygon.curb_bottom : polygon.z});
         extend({polygon.bounds.max.x, polygon.bounds.max.y, polygon.z});
     }
     // Pad so that float rounding of the bounds never cuts off a surface on their faces.

@@ -48,6 +48,10 @@ public:
     // A horizontal polygon at height z facing up (normal_z = +1) or down (-1); any orientation.
     void add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z, uint16_t material,
                      int normal_z = +1);
+    // A polygon at z facing up whose outline stands on a curb: every edge a bare vertical
+    // rectangle from curb_bottom up to z facing out (the Wall surface's material), all in one
+    // primitive (a sidewalk piece is one primitive, not one per edge).
+    void add_curbed_polygon(uint32_t object, const Ring& outer, double z, uint16_t material, double curb_bottom);
     // A planar polygon in any orientation (roof faces, gable walls), front side counter-clockwise:
     // plane hit plus point-in-polygon in the plane's projection along its dominant axis.
     void add_face(uint32_t object, const std::vector<Vec3>& points, uint16_t material);
@@ -98,6 +102,8 @@ private:
         uint32_t object;
         uint16_t material;
         int8_t normal_z;
+        bool curbed = false;  // its outer ring's edges are plain walls from curb_bottom up to z
+        double curb_bottom = 0;
     };
     struct Face {
         uint32_t first_point, point_count;  // into face_points_ (projected on axes u, v)
@@ -122,6 +128,9 @@ private:
     bool in_some_hole(uint32_t root, Vec2 p) const;
     bool intersect_face(const Face& face, Vec3 origin, Vec3 direction, double tmin, double tmax, double* t) const;
     bool inside_polygon(const Polygon& polygon, Vec2 p) const;
+    // The nearest curb face of a curbed polygon hit in [tmin, tmax].
+    bool intersect_curbs(const Polygon& polygon, Vec3 origin, Vec3 direction, double tmin, double tmax,
+                         PrimitiveHit* hit) const;
     // f(layout, frame) of a wall; a plain wall's layout is made on the stack only for it.
     template <class F>
     auto with_wall(const Wall& wall, F&& f) const {
