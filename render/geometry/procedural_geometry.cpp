@@ -19,10 +19,6 @@ void ProceduralGeometry::add_wall(uint32_t object, const WallLayout& layout, Vec
                       layout_index});
 }
 
-void ProceduralGeometry::add_plain_wall(uint32_t object, Vec2 a, Vec2 b, double bottom, double height) {
-    walls_.push_back({{a.x, a.y, bottom}, normalize(b - a), length(b - a), height, object, 0, kPlainLayout});
-}
-
 void ProceduralGeometry::add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z,
                                      uint16_t material, int normal_z) {
     Polygon polygon;
@@ -225,7 +221,7 @@ bool ProceduralGeometry::intersect(unsigned prim_id, Vec3 origin, Vec3 direction
 
 bool ProceduralGeometry::intersect_curbs(const Polygon& polygon, Vec3 origin, Vec3 direction, double tmin, double tmax,
                                          PrimitiveHit* hit) const {
-    // Each edge as add_plain_wall would store it, so the faces are those of separate walls.
+    // Each edge a plain wall (as a building wall too small for windows), from a at the curb's foot.
     const uint32_t begin = polygon.first_ring == 0 ? 0 : ring_ends_[polygon.first_ring - 1];
     const uint32_t n = ring_ends_[polygon.first_ring] - begin;
     const Vec2* ring = points_.data() + begin;

@@ -1,14 +1,14 @@
 // Procedural geometry mode: Embree user geometry whose surfaces are computed inside the
 // intersect and occluded callbacks instead of being stored as triangles.
 //
-// Two kinds of primitive, both tiny:
+// The primitives, all tiny:
 //   - a wall: a WallLayout + WallFrame (render/facade/facade.h); the callback runs the cell-walking
 //     intersector (render/facade/wall_intersect.h), so windows, balconies and shop fronts exist only
 //     for the rays that reach them. Bounds = the wall's slab including recess and balcony depth.
-//   - a plain wall (a facade too small for windows, a curb face): the same primitive without a
-//     layout, a bare vertical rectangle over an edge.
+//     A plain wall (a facade too small for windows) has no layout: a bare vertical rectangle.
 //   - a flat polygon (roof, building underside, road, joint, sidewalk, ground): plane hit +
-//     point-in-polygon, holes included.
+//     point-in-polygon, holes included; a sidewalk's with its curb faces as plain walls.
+//   - a planar face in any orientation (roof faces, gable walls, draped ground).
 // The builders mirror the stored builders (stored_geometry.h) surface for surface, so both
 // modes give the same Hit (kind, object index, material, normal) for the same ray.
 // A hit stores the surface's material id in RTCHit::u (an integer, exact in a float) and the
@@ -42,9 +42,6 @@ public:
     // The wall stands on the edge a->b from z = bottom (its frame is wall_frame(a, b, bottom)).
     void add_wall(uint32_t object, const WallLayout& layout, Vec2 a, Vec2 b, double bottom, uint32_t wall_index = 0);
     void reserve_walls(size_t count) { walls_.reserve(count); }  // no regrowth of the largest array
-    // A bare vertical rectangle over the edge a->b from z = bottom up by `height`, facing right
-    // of a->b; drawn with the Wall surface's material.
-    void add_plain_wall(uint32_t object, Vec2 a, Vec2 b, double bottom, double height);
     // A horizontal polygon at height z facing up (normal_z = +1) or down (-1); any orientation.
     void add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z, uint16_t material,
                      int normal_z = +1);
