@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
@@ -70,14 +71,14 @@ const char* to_string(LightSamplerKind kind) {
     return "?";
 }
 
-std::unique_ptr<LightSampler> make_light_sampler(const std::vector<LightBounds>& lights, LightSamplerKind kind) {
+std::unique_ptr<LightSampler> make_light_sampler(std::vector<LightBounds> lights, LightSamplerKind kind) {
     if (lights.size() >= 0x80000000u) throw Error("too many lights for the light sampler");
     switch (kind) {
         case LightSamplerKind::Uniform: return std::make_unique<UniformLightSampler>(lights);
         case LightSamplerKind::Power: return std::make_unique<PowerLightSampler>(lights);
         case LightSamplerKind::Tree: break;
     }
-    return std::make_unique<BVHLightSampler>(lights);
+    return std::make_unique<BVHLightSampler>(std::move(lights));
 }
 
 bool UniformLightSampler::sample(Vec3, Vec3, double u, uint32_t* light, double* pmf) const {
@@ -117,37 +118,56 @@ double PowerLightSampler::pmf(Vec3, Vec3, uint32_t light) const {
     return total > 0 ? (cdf_[light] - (light ? cdf_[light - 1] : 0)) / total : 0;
 }
 
-BVHLightSampler::BVHLightSampler(const std::vector<LightBounds>& lights) : LightSampler(lights.size()) {
+BVHLightSampler::BVHLightSampler(std::vector<LightBounds> lights) : LightSampler(lights.size()) {
     if (lights.empty()) return;
+    // Each copy is given back once the next step has what it needs (a city's millions of window
+    // strips make these the largest arrays of the night's set-up).
     std::vector<Item> items(lights.size());
     for (size_t i = 0; i < lights.size(); ++i) items[i] = {lights[i], static_cast<uint32_t>(i)};
-    std::vector<BinaryNode> tree(2 * lights.size() - 1);
+    lights = {};
+    std::vector<BinaryNode> tree(2 * items.size() - 1);
     build(items, 0, items.size(), 0, 0, 1, tree);
-    leaf_of_.assign(lights.size(), 0);
+    items = {};
+    leaf_of_.assign(light_count_, 0);
+    const size_t nodes = collapsed_size(tree, 0);  // reserved exactly: no regrowth, no spare
+    nodes_.reserve(nodes);
+    parents_.reserve(nodes);
     nodes_.emplace_back();
     parents_.push_back(kRoot);
     collapse(tree, 0, 0);
-    nodes_.shrink_to_fit();
-    parents_.shrink_to_fit();
 }
 
-void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self) {
-    // The lanes: b's children, each replaced by its own two children where it has them (a lone
-    // light at the root is a node with one lane).
-    uint32_t lanes[4];
+int BVHLightSampler::lanes_of(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t lanes[4]) {
+    // b's children, each replaced by its own two children where it has them (a lone light at the
+    // root is a node with one lane).
     int count = 0;
     if (tree[b].index & kLeaf) {
         lanes[count++] = b;
-    } else {
-        for (uint32_t c = tree[b].index; c < tree[b].index + 2; ++c) {
-            if (tree[c].index & kLeaf) {
-                lanes[count++] = c;
-            } else {
-                lanes[count++] = tree[c].index;
-                lanes[count++] = tree[c].index + 1;
-            }
+        return count;
+    }
+    for (uint32_t c = tree[b].index; c < tree[b].index + 2; ++c) {
+        if (tree[c].index & kLeaf) {
+            lanes[count++] = c;
+        } else {
+            lanes[count++] = tree[c].index;
+            lanes[count++] = tree[c].index + 1;
         }
     }
+    return count;
+}
+
+size_t BVHLightSampler::collapsed_size(const std::vector<BinaryNode>& tree, uint32_t b) {
+    uint32_t lanes[4];
+    const int count = lanes_of(tree, b, lanes);
+    size_t n = 1;
+    for (int lane = 0; lane < count; ++lane)
+        if (!(tree[lanes[lane]].index & kLeaf)) n += collapsed_size(tree, lanes[lane]);
+    return n;
+}
+
+void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self) {
+    uint32_t lanes[4];
+    const int count = lanes_of(tree, b, lanes);
     for (int lane = 0; lane < count; ++lane) {
         const BinaryNode& child = tree[lanes[lane]];
         nodes_[self].bounds.set(lane, child.bounds);

@@ -39,7 +39,8 @@ protected:
 };
 
 // The sampler of the given strategy (--light-sampler) over these lights.
-std::unique_ptr<LightSampler> make_light_sampler(const std::vector<LightBounds>& lights, LightSamplerKind kind);
+// Takes the bounds over: the tree build frees them as soon as it has its own copy.
+std::unique_ptr<LightSampler> make_light_sampler(std::vector<LightBounds> lights, LightSamplerKind kind);
 
 // Every light alike.
 class UniformLightSampler final : public LightSampler {
@@ -65,7 +66,7 @@ private:
 // Down a light BVH, each child in proportion to its importance for the shading point.
 class BVHLightSampler final : public LightSampler {
 public:
-    explicit BVHLightSampler(const std::vector<LightBounds>& lights);
+    explicit BVHLightSampler(std::vector<LightBounds> lights);
     bool sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const override;
     double pmf(Vec3 p, Vec3 n, uint32_t light) const override;
     size_t bytes() const override;
@@ -94,6 +95,10 @@ private:
     // so both halves know their place and large ones are built side by side, the same tree.
     static void build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint32_t self, uint32_t next,
                       std::vector<BinaryNode>& tree);
+    // The binary nodes that become the lanes of the 4-wide node made from binary node b.
+    static int lanes_of(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t lanes[4]);
+    // How many 4-wide nodes collapse(tree, b, ...) makes.
+    static size_t collapsed_size(const std::vector<BinaryNode>& tree, uint32_t b);
     // Makes node `self` of the 4-wide tree from binary node `b` and its descendants.
     void collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <utility>
 #include <tuple>
 
 #include <tbb/parallel_for.h>
@@ -45,14 +46,14 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
     strips_.shrink_to_fit();
     split_ = options.sampler == LightSamplerKind::Tree && !lamps_.empty() && !strips_.empty();
     if (!split_) {
-        sampler_ = make_light_sampler(bounds, options.sampler);
+        sampler_ = make_light_sampler(std::move(bounds), options.sampler);
         return;
     }
     // The lamps' few bounds copied out, the strips' left in place (no second copy of the many).
-    const std::vector<LightBounds> lamp_bounds(bounds.begin(), bounds.begin() + lamps_.size());
+    std::vector<LightBounds> lamp_bounds(bounds.begin(), bounds.begin() + lamps_.size());
     bounds.erase(bounds.begin(), bounds.begin() + lamps_.size());
-    tbb::parallel_invoke([&] { strip_sampler_ = make_light_sampler(bounds, options.sampler); },
-                         [&] { sampler_ = make_light_sampler(lamp_bounds, options.sampler); });
+    tbb::parallel_invoke([&] { strip_sampler_ = make_light_sampler(std::move(bounds), options.sampler); },
+                         [&] { sampler_ = make_light_sampler(std::move(lamp_bounds), options.sampler); });
 }
 
 void SceneLights::gather_lamps(std::vector<LightBounds>& bounds) {
