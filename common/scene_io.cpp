@@ -5,12 +5,15 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <functional>
 #include <memory>
 #include <iterator>
 #include <sys/stat.h>
 #include <unistd.h>
+
+#include <tbb/parallel_for.h>
 
 #include "common/error.h"
 #include "common/output_target.h"
@@ -793,17 +796,24 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
 
     Scene s;
     decode_header(in, check, s);
-    decode_buildings(in, check, s);
-    decode_roads(in, check, s);
-    decode_joints(in, check, s);
-    decode_sidewalks(in, check, s);
-    decode_lamps(in, check, s);
-    decode_ground(in, check, s);
-    decode_land_cover(in, check, s);
-    decode_trees(in, check, s);
-    decode_paths(in, check, s);
-    decode_crossings(in, check, s);
-    decode_terrain(in, check, s);
+    // Each class fills its own part of the scene from the buffer alone, so they are decoded side
+    // by side; of several bad parts the first in this order is the one reported, as one by one.
+    using Decoder = void (*)(const fb::Scene*, Checker&, Scene&);
+    static constexpr Decoder kDecoders[] = {decode_buildings, decode_roads,      decode_joints, decode_sidewalks,
+                                            decode_lamps,     decode_ground,     decode_land_cover, decode_trees,
+                                            decode_paths,     decode_crossings,  decode_terrain};
+    constexpr size_t kParts = std::size(kDecoders);
+    std::exception_ptr errors[kParts];
+    tbb::parallel_for(size_t{0}, kParts, [&](size_t i) {
+        try {
+            Checker part{check.name};
+            kDecoders[i](in, part, s);
+        } catch (...) {
+            errors[i] = std::current_exception();
+        }
+    });
+    for (const std::exception_ptr& error : errors)
+        if (error) std::rethrow_exception(error);
     return s;
 }
 
@@ -821,8 +831,13 @@ Scene load_scene(const std::string& path) {
         throw Error(path + ": not a regular file (a directory, device or pipe cannot be a scene)");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open scene file (" + std::strerror(errno) + ")");
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw Error(path + ": read error");
+    // One read of the whole file (a metropolis's scene is hundreds of MB).
+    in.seekg(0, std::ios::end);
+    const std::streamoff size = in.tellg();
+    in.seekg(0, std::ios::beg);
+    if (size < 0) throw Error(path + ": read error");
+    std::vector<uint8_t> bytes(static_cast<size_t>(size));
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) throw Error(path + ": read error");
     return decode_scene(bytes.data(), bytes.size(), path);
 }
 
