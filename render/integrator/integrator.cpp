@@ -52,7 +52,7 @@ private:
     // The surface a path has reached, seen from the side the ray came from.
     struct Vertex {
         const Hit& hit;
-        Material material;
+        const Material& material;  // the trace loop's own copy (no second copy of its name)
         Vec3 wo;
         bool front;
         Vec3 n;   // geometric normal on the side the ray came from
