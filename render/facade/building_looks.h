@@ -14,20 +14,23 @@
 
 namespace citygen {
 
+class CellUnits;  // the pattern's noise cells last hashed (building_looks.cpp)
+
 class BuildingLooks {
 public:
     BuildingLooks() = default;
     explicit BuildingLooks(const Scene& scene);
 
     // The material a hit is shaded with: the stock one, except on a building's walls (kFacade)
-    // and roof (kRoof), which get that building's colour (linear), modulated by its pattern.
-    Material material_for(const MaterialTable& table, const Hit& hit) const;
-    // Tilts hit.shading_normal by the relief of the pattern under the hit (same coordinates).
-    void bump(Hit& hit) const;
+    // and roof (kRoof), which get that building's colour (linear), modulated by its pattern;
+    // there it also tilts hit.shading_normal by the relief of the pattern (same coordinates).
+    Material bumped_material(const MaterialTable& table, Hit& hit) const;
     // User tile textures (--texture-dir) that replace the patterns of their materials; null: none.
     void use_textures(const BuildingTextures* textures) { textures_ = textures; }
 
 private:
+    void bump(Hit& hit, CellUnits& cells) const;
+    Material material_for(const MaterialTable& table, const Hit& hit, CellUnits& cells) const;
     struct Look {
         Color wall, roof;  // linear albedo
         WallMaterial wall_material;
@@ -43,8 +46,7 @@ private:
 // mortar joints, tile rows and plaster grain catch the grazing sun).
 inline Material surface_material(const MaterialTable& table, const BuildingLooks* looks, Hit& hit) {
     if (!looks) return table[hit.material];
-    looks->bump(hit);
-    return looks->material_for(table, hit);
+    return looks->bumped_material(table, hit);
 }
 
 // sRGB 0xRRGGBB -> linear albedo, scaled so white paint reflects about 80%.

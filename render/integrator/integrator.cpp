@@ -52,7 +52,7 @@ private:
     // The surface a path has reached, seen from the side the ray came from.
     struct Vertex {
         const Hit& hit;
-        Material material;
+        const Material& material;  // the trace loop's own copy (no second copy of its name)
         Vec3 wo;
         bool front;
         Vec3 n;   // geometric normal on the side the ray came from
@@ -101,7 +101,7 @@ Color PathTracer::trace(Ray ray) {
     for (int bounce = 0;; ++bounce) {
         Hit hit;
         ++rays_;
-        const bool found = context_.scene.intersect(ray, hit);
+        const bool found = context_.scene.intersect(ray, hit, bounce == 0 ? RayKind::Camera : RayKind::Bounce);
         double t_scatter;
         if (fog_.on() && fog_.sample_scatter(ray.origin, ray.direction, found ? hit.t : 1e30, rng_.next_double(),
                                              &t_scatter)) {

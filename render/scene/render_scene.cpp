@@ -116,35 +116,9 @@ void RenderScene::commit(const ProgressSettings& settings) {
         throw Error("Embree could not build the scene (error " + std::to_string(err) + ")");
 }
 
-bool RenderScene::intersect(const Ray& ray, Hit& hit) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh;
-    rh.ray.org_x = static_cast<float>(ray.origin.x);
-    rh.ray.org_y = static_cast<float>(ray.origin.y);
-    rh.ray.org_z = static_cast<float>(ray.origin.z);
-    rh.ray.dir_x = static_cast<float>(ray.direction.x);
-    rh.ray.dir_y = static_cast<float>(ray.direction.y);
-    rh.ray.dir_z = static_cast<float>(ray.direction.z);
-    rh.ray.tnear = static_cast<float>(ray.tmin);
-    rh.ray.tfar = static_cast<float>(ray.tmax);
-    rh.ray.time = 0;
-    rh.ray.mask = 0xFFFFFFFFu;
-    rh.ray.id = 0;
-    rh.ray.flags = 0;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    hit.t = rh.ray.tfar;
-    hit.position = ray.origin + ray.direction * hit.t;
-    geometries_[rh.hit.geomID]->complete_hit(rh.hit, hit);
-    return true;
-}
+namespace {
 
-bool RenderScene::occluded(const Ray& ray) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
+RTCRay embree_ray(const Ray& ray) {
     RTCRay r;
     r.org_x = static_cast<float>(ray.origin.x);
     r.org_y = static_cast<float>(ray.origin.y);
@@ -158,8 +132,42 @@ bool RenderScene::occluded(const Ray& ray) const {
     r.mask = 0xFFFFFFFFu;
     r.id = 0;
     r.flags = 0;
+    return r;
+}
+
+// `sent` is the ray as it went to Embree (before Embree shortened tfar).
+void record(RayRecorder& recorder, const RTCRay& sent, RayKind kind, bool hit) {
+    recorder.record({{sent.org_x, sent.org_y, sent.org_z}, {sent.dir_x, sent.dir_y, sent.dir_z}, sent.tnear,
+                     sent.tfar, kind, hit});
+}
+
+}  // namespace
+
+bool RenderScene::intersect(const Ray& ray, Hit& hit, RayKind kind) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray = embree_ray(ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &context, &rh);
+    const bool found = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    if (recorder_) record(*recorder_, embree_ray(ray), kind, found);
+    if (!found) return false;
+    hit.t = rh.ray.tfar;
+    hit.position = ray.origin + ray.direction * hit.t;
+    geometries_[rh.hit.geomID]->complete_hit(rh.hit, hit);
+    return true;
+}
+
+bool RenderScene::occluded(const Ray& ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = embree_ray(ray);
     rtcOccluded1(scene_, &context, &r);
-    return r.tfar < 0;  // Embree sets tfar to -inf on a hit
+    const bool blocked = r.tfar < 0;  // Embree sets tfar to -inf on a hit
+    if (recorder_) record(*recorder_, embree_ray(ray), RayKind::Shadow, blocked);
+    return blocked;
 }
 
 Box3 RenderScene::bounds() const {

@@ -11,6 +11,7 @@
 #include "common/progress.h"
 #include "render/scene/geometry_mode.h"
 #include "render/scene/hit.h"
+#include "render/scene/ray_recorder.h"
 #include "render/scene/triangle_mesh.h"
 
 namespace citygen {
@@ -69,14 +70,19 @@ public:
     RenderScene& operator=(const RenderScene&) = delete;
 
     RTCDevice device() const { return device_; }
+    RTCScene embree_scene() const { return scene_; }  // committed; for tests/bench/ray_limit's replay
     void add(std::unique_ptr<RenderGeometry> geometry);
     // Builds the BVH, showing its progress as configured; call once after the last add().
     void commit(const ProgressSettings& progress = ProgressSettings{});
 
-    // Closest hit in (tmin, tmax); thread-safe.
-    bool intersect(const Ray& ray, Hit& hit) const;
+    // Closest hit in (tmin, tmax); thread-safe. `kind` only labels the ray for a recorder.
+    bool intersect(const Ray& ray, Hit& hit, RayKind kind = RayKind::Bounce) const;
     // Any hit in (tmin, tmax); thread-safe.
     bool occluded(const Ray& ray) const;
+
+    // While set, every intersect() and occluded() call appends its ray to `recorder` (null:
+    // stop). For tests/bench/ray_limit; not to be changed while rays are traced.
+    void set_ray_recorder(RayRecorder* recorder) { recorder_ = recorder; }
 
     Box3 bounds() const;  // of all geometry (empty if none)
     const std::vector<std::unique_ptr<RenderGeometry>>& geometries() const { return geometries_; }
@@ -92,6 +98,7 @@ private:
     RTCScene scene_ = nullptr;
     std::vector<std::unique_ptr<RenderGeometry>> geometries_;  // index = Embree geomID
     std::atomic<int64_t> embree_bytes_{0}, embree_peak_bytes_{0};
+    RayRecorder* recorder_ = nullptr;
 };
 
 }  // namespace citygen
