@@ -32,11 +32,6 @@ std::vector<double> numbers(const std::string& text, size_t count, const std::st
     return out;
 }
 
-void check_range(LatLon p, const std::string& option) {
-    if (p.lat < -90 || p.lat > 90) throw Error(option + ": latitude " + to_text(p) + " is outside -90..90");
-    if (p.lon < -180 || p.lon > 180) throw Error(option + ": longitude " + to_text(p) + " is outside -180..180");
-}
-
 // The shortest text that reads back to v ("49.44", not "49.439999999999998").
 std::string number_text(double v) {
     char text[32];
@@ -45,6 +40,11 @@ std::string number_text(double v) {
         if (std::strtod(text, nullptr) == v) break;
     }
     return text;
+}
+
+void check_range(LatLon p, const std::string& option) {
+    if (p.lat < -90 || p.lat > 90) throw Error(option + ": latitude " + number_text(p.lat) + " is outside -90..90");
+    if (p.lon < -180 || p.lon > 180) throw Error(option + ": longitude " + number_text(p.lon) + " is outside -180..180");
 }
 
 }  // namespace

@@ -129,8 +129,9 @@ job_name=citygen-parse-$(basename "$out" | tr -c 'A-Za-z0-9_\n-' '_')
 cat > "$work/extract.sh" << EOF
 #!/usr/bin/env bash
 set -euo pipefail
+start=\$(date +%s.%N)
 osmium extract --overwrite --strategy smart --set-bounds --config $(printf '%q' "$work/extracts/extracts.json") $(printf '%q' "$region")
-echo "cut $count tiles"
+echo "cut $count tiles in \$(awk -v a="\$start" -v b="\$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }') s"
 EOF
 # Slurm runs a copy of the job script from its spool directory: name the task list by its path.
 cat > "$work/task.sh" << EOF
