@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The tiled parse end to end on a single-node Slurm started here (scripts/farm/local_slurm.sh): a
 # 3x3 metropolis of the bundled example (tests/bench/make_metropolis.cpp) cut into 2x2 tiles by
-# scripts/farm/parse_farm.sh, so the cut runs through the middle copy's town. A view across the
-# tile edges, rendered from the 4 tile scenes and from one parse of the whole (same --origin),
+# scripts/farm/parse_farm.sh: the cuts cross in the middle copy, the north-south one along the
+# west edge of its town (the tiles west of it parse 431 of its buildings, then leave them). A
+# view across the tile edges, rendered from the 4 tile scenes and from one parse of the whole (same --origin),
 # must show the same object in at least 99.9% of its pixels (id AOVs, compared by OSM identity:
 # build/bin/compare_id_aovs). With --trees mapped: a tree crown's leaves follow the tree's index
 # in its scene (render/geometry/tree_geometry.cpp), and the tiles list forest trees in another
