@@ -71,7 +71,8 @@ TileChoice choose_all(const Scene& s, Inside inside) {
     c.path_joints = choose(s.path_joints, [&](const Joint& j) {
         return j.edges.empty() ? ring_inside(j.polygon) : c.paths.has(static_cast<int>(j.edges.front()));
     });
-    c.crossings = choose(s.crossings, [&](const Crossing& x) { return x.road >= 0 ? c.roads.has(x.road) : inside(x.position); });
+    c.crossings =
+        choose(s.crossings, [&](const Crossing& x) { return x.road >= 0 ? c.roads.has(x.road) : inside(x.position); });
     return c;
 }
 
@@ -128,9 +129,9 @@ size_t keep_inside_box(Scene& scene, const Projection& projection, const LatLonB
         return box.contains(l);
     };
     const TileChoice c = choose_all(scene, inside);
-    const size_t leading_kept = static_cast<size_t>(
-        std::count_if(c.buildings.index.begin(), c.buildings.index.begin() + std::min(leading, c.buildings.index.size()),
-                      [](int i) { return i >= 0; }));
+    const size_t leading_kept = static_cast<size_t>(std::count_if(
+        c.buildings.index.begin(), c.buildings.index.begin() + std::min(leading, c.buildings.index.size()),
+        [](int i) { return i >= 0; }));
     renumber_references(scene, c);
     compact(scene.buildings, c.buildings);
     compact(scene.roads, c.roads);

@@ -45,18 +45,28 @@ std::string edge_name(const Edge& e) {
 // What object (kind, index) of `scene` is in the map; "" for the sky.
 std::string identity(const Scene& s, int kind, size_t i) {
     auto check = [&](size_t size) {
-        if (i >= size) throw Error("an id AOV names object " + std::to_string(i) + " of kind " + std::to_string(kind) + " beyond its scene");
+        if (i >= size)
+            throw Error("an id AOV names object " + std::to_string(i) + " of kind " + std::to_string(kind) +
+                        " beyond its scene");
     };
     switch (static_cast<ObjectKind>(kind)) {
         case ObjectKind::None: return "";
-        case ObjectKind::Building: check(s.buildings.size()); return "b" + to_string(s.buildings[i].osm) + at_cm(middle(s.buildings[i].outer));
+        case ObjectKind::Building:
+            check(s.buildings.size());
+            return "b" + to_string(s.buildings[i].osm) + at_cm(middle(s.buildings[i].outer));
         case ObjectKind::Road: check(s.roads.size()); return "r" + edge_name(s.roads[i]);
         case ObjectKind::Joint: check(s.joints.size()); return "j" + to_string(s.joints[i].osm);
         case ObjectKind::Sidewalk: check(s.sidewalks.size()); return "s" + at_cm(middle(s.sidewalks[i].polygon));
         case ObjectKind::Terrain: return "terrain";
-        case ObjectKind::Lamp: check(s.lamps.size()); return "l" + to_string(s.lamps[i].osm) + at_cm({s.lamps[i].position.x, s.lamps[i].position.y});
-        case ObjectKind::LandCover: check(s.land_cover.size()); return "c" + to_string(s.land_cover[i].osm) + at_cm(middle(s.land_cover[i].outer));
-        case ObjectKind::Tree: check(s.trees.size()); return "t" + to_string(s.trees[i].osm) + at_cm(s.trees[i].position);
+        case ObjectKind::Lamp:
+            check(s.lamps.size());
+            return "l" + to_string(s.lamps[i].osm) + at_cm({s.lamps[i].position.x, s.lamps[i].position.y});
+        case ObjectKind::LandCover:
+            check(s.land_cover.size());
+            return "c" + to_string(s.land_cover[i].osm) + at_cm(middle(s.land_cover[i].outer));
+        case ObjectKind::Tree:
+            check(s.trees.size());
+            return "t" + to_string(s.trees[i].osm) + at_cm(s.trees[i].position);
         case ObjectKind::Path: check(s.paths.size()); return "p" + edge_name(s.paths[i]);
         case ObjectKind::PathJoint: check(s.path_joints.size()); return "q" + to_string(s.path_joints[i].osm);
     }
@@ -64,7 +74,8 @@ std::string identity(const Scene& s, int kind, size_t i) {
 }
 
 // Per pixel, the identity of its object.
-std::vector<std::string> pixel_objects(const std::string& exr, const std::vector<std::string>& scenes, int& width, int& height) {
+std::vector<std::string> pixel_objects(const std::string& exr, const std::vector<std::string>& scenes, int& width,
+                                       int& height) {
     OIIO::ImageBuf image(exr);
     if (!image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) throw Error(exr + ": cannot read: " + image.geterror());
     const OIIO::ImageSpec& spec = image.spec();
@@ -89,7 +100,8 @@ void print_commonest(const std::map<std::pair<std::string, std::string>, size_t>
     for (const auto& [pair, n] : differences) sorted.push_back({n, pair});
     std::sort(sorted.rbegin(), sorted.rend());
     for (size_t i = 0; i < std::min<size_t>(10, sorted.size()); ++i)
-        std::printf("differs: %zu pixels: %s vs %s\n", sorted[i].first, sorted[i].second.first.empty() ? "sky" : sorted[i].second.first.c_str(),
+        std::printf("differs: %zu pixels: %s vs %s\n", sorted[i].first,
+                    sorted[i].second.first.empty() ? "sky" : sorted[i].second.first.c_str(),
                     sorted[i].second.second.empty() ? "sky" : sorted[i].second.second.c_str());
 }
 
@@ -99,9 +111,12 @@ int main(int argc, char** argv) {
     std::vector<std::string> a, b;
     bool second = false, why = false;
     for (int i = 1; i < argc; ++i) {
-        if (std::string(argv[i]) == "--why") why = true;
-        else if (std::string(argv[i]) == "--") second = true;
-        else (second ? b : a).push_back(argv[i]);
+        if (std::string(argv[i]) == "--why")
+            why = true;
+        else if (std::string(argv[i]) == "--")
+            second = true;
+        else
+            (second ? b : a).push_back(argv[i]);
     }
     if (a.size() < 2 || b.size() < 2) {
         std::fprintf(stderr, "usage: %s A.exr A.scene... -- B.exr B.scene...\n", argv[0]);
