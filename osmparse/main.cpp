@@ -55,6 +55,7 @@ struct Options {
     double tolerance = 0.01;
     std::string ignore_types, road_classes, trees = "all";
     CLI::Option* dem_resolution = nullptr;  // given or not: 0 is an error, not the default
+    std::string origin, keep_inside;        // the farm's tiles (docs/farm.md)
 };
 
 void add_file_options(CLI::App& app, ParseJob& job, Options& o) {
@@ -123,6 +124,25 @@ void add_run_options(CLI::App& app, ParseJob& job) {
     app.add_flag("-q,--quiet", job.quiet, "no progress and no report on stderr");
 }
 
+void add_tile_options(CLI::App& app, Options& o) {
+    app.add_option("--origin", o.origin,
+                   "LAT,LON: the projection's origin instead of the data's centre (tiles of one region share it)");
+    app.add_option("--keep-inside", o.keep_inside,
+                   "MINLAT,MINLON,MAXLAT,MAXLON: keep only objects anchored in this half-open box (a tile's core "
+                   "without its overlap; needs --origin)");
+}
+
+void set_tile_options(ParseJob& job, const Options& o) {
+    if (!o.origin.empty()) {
+        job.origin = parse_lat_lon(o.origin, "--origin");
+        job.params.trees.local_scatter = true;  // the same trees in a tile as in the whole region
+    }
+    if (!o.keep_inside.empty()) {
+        if (!job.origin) throw Error("--keep-inside needs --origin (the tiles' shared frame)");
+        job.keep_inside = parse_lat_lon_box(o.keep_inside, "--keep-inside");
+    }
+}
+
 // Checks the options against each other and the outputs before the (possibly long) parse, then
 // parses and writes.
 int run_parse(ParseJob& job, const Options& o) {
@@ -143,6 +163,7 @@ int run_parse(ParseJob& job, const Options& o) {
             throw Error("--dem-resolution must be a positive number of metres");
     }
     check_dem_files(p.terrain.dem_files);  // before the parse: a bad file fails at once
+    set_tile_options(job, o);
     p.buildings.seed = p.seed;
     p.trees.mode = o.trees == "none" ? TreeMode::None : o.trees == "mapped" ? TreeMode::Mapped : TreeMode::All;
 
@@ -178,6 +199,7 @@ int main(int argc, char** argv) {
     add_run_options(app, job);
     add_building_options(app, job.params, o);
     add_road_and_map_options(app, job.params, o);
+    add_tile_options(app, o);
     try {
         app.parse(argc, argv);
     } catch (const CLI::Success& e) {

@@ -35,6 +35,7 @@
 #include "osmparse/roofs/build_roofs.h"
 #include "osmparse/run_stages.h"
 #include "osmparse/terrain/build_terrain.h"
+#include "osmparse/tiles/keep_inside_box.h"
 
 namespace citygen {
 
@@ -133,6 +134,10 @@ SceneHeader make_header(const ParseJob& job, const Projection& projection) {
     h.projection = Projection::name();
     h.seed = job.params.seed;
     h.options = job.params.to_key_values();
+    // Only when given: a scene parsed without them keeps its bytes.
+    if (job.origin) h.options.emplace_back("origin", to_text(*job.origin));
+    if (job.keep_inside) h.options.emplace_back("keep-inside", to_text(*job.keep_inside));
+    std::sort(h.options.begin(), h.options.end());
     h.source = base_name(job.input);
     return h;
 }
@@ -245,7 +250,7 @@ void read(ParseState& s, ParseReport& report) {
     s.osm = read_osm(s.job.input, s.job.quiet, report);
     if (s.job.hide_height_tags > 0) hide_height_tags(s.osm, s.job.hide_height_tags, s.params().seed);
     if (s.job.hide_roof_tags > 0) hide_roof_tags(s.osm, s.job.hide_roof_tags, s.params().seed);
-    s.projection.emplace(projection_for(s.osm));
+    s.projection.emplace(s.job.origin ? Projection(s.job.origin->lat, s.job.origin->lon) : projection_for(s.osm));
     s.scene.header = make_header(s.job, *s.projection);
 }
 
@@ -390,6 +395,11 @@ std::vector<Stage> parse_stages(ParseState& s) {
          }},
         {"crossings", {"osm", "projection", "roads", "joints", "sidewalks", "paths"}, {"crossings"},
          [&](ParseReport& r) { scene.crossings = place_crossings(s.osm, *s.projection, scene, r); }},
+        // --keep-inside: after the last stage that looks at the neighbours, before the buildings go.
+        {"keep inside", {"projection", "buildings", "roads", "joints", "sidewalks", "lamps", "land cover", "trees", "paths", "crossings"},
+         {"buildings", "roads", "joints", "sidewalks", "lamps", "land cover", "trees", "paths", "crossings"},
+         [&](ParseReport& r) { s.map_buildings = keep_inside_box(scene, *s.projection, *s.job.keep_inside, r, s.map_buildings); },
+         s.job.keep_inside.has_value()},
         {"slice buildings", {"buildings", "header"}, {"building slices", "buildings", "encoded scene"},
          run(slice_buildings)},
         {"roofs", {"building slices", "building tags", "roof evidence"}, {"building slices"}, run(build_slice_roofs),

@@ -1,11 +1,13 @@
 // The whole osmparse pipeline, stage by stage (see pipeline.cpp).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "common/scene.h"
 #include "osmparse/core/params.h"
 #include "osmparse/core/report.h"
+#include "osmparse/tiles/lat_lon_text.h"
 
 namespace citygen {
 
@@ -16,6 +18,10 @@ struct ParseJob {
     double hide_height_tags = 0;  // benchmark aid: this fraction of buildings loses its height tags
     double hide_roof_tags = 0;    // benchmark aid: this fraction of buildings loses its roof:shape tag
     int threads = 0;              // --threads: at most this many threads for the stages (0: every core)
+    // The farm's tiles (docs/farm.md): the projection's origin given, not computed from the data,
+    // so tiles share one frame; only the objects anchored in this box are kept.
+    std::optional<LatLon> origin;           // --origin
+    std::optional<LatLonBox> keep_inside;   // --keep-inside
 };
 
 // The same scene and the same report rows whatever job.threads is.

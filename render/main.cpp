@@ -32,6 +32,7 @@
 #include "render/production/memory_estimate.h"
 #include "render/production/render_frames.h"
 #include "render/production/render_report.h"
+#include "render/scene/merge_scenes.h"
 #include "render/viewer/serve_viewer.h"
 
 using namespace citygen;
@@ -117,11 +118,14 @@ void note_camera_below_ground(const Scene& scene, Vec3 camera) {
 
 int run(const Options& o) {
     Job job = prepare_job(o);
-    if (!o.serve.empty()) return serve_viewer(o);
+    if (!o.serve.empty()) {
+        if (o.scene_paths.size() > 1) throw Error("--serve takes one scene, not " + std::to_string(o.scene_paths.size()));
+        return serve_viewer(o);
+    }
     RenderSettings& settings = job.settings;
     PhaseSeconds phases;
     const Clock::time_point start = Clock::now();
-    Scene scene = load_scene(o.scene_path);
+    Scene scene = load_scenes(o.scene_paths);
     phases.load = seconds_since(start);
     if (o.print_scene_info) print_scene_info(scene, o.scene_path, stdout);
     const bool builds = !o.output.empty() || !o.export_ply_path.empty() || !o.export_gltf_path.empty() ||
@@ -199,6 +203,7 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
         o.spp_given = app.count("--spp") > 0;
+        o.scene_path = o.scene_paths.front();
     } catch (const CLI::Success& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {

@@ -50,9 +50,16 @@ bool parse_aovs(const std::string& text) {
 }
 
 // Fails before the (possibly long) render when the image could not be written anyway.
-void check_output_path(const std::string& path, const std::string& scene_path) {
+void check_output_path(const std::string& path, const std::vector<std::string>& scene_paths) {
     image_format_for(path);
-    check_output_target(path, {scene_path});
+    check_output_target(path, scene_paths);
+}
+
+// Every file read, so no output overwrites one.
+std::vector<std::string> with_inputs(const Options& o, std::vector<std::string> others) {
+    std::vector<std::string> all = o.scene_paths.empty() ? std::vector<std::string>{o.scene_path} : o.scene_paths;
+    all.insert(all.end(), others.begin(), others.end());
+    return all;
 }
 
 // An export file must have its extension and be a safe target, checked before the work.
@@ -78,13 +85,13 @@ FrameRange animation_frames(const Options& o, const CameraPath& camera_path) {
 
 // The output files: each a safe target of a known format, checked before the work.
 void check_outputs(const Options& o, const Job& job) {
-    if (job.animate) check_output_path(frame_file_name(o.output, job.frames.first), o.scene_path);
-    else if (!o.output.empty()) check_output_path(o.output, o.scene_path);
-    if (!o.export_ply_path.empty()) check_output_target(o.export_ply_path, {o.scene_path, o.output});
+    if (job.animate) check_output_path(frame_file_name(o.output, job.frames.first), with_inputs(o, {}));
+    else if (!o.output.empty()) check_output_path(o.output, with_inputs(o, {}));
+    if (!o.export_ply_path.empty()) check_output_target(o.export_ply_path, with_inputs(o, {o.output}));
     if (job.settings.aovs && !o.output.empty() && image_format_for(o.output) != ImageFormat::Exr)
         throw Error("--aovs needs an .exr output");
     if (!o.export_gltf_path.empty())
-        check_export_path(o.export_gltf_path, ".glb", {o.scene_path, o.output, o.export_ply_path});
+        check_export_path(o.export_gltf_path, ".glb", with_inputs(o, {o.output, o.export_ply_path}));
     if (o.output.empty() && o.export_ply_path.empty() && o.export_gltf_path.empty() && !o.print_scene_info &&
         !o.print_memory_info && !o.print_geometry_info)
         throw Error("need -o OUTPUT.png|jpg|exr (see --help)");
@@ -242,7 +249,9 @@ void add_geometry_mode_options(CLI::App& app, Options& o) {
 
 void add_file_and_production_options(CLI::App& app, Options& o) {
     RenderSettings& r = o.render;
-    app.add_option("scene", o.scene_path, "scene file written by osmparse")->required();
+    app.add_option("scene", o.scene_paths,
+                   "scene file written by osmparse; several: the tiles of one region (parse_farm.sh), rendered as one")
+        ->required();
     app.add_option("-o,--output", o.output, "image to write: .png, .jpg (tone-mapped sRGB) or .exr (linear)");
     app.add_option("--threads", o.threads, "worker threads (0: all cores)")->check(CLI::Range(0, 4096))
         ->capture_default_str();

@@ -22,7 +22,8 @@ class App;
 namespace citygen {
 
 struct Options {
-    std::string scene_path, output, export_ply_path, export_gltf_path;
+    std::string scene_path, output, export_ply_path, export_gltf_path;  // scene_path: the first scene
+    std::vector<std::string> scene_paths;  // every scene given: tiles merged into one (merge_scenes.h)
     RenderSettings render;
     int threads = 0;
     std::string camera, look_at;

@@ -64,6 +64,11 @@ struct TreeParams {
     double forest_spacing = 6;       // --forest-tree-spacing: least distance between scattered trees
     double row_spacing = 8;          // metres between trees of a natural=tree_row
     size_t max_scattered = 200000;   // a cap on forest trees, so a national park cannot fill memory
+    // --origin (the farm's shared frame): forests scattered block by block on a grid fixed to the
+    // origin, each seeded by its OSM object and its ordinal among that object's polygons (not by
+    // its place in the scene's list), so the trees near a point depend only on the data near it
+    // and a tile scatters what a whole-region parse does. Off otherwise: older scenes keep their trees.
+    bool local_scatter = false;
 };
 
 // Terrain (osmparse/terrain/build_terrain.h): without DEM files the scene stays flat.

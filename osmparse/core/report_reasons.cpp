@@ -79,6 +79,16 @@ constexpr Text<ReportKind> kKindTexts[] = {
     {K::GeneratedBuildings, "generated buildings"},
     {K::DemFiles, "dem files"},
     {K::TerrainNodes, "terrain nodes"},
+    {K::TileBuildings, "tile: buildings"},
+    {K::TileRoadEdges, "tile: road edges"},
+    {K::TileRoadJoints, "tile: road joints"},
+    {K::TileSidewalks, "tile: sidewalks"},
+    {K::TilePathEdges, "tile: path edges"},
+    {K::TilePathJoints, "tile: path joints"},
+    {K::TileCrossings, "tile: crossings"},
+    {K::TileLamps, "tile: street lamps"},
+    {K::TileLandCover, "tile: land cover"},
+    {K::TileTrees, "tile: trees"},
 };
 static_assert(in_declaration_order(kKindTexts), "one text per ReportKind, in declaration order");
 
@@ -248,6 +258,7 @@ constexpr Text<ReportReason> kReasonTexts[] = {
     {R::TerrainVoidAtCoast, "void at the coast, set to sea level"},
     {R::TerrainOutsideEveryDem, "outside every DEM, nearest edge height"},
     {R::TerrainHeightBeyondLimits, "height beyond -500..9000 m, a void"},
+    {R::AnchorInAnotherTile, "anchor outside --keep-inside (another tile's)"},
 };
 static_assert(in_declaration_order(kReasonTexts), "one text per ReportReason, in declaration order");
 

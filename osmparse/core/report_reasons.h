@@ -76,6 +76,17 @@ enum class ReportKind {
     // terrain (--dem)
     DemFiles,
     TerrainNodes,
+    // --keep-inside: what the tile keeps of what it parsed (osmparse/tiles/keep_inside_box.h)
+    TileBuildings,
+    TileRoadEdges,
+    TileRoadJoints,
+    TileSidewalks,
+    TilePathEdges,
+    TilePathJoints,
+    TileCrossings,
+    TileLamps,
+    TileLandCover,
+    TileTrees,
     Count  // not a row: the number of rows
 };
 
@@ -267,6 +278,8 @@ enum class ReportReason {
     TerrainVoidAtCoast,
     TerrainOutsideEveryDem,
     TerrainHeightBeyondLimits,
+    // keep_inside_box
+    AnchorInAnotherTile,
     Count  // not a reason: the number of reasons
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 
 #include "common/rng.h"
 #include "common/scene_limits.h"
@@ -163,35 +164,69 @@ void place_row_trees(const OsmData& osm, const Projection& projection, const Tre
 }
 
 // Trees scattered in one forest polygon by dart throwing with a least distance (Poisson-disk),
-// seeded per polygon, until `budget` trees are placed; returns how many were.
-size_t scatter_in_forest(const LandCover& forest, size_t index, const TreeGround& ground, const TreeParams& params,
+// seeded per polygon (its OSM object and `key`), until `budget` trees are placed; returns how many were.
+// One dart in [min, max): placed as a tree if it lands in the forest, on free ground, and `r` from
+// every tree so far; returns whether it was.
+bool throw_dart(const LandCover& forest, Vec2 min, Vec2 max, Rng& rng, const TreeGround& ground, double r,
+                PointGrid& placed, std::vector<Tree>& trees) {
+    const Vec2 p = round_to_stored_precision({min.x + rng.next_double() * (max.x - min.x),
+                                              min.y + rng.next_double() * (max.y - min.y)});
+    const double u = rng.next_double(), v = rng.next_double(), w = rng.next_double();
+    if (!point_in_ring(p, forest.outer)) return false;
+    bool in_hole = false;
+    for (const Ring& h : forest.holes) in_hole = in_hole || point_in_ring(p, h);
+    if (in_hole || placed.any_within(p, r) || !ground.free(p)) return false;
+    Tree t;
+    t.osm = forest.osm;
+    t.source = TreeSource::Scattered;
+    t.position = p;
+    t.leaf_type = u < 0.5 ? LeafType::Needleleaved : LeafType::Broadleaved;
+    t.height = 12 + 10 * v;
+    t.crown_diameter = (t.leaf_type == LeafType::Needleleaved ? 4 : 6) + 3 * w;
+    trees.push_back(t);
+    placed.add(p);
+    return true;
+}
+
+size_t scatter_in_forest(const LandCover& forest, size_t key, const TreeGround& ground, const TreeParams& params,
                          uint64_t seed, size_t budget, PointGrid& placed, std::vector<Tree>& trees) {
     double area = std::fabs(signed_area(forest.outer));
     for (const Ring& h : forest.holes) area -= std::fabs(signed_area(h));
     const Box2 box = bounds_of(forest.outer);
     const double r = params.forest_spacing;
     const size_t attempts = static_cast<size_t>(std::ceil(3 * area / (r * r)));
-    Rng rng(hash_keys(seed, static_cast<uint64_t>(forest.osm.id), static_cast<uint64_t>(forest.osm.type), index));
+    Rng rng(hash_keys(seed, static_cast<uint64_t>(forest.osm.id), static_cast<uint64_t>(forest.osm.type), key));
     size_t scattered = 0;
-    for (size_t k = 0; k < attempts && scattered < budget; ++k) {
-        const Vec2 p = round_to_stored_precision({box.min.x + rng.next_double() * (box.max.x - box.min.x),
-                                                  box.min.y + rng.next_double() * (box.max.y - box.min.y)});
-        const double u = rng.next_double(), v = rng.next_double(), w = rng.next_double();
-        if (!point_in_ring(p, forest.outer)) continue;
-        bool in_hole = false;
-        for (const Ring& h : forest.holes) in_hole = in_hole || point_in_ring(p, h);
-        if (in_hole || placed.any_within(p, r) || !ground.free(p)) continue;
-        Tree t;
-        t.osm = forest.osm;
-        t.source = TreeSource::Scattered;
-        t.position = p;
-        t.leaf_type = u < 0.5 ? LeafType::Needleleaved : LeafType::Broadleaved;
-        t.height = 12 + 10 * v;
-        t.crown_diameter = (t.leaf_type == LeafType::Needleleaved ? 4 : 6) + 3 * w;
-        trees.push_back(t);
-        placed.add(p);
-        ++scattered;
-    }
+    for (size_t k = 0; k < attempts && scattered < budget; ++k)
+        scattered += throw_dart(forest, box.min, box.max, rng, ground, r, placed, trees);
+    return scattered;
+}
+
+// The same, block by block on a grid fixed to the origin (TreeParams::local_scatter): each block
+// has darts of its own, seeded by the forest and the block, and the blocks go in four rounds by
+// the parity of their column and row, so a block's darts meet only its own trees and those of
+// its neighbours of earlier rounds. The trees near a point then depend on the data within a few
+// blocks of it, not on the whole forest: a tile of the farm scatters what one parse does.
+size_t scatter_in_forest_by_blocks(const LandCover& forest, size_t key, const TreeGround& ground,
+                                   const TreeParams& params, uint64_t seed, size_t budget, PointGrid& placed,
+                                   std::vector<Tree>& trees) {
+    const double r = params.forest_spacing;
+    const double side = std::max(64.0, 2 * r);  // same-round blocks are a block apart: beyond r
+    const size_t darts = static_cast<size_t>(std::ceil(3 * side * side / (r * r)));
+    const Box2 box = bounds_of(forest.outer);
+    const auto x0 = static_cast<int64_t>(std::floor(box.min.x / side)), x1 = static_cast<int64_t>(std::floor(box.max.x / side));
+    const auto y0 = static_cast<int64_t>(std::floor(box.min.y / side)), y1 = static_cast<int64_t>(std::floor(box.max.y / side));
+    size_t scattered = 0;
+    for (int round = 0; round < 4; ++round)
+        for (int64_t by = y0; by <= y1; ++by)
+            for (int64_t bx = x0; bx <= x1; ++bx) {
+                if (((bx & 1) | ((by & 1) << 1)) != round) continue;
+                Rng rng(hash_keys(seed, static_cast<uint64_t>(forest.osm.id), static_cast<uint64_t>(forest.osm.type), key,
+                                  static_cast<uint64_t>(bx), static_cast<uint64_t>(by)));
+                const Vec2 min(bx * side, by * side), max((bx + 1) * side, (by + 1) * side);
+                for (size_t k = 0; k < darts && scattered < budget; ++k)
+                    scattered += throw_dart(forest, min, max, rng, ground, r, placed, trees);
+            }
     return scattered;
 }
 
@@ -200,11 +235,15 @@ void place_forest_trees(const Scene& scene, const TreeGround& ground, const Tree
     PointGrid placed(std::max(params.forest_spacing, 0.5));
     for (const Tree& t : trees) placed.add(t.position);
     size_t scattered = 0;
+    std::map<OsmRef, size_t> pieces;  // per OSM object, its polygons so far
     for (size_t index = 0; index < scene.land_cover.size(); ++index) {
         const LandCover& forest = scene.land_cover[index];
+        const size_t piece = pieces[forest.osm]++;
         if (forest.cover != LandCoverClass::Forest) continue;
-        scattered += scatter_in_forest(forest, index, ground, params, seed, params.max_scattered - scattered,
-                                       placed, trees);
+        const size_t budget = params.max_scattered - scattered;
+        scattered += params.local_scatter
+                         ? scatter_in_forest_by_blocks(forest, piece, ground, params, seed, budget, placed, trees)
+                         : scatter_in_forest(forest, index, ground, params, seed, budget, placed, trees);
         if (scattered >= params.max_scattered) {
             report.note(ReportKind::ForestTrees, ReportReason::ForestCapReached);
             break;

@@ -1,0 +1,87 @@
+#!/usr/bin/env bash
+# The tiled parse end to end on a single-node Slurm started here (scripts/farm/local_slurm.sh): a
+# 3x3 metropolis of the bundled example (tests/bench/make_metropolis.cpp) cut into 2x2 tiles by
+# scripts/farm/parse_farm.sh: the cuts cross in the middle copy, the north-south one along the
+# west edge of its town (the tiles west of it parse 431 of its buildings, then leave them). A
+# view across the tile edges, rendered from the 4 tile scenes and from one parse of the whole (same --origin),
+# must show the same object in at least 99.9% of its pixels (id AOVs, compared by OSM identity:
+# build/bin/compare_id_aovs). With --trees mapped: a tree crown's leaves follow the tree's index
+# in its scene (render/geometry/tree_geometry.cpp), and the tiles list forest trees in another
+# order; the figure with forests is printed too. Every daemon started is stopped by PID at the
+# end. Exit 77 (ctest: skipped) only when Slurm cannot run on this machine.
+#   tests/farm/parse_farm_test.sh BUILD_BIN_DIR
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+bin=$(cd "${1:-$root/build/bin}" && pwd)
+work=$(mktemp -d /tmp/citygen-parse-farm-XXXXXX)
+cleanup() {
+  "$root/scripts/farm/local_slurm.sh" stop "$work/slurm" || true
+  rm -rf "$work"
+}
+trap cleanup EXIT
+fail() { echo "parse_farm_test: FAIL: $*" >&2; exit 1; }
+now() { date +%s.%N; }
+since() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }'; }
+command -v osmium > /dev/null || { echo "parse_farm_test: SKIPPED (no osmium-tool)"; exit 77; }
+
+# Dense ids (osmium renumber): the copies' fresh ids reach 1e11, where osmium extract's id sets
+# take a minute to clear.
+"$bin/make_metropolis" "$root/examples/neukolln.osm.bz2" 3 "$work/metro.osm.pbf" > /dev/null
+osmium renumber --no-progress "$work/metro.osm.pbf" -o "$work/region.osm.pbf"
+
+start=$(now)
+set +e
+env_line=$("$root/scripts/farm/local_slurm.sh" start "$work/slurm")
+status=$?
+set -e
+if [ $status -eq 77 ]; then echo "parse_farm_test: SKIPPED (Slurm cannot run here, see above)"; exit 77; fi
+[ $status -eq 0 ] || { tail -n 20 "$work"/slurm/*.log "$work"/slurm/*.out >&2 || true; fail "local Slurm did not start"; }
+eval "$env_line"
+echo "slurm started in $(since "$start") s"
+
+view=(--width 320 --height 180 --camera -400,-500,350 --look-at 0,0,0 -q --spp 1 --aovs id)
+# Parses the region on the farm into $work/$1 and as one scene, renders both, compares the ids.
+farm_and_compare() {
+  local name=$1
+  shift
+  start=$(now)
+  "$root/scripts/farm/parse_farm.sh" "$work/region.osm.pbf" "$work/$name" --tiles 2x2 --overlap 300 \
+    --osmparse "$bin/osmparse" --wait -- "$@" > "$work/$name.log" || { cat "$work/$name.log" >&2; fail "parse_farm $name"; }
+  echo "farm parse ($name: extract + 4 tasks) took $(since "$start") s"
+  origin=$(sed -n 's/^parse_farm: origin \([-0-9.]*,[-0-9.]*\),.*/\1/p' "$work/$name.log")
+  [ -n "$origin" ] || fail "parse_farm printed no origin"
+  mapfile -t tiles < "$work/$name/tiles.txt"
+  [ ${#tiles[@]} -eq 4 ] || fail "$name: ${#tiles[@]} tile scenes, not 4"
+  "$bin/osmparse" "$work/region.osm.pbf" -q --origin "$origin" "$@" -o "$work/$name-one.scene"
+  "$bin/render" "$work/$name-one.scene" "${view[@]}" -o "$work/$name-one.exr"
+  "$bin/render" "${tiles[@]}" "${view[@]}" -o "$work/$name-tiles.exr"
+  "$bin/compare_id_aovs" "$work/$name-one.exr" "$work/$name-one.scene" -- "$work/$name-tiles.exr" "${tiles[@]}" \
+    > "$work/$name-ids.txt"
+  percent=$(sed -n 's/^ids_equal_percent: //p' "$work/$name-ids.txt")
+  echo "$name: ids equal in $percent% of the view's pixels"
+}
+
+farm_and_compare mapped --trees mapped
+awk -v p="$percent" 'BEGIN { exit !(p >= 99.9) }' || fail "ids equal in only $percent% of the pixels (at least 99.9)"
+farm_and_compare forests
+echo "(with forests, not asserted: leaves follow each tree's index in its scene)"
+
+# Scenes of another frame are refused with one line.
+"$bin/osmparse" "$root/examples/neukolln.osm.bz2" -q -o "$work/other.scene"
+set +e
+"$bin/render" "${tiles[@]}" "$work/other.scene" -q -o "$work/refused.png" 2> "$work/refused.txt"
+status=$?
+set -e
+[ $status -ne 0 ] || fail "render merged scenes of two origins"
+[ "$(wc -l < "$work/refused.txt")" -eq 1 ] && grep -q "parse the tiles with one --origin" "$work/refused.txt" ||
+  fail "the refusal is not one clear line: $(cat "$work/refused.txt")"
+[ -f "$work/refused.png" ] && fail "a refused render wrote its image"
+
+pids=$(cat "$work"/slurm/*.started.pid)
+"$root/scripts/farm/local_slurm.sh" stop "$work/slurm"
+for pid in $pids; do
+  if kill -0 "$pid" 2> /dev/null && ! grep -q '^State:[[:space:]]*Z' "/proc/$pid/status" 2> /dev/null; then
+    fail "daemon $pid still runs after stop"
+  fi
+done
+echo "parse_farm_test: 4 tiles parsed on the farm; a view across their edges shows the same objects in $(sed -n 's/^ids_equal_percent: //p' "$work/mapped-ids.txt")% of its pixels (--trees mapped); daemons stopped"
