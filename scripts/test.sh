@@ -5,7 +5,7 @@
 #               suite CI runs (without them the farm and Blender tests would only be skipped).
 #   build       gcc, Release, everything (tests included) into build/
 #   fast tests  ctest -LE slow: every test but the three labelled slow (tests/CMakeLists.txt)
-#   farm        the slurm_farm test (a single-node Slurm started by the test)
+#   farm        the slurm_farm and parse_farm tests (a single-node Slurm started by each test)
 #   blender     the blender_gltf_import test (Blender imports render's glTF)
 #   browser     the viewer_browser test (the viewer's page in headless Chromium)
 #   asan build  scripts/check-sanitizers.sh build: clang, ASan+UBSan, with the fuzzers
@@ -54,7 +54,7 @@ ctest_in_build() { (cd build && ctest --output-on-failure -j"$jobs" "$@"); }
 stage install scripts/install-deps.sh ci
 stage build scripts/build.sh ci
 stage "fast tests" ctest_in_build -LE slow
-stage farm ctest_in_build -R '^slurm_farm$'
+stage farm ctest_in_build -R '^(slurm_farm|parse_farm)$'
 stage blender ctest_in_build -R '^blender_gltf_import$'
 stage browser ctest_in_build -R '^viewer_browser$'
 if [ "${CITYGEN_SKIP_SANITIZERS:-0}" != 1 ]; then

@@ -44,7 +44,9 @@ TEST(TileOptionsCli, TwoTilesKeepEveryObjectOnce) {
         const long west = info_count(dir.file("west.scene"), key), east = info_count(dir.file("east.scene"), key);
         ASSERT_GE(whole, 0) << key;
         EXPECT_EQ(west + east, whole) << key;
-        if (std::string(key) == "buildings") EXPECT_TRUE(west > 0 && east > 0) << "the cut goes through the town";
+        if (std::string(key) == "buildings") {
+            EXPECT_TRUE(west > 0 && east > 0) << "the cut goes through the town";
+        }
     }
 }
 
