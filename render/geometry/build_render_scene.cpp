@@ -17,65 +17,76 @@
 
 namespace citygen {
 
-std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes,
-                                                const FacadeOptions& facades, const ProgressSettings& progress) {
-    // Buildings are nearly all of the work (every facade triangle), so they measure it.
-    Progress geometry_progress("geometry", scene.buildings.size(), progress);
+namespace {
+
+using Geometry = std::unique_ptr<RenderGeometry>;
+
+// One builder per class, in the order of the Embree geometry ids, each in the class's mode.
+std::vector<std::function<Geometry()>> class_builders(const Scene& scene, const GeometryModes& modes,
+                                                      const FacadeOptions& facades, Progress& building_progress) {
     auto stored = [](TriangleMesh mesh) { return std::make_unique<StoredMeshGeometry>(std::move(mesh)); };
-    auto procedural = [&](GeometryClass c) { return modes[c] == GeometryMode::Procedural; };
-    using Geometry = std::unique_ptr<RenderGeometry>;
-    // One builder per class, in the order of the Embree geometry ids; each reads only the scene,
-    // so they run side by side and are added in this order whatever finished first.
+    auto procedural = [&modes](GeometryClass c) { return modes[c] == GeometryMode::Procedural; };
     std::vector<std::function<Geometry()>> builders;
-    builders.push_back([&]() -> Geometry {
-        if (procedural(GeometryClass::Buildings)) return build_procedural_buildings(scene, facades, &geometry_progress);
-        return stored(build_stored_buildings(scene, facades, &geometry_progress));
+    builders.push_back([&, stored, procedural]() -> Geometry {
+        if (procedural(GeometryClass::Buildings)) return build_procedural_buildings(scene, facades, &building_progress);
+        return stored(build_stored_buildings(scene, facades, &building_progress));
     });
-    builders.push_back([&]() -> Geometry {
+    builders.push_back([&, stored, procedural]() -> Geometry {
         if (!procedural(GeometryClass::Terrain)) return stored(build_stored_terrain(scene));
         if (!scene.terrain.empty()) return build_procedural_field_terrain(scene);
         return build_procedural_terrain(scene);
     });
     // Markings and asphalt grain are painted at shading time (road_markings.h), in both modes.
-    builders.push_back([&]() -> Geometry {
+    builders.push_back([&, stored, procedural]() -> Geometry {
         if (procedural(GeometryClass::Roads)) return with_road_markings(build_procedural_roads(scene), scene);
         return with_road_markings(stored(build_stored_roads(scene)), scene);
     });
-    builders.push_back([&]() -> Geometry {
+    builders.push_back([&, stored, procedural]() -> Geometry {
         if (procedural(GeometryClass::Joints)) return with_asphalt_grain(build_procedural_joints(scene));
         return with_asphalt_grain(stored(build_stored_joints(scene)));
     });
-    builders.push_back([&]() -> Geometry {
+    builders.push_back([&, stored, procedural]() -> Geometry {
         if (procedural(GeometryClass::Sidewalks)) return build_procedural_sidewalks(scene);
         return stored(build_stored_sidewalks(scene));
     });
     // The map beyond roads (format 1.1); empty classes add no geometry.
     if (!scene.land_cover.empty())
-        builders.push_back([&]() -> Geometry {
+        builders.push_back([&, stored, procedural]() -> Geometry {
             if (procedural(GeometryClass::LandCover)) return with_water_waves(build_procedural_land_cover(scene));
             return with_water_waves(stored(build_stored_land_cover(scene)));
         });
     if (!scene.paths.empty()) {
-        builders.push_back([&]() -> Geometry {
+        builders.push_back([&, stored, procedural]() -> Geometry {
             if (procedural(GeometryClass::Paths)) return with_rail_tracks(build_procedural_paths(scene), scene);
             return with_rail_tracks(stored(build_stored_paths(scene)), scene);
         });
         if (!scene.path_joints.empty())
-            builders.push_back([&]() -> Geometry {
+            builders.push_back([&, stored, procedural]() -> Geometry {
                 if (procedural(GeometryClass::Paths)) return build_procedural_path_joints(scene);
                 return stored(build_stored_path_joints(scene));
             });
     }
     if (!scene.trees.empty())
-        builders.push_back([&]() -> Geometry {
+        builders.push_back([&, stored, procedural]() -> Geometry {
             if (procedural(GeometryClass::Trees)) return build_procedural_trees(scene);
             return build_stored_trees(scene);
         });
-    builders.push_back([&]() -> Geometry {
+    builders.push_back([&, stored, procedural]() -> Geometry {
         if (procedural(GeometryClass::Lamps)) return build_procedural_lamps(scene);
         return stored(build_stored_lamps(scene));
     });
+    return builders;
+}
 
+}  // namespace
+
+std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes,
+                                                const FacadeOptions& facades, const ProgressSettings& progress) {
+    // Buildings are nearly all of the work (every facade triangle), so they measure it.
+    Progress geometry_progress("geometry", scene.buildings.size(), progress);
+    // Each builder reads only the scene, so they run side by side and are added in their order
+    // whatever finished first.
+    const auto builders = class_builders(scene, modes, facades, geometry_progress);
     std::vector<Geometry> geometries(builders.size());
     tbb::parallel_for(size_t{0}, builders.size(), [&](size_t i) { geometries[i] = builders[i](); });
     geometry_progress.finish();

@@ -186,6 +186,49 @@ void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, 
     for (int lane = count; lane < 4; ++lane) nodes_[self].child[lane] = kLeaf;  // empty: power 0, never chosen
 }
 
+// The bucket boundary of the cheapest split of items [begin, end) over the three axes (axis -1:
+// none). The axes are costed side by side for large nodes; the best is chosen in axis order.
+void BVHLightSampler::cheapest_split(const std::vector<Item>& items, size_t begin, size_t end, Vec3 cmin, Vec3 cmax,
+                                     bool parallel, int* best_axis, int* best_bucket) {
+    double axis_cost[3] = {1e300, 1e300, 1e300};
+    int axis_bucket[3] = {-1, -1, -1};
+    auto cost_axis = [&](int axis) {
+        const double extent = cmax[axis] - cmin[axis];
+        if (!(extent > 0)) return;
+        LightBounds buckets[kBuckets];
+        for (size_t i = begin; i < end; ++i) {
+            int b = static_cast<int>(kBuckets * (items[i].bounds.centroid()[axis] - cmin[axis]) / extent);
+            b = std::clamp(b, 0, kBuckets - 1);
+            buckets[b] = union_of(buckets[b], items[i].bounds);
+        }
+        // Costs of all splits from a sweep each way: below[s] holds buckets 0..s, above[s] s+1..end.
+        LightBounds below[kBuckets], above[kBuckets];
+        below[0] = buckets[0];
+        for (int b = 1; b < kBuckets; ++b) below[b] = union_of(below[b - 1], buckets[b]);
+        above[kBuckets - 2] = buckets[kBuckets - 1];
+        for (int b = kBuckets - 3; b >= 0; --b) above[b] = union_of(above[b + 1], buckets[b + 1]);
+        OrientationMeasure orientation;
+        for (int split = 0; split < kBuckets - 1; ++split) {
+            if (below[split].phi <= 0 && above[split].phi <= 0) continue;
+            const double cost =
+                cluster_cost(below[split], axis, orientation) + cluster_cost(above[split], axis, orientation);
+            if (cost < axis_cost[axis]) {
+                axis_cost[axis] = cost;
+                axis_bucket[axis] = split;
+            }
+        }
+    };
+    if (parallel) tbb::parallel_for(0, 3, cost_axis);
+    else for (int axis = 0; axis < 3; ++axis) cost_axis(axis);
+    double best_cost = 1e300;
+    for (int axis = 0; axis < 3; ++axis)
+        if (axis_cost[axis] < best_cost) {
+            best_cost = axis_cost[axis];
+            *best_axis = axis;
+            *best_bucket = axis_bucket[axis];
+        }
+}
+
 void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint32_t self,
                             uint32_t next, std::vector<BinaryNode>& tree) {
     if (end - begin == 1) {
@@ -201,48 +244,9 @@ void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, 
     }
     // Split: the cheapest bucket boundary over the three axes (SAH-like, pbrt-v4's cost), or the
     // median along the widest axis when the centroids coincide or the tree grows deep.
-    // The three axes are costed side by side for large nodes; the best is chosen in axis order.
-    int best_axis = -1, best_bucket = -1;
-    double best_cost = 1e300;
     const bool large = end - begin >= kParallelItems;
-    if (depth < kMaxSahDepth) {
-        double axis_cost[3] = {1e300, 1e300, 1e300};
-        int axis_bucket[3] = {-1, -1, -1};
-        auto cost_axis = [&](int axis) {
-            const double extent = cmax[axis] - cmin[axis];
-            if (!(extent > 0)) return;
-            LightBounds buckets[kBuckets];
-            for (size_t i = begin; i < end; ++i) {
-                int b = static_cast<int>(kBuckets * (items[i].bounds.centroid()[axis] - cmin[axis]) / extent);
-                b = std::clamp(b, 0, kBuckets - 1);
-                buckets[b] = union_of(buckets[b], items[i].bounds);
-            }
-            // Costs of all splits from a sweep each way: below[s] holds buckets 0..s, above[s] s+1..end.
-            LightBounds below[kBuckets], above[kBuckets];
-            below[0] = buckets[0];
-            for (int b = 1; b < kBuckets; ++b) below[b] = union_of(below[b - 1], buckets[b]);
-            above[kBuckets - 2] = buckets[kBuckets - 1];
-            for (int b = kBuckets - 3; b >= 0; --b) above[b] = union_of(above[b + 1], buckets[b + 1]);
-            OrientationMeasure orientation;
-            for (int split = 0; split < kBuckets - 1; ++split) {
-                if (below[split].phi <= 0 && above[split].phi <= 0) continue;
-                const double cost =
-                    cluster_cost(below[split], axis, orientation) + cluster_cost(above[split], axis, orientation);
-                if (cost < axis_cost[axis]) {
-                    axis_cost[axis] = cost;
-                    axis_bucket[axis] = split;
-                }
-            }
-        };
-        if (large) tbb::parallel_for(0, 3, cost_axis);
-        else for (int axis = 0; axis < 3; ++axis) cost_axis(axis);
-        for (int axis = 0; axis < 3; ++axis)
-            if (axis_cost[axis] < best_cost) {
-                best_cost = axis_cost[axis];
-                best_axis = axis;
-                best_bucket = axis_bucket[axis];
-            }
-    }
+    int best_axis = -1, best_bucket = -1;
+    if (depth < kMaxSahDepth) cheapest_split(items, begin, end, cmin, cmax, large, &best_axis, &best_bucket);
     size_t mid = begin;
     if (best_axis >= 0) {
         const double extent = cmax[best_axis] - cmin[best_axis];

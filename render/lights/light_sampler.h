@@ -90,6 +90,8 @@ private:
     };
     // The probability of each of a node's lanes for q (empty lanes: 0).
     void lane_probabilities(const LightQuery& q, const Node& node, double p[4]) const;
+    static void cheapest_split(const std::vector<Item>& items, size_t begin, size_t end, Vec3 cmin, Vec3 cmax,
+                               bool parallel, int* best_axis, int* best_bucket);
     // Builds the binary subtree of items [begin, end) in tree[self] (siblings side by side), its
     // descendants from tree[next] on in depth-first order: a subtree of m lights has 2m - 1 nodes,
     // so both halves know their place and large ones are built side by side, the same tree.
