@@ -5,6 +5,8 @@
 #include <map>
 #include <vector>
 
+#include "common/ground.h"
+
 namespace citygen {
 
 namespace {
@@ -137,6 +139,51 @@ void print_map_details_info(const Scene& s, std::FILE* out) {
     std::fprintf(out, "roads_with_markings: %zu\n", marked);
 }
 
+double percentile(std::vector<double> v, double p) {
+    if (v.empty()) return 0;
+    const size_t k = std::min(v.size() - 1, static_cast<size_t>(p / 100 * v.size()));
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+    return v[k];
+}
+
+// How the roads lie on the field (docs/terrain.md, "Fitted to roads and water"): every 2 m
+// along each centreline, away from its ends (a joint warps a road's end to meet the others),
+// the slope across the carriageway and the grade along it, on the drawn ground.
+void print_road_fit_info(const Scene& s, std::FILE* out) {
+    constexpr double kStep = 2;
+    std::vector<double> cross, grade;
+    for (const RoadEdge& r : s.roads) {
+        const std::vector<Vec2>& line = r.centreline;
+        double along = 0, total = 0;
+        for (size_t k = 0; k + 1 < line.size(); ++k) total += length(line[k + 1] - line[k]);
+        double previous = NAN;
+        for (size_t k = 0; k + 1 < line.size(); ++k) {
+            const Vec2 a = line[k], d = line[k + 1] - line[k];
+            const double l = length(d);
+            if (!(l > 0)) continue;
+            const Vec2 u = d * (1 / l), n{-u.y, u.x};
+            for (double t = std::fmod(kStep - std::fmod(along, kStep), kStep); t < l; t += kStep) {
+                const Vec2 p = a + u * t;
+                const double at = along + t;
+                if (at < r.width || at > total - r.width) continue;
+                const double z = ground_height(s, p.x, p.y);
+                const Vec2 left = p + n * (r.width / 2), right = p - n * (r.width / 2);
+                cross.push_back(std::fabs(ground_height(s, left.x, left.y) - ground_height(s, right.x, right.y)) / r.width);
+                if (std::isfinite(previous)) grade.push_back(std::fabs(z - previous) / kStep);
+                previous = z;
+            }
+            along += l;
+        }
+    }
+    if (cross.empty()) return;
+    std::fprintf(out, "terrain_road_cross_slope: p50 %.2f%%, p99 %.2f%%, max %.1f%% (%zu points, 2 m apart)\n",
+                 100 * percentile(cross, 50), 100 * percentile(cross, 99), 100 * *std::max_element(cross.begin(), cross.end()),
+                 cross.size());
+    if (!grade.empty())
+        std::fprintf(out, "terrain_road_grade: p50 %.1f%%, p99 %.1f%%, max %.1f%%\n", 100 * percentile(grade, 50),
+                     100 * percentile(grade, 99), 100 * *std::max_element(grade.begin(), grade.end()));
+}
+
 // Format 1.2: the height field's extent, resolution, nodes and height range, when present.
 void print_terrain_info(const Scene& s, std::FILE* out) {
     const HeightField& t = s.terrain;
@@ -152,6 +199,7 @@ void print_terrain_info(const Scene& s, std::FILE* out) {
     std::fprintf(out, "terrain_heights: %.1f - %.1f m above %s (z = altitude - %.1f m)\n",
                  t.reference_altitude + *lowest, t.reference_altitude + *highest, t.vertical_datum.c_str(),
                  t.reference_altitude);
+    print_road_fit_info(s, out);
 }
 
 }  // namespace

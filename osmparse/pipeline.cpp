@@ -35,6 +35,7 @@
 #include "osmparse/roofs/build_roofs.h"
 #include "osmparse/run_stages.h"
 #include "osmparse/terrain/build_terrain.h"
+#include "osmparse/terrain/fit_terrain.h"
 #include "osmparse/tiles/keep_inside_box.h"
 
 namespace citygen {
@@ -415,6 +416,11 @@ std::vector<Stage> parse_stages(ParseState& s) {
         {"terrain", {"header", "projection", "land cover"}, {"terrain"},
          [&](ParseReport& r) { scene.terrain = build_terrain(scene.header, *s.projection, scene.land_cover, p.terrain, r); },
          !p.terrain.dem_files.empty()},
+        {"roads into terrain", {"terrain", "roads", "paths"}, {"terrain"},
+         [&](ParseReport& r) { fit_terrain_to_ways(scene.terrain, scene.roads, scene.paths, {p.sidewalks.width}, r); },
+         !p.terrain.dem_files.empty()},
+        {"water into terrain", {"terrain", "land cover"}, {"terrain"},
+         [&](ParseReport& r) { level_still_water(scene.terrain, scene.land_cover, r); }, !p.terrain.dem_files.empty()},
     };
 }
 

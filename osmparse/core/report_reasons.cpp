@@ -258,6 +258,13 @@ constexpr Text<ReportReason> kReasonTexts[] = {
     {R::TerrainVoidAtCoast, "void at the coast, set to sea level"},
     {R::TerrainOutsideEveryDem, "outside every DEM, nearest edge height"},
     {R::TerrainHeightBeyondLimits, "height beyond -500..9000 m, a void"},
+    {R::TerrainUnderWay, "under a road or path, level across it"},
+    {R::TerrainWayShoulder, "in a road's or path's shoulder, blended"},
+    {R::TerrainUnderWater, "under still water, at its shore's lowest"},
+    {R::BridgeOnTheGround, "bridge: on the ground (decks not built)"},
+    {R::StepsOnTheGround, "steps: on the ground (stairs not built)"},
+    {R::WaterLevelled, "still water, level at its lowest shore"},
+    {R::WaterOnASlope, "shore falls over 5 m: draped, not level"},
     {R::AnchorInAnotherTile, "anchor outside --keep-inside (another tile's)"},
 };
 static_assert(in_declaration_order(kReasonTexts), "one text per ReportReason, in declaration order");

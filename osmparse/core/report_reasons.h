@@ -278,6 +278,14 @@ enum class ReportReason {
     TerrainVoidAtCoast,
     TerrainOutsideEveryDem,
     TerrainHeightBeyondLimits,
+    // fit_terrain: the field under ways and water
+    TerrainUnderWay,
+    TerrainWayShoulder,
+    TerrainUnderWater,
+    BridgeOnTheGround,
+    StepsOnTheGround,
+    WaterLevelled,
+    WaterOnASlope,
     // keep_inside_box
     AnchorInAnotherTile,
     Count  // not a reason: the number of reasons

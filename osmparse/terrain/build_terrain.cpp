@@ -4,35 +4,19 @@
 #include <cmath>
 
 #include "osmparse/terrain/fill_dem_voids.h"
+#include "osmparse/terrain/grid_nodes.h"
 #include "osmparse/terrain/read_dem.h"
 
 namespace citygen {
 
 std::vector<uint8_t> sea_mask(const DemGrid& g, const std::vector<LandCover>& land_cover) {
     std::vector<uint8_t> sea;
-    std::vector<double> crossings;
     for (const LandCover& c : land_cover) {
         if (c.cover != LandCoverClass::Sea) continue;
         if (sea.empty()) sea.assign(g.size(), 0);
         std::vector<const Ring*> rings{&c.outer};
         for (const Ring& hole : c.holes) rings.push_back(&hole);
-        // Row by row: the nodes between pairs of boundary crossings (even-odd, so holes are left out).
-        for (uint32_t j = 0; j < g.ny; ++j) {
-            const double y = g.origin.y + j * g.cell;
-            crossings.clear();
-            for (const Ring* ring : rings)
-                for (size_t a = 0; a < ring->size(); ++a) {
-                    const Vec2 p = (*ring)[a], q = (*ring)[(a + 1) % ring->size()];
-                    if ((p.y <= y) != (q.y <= y)) crossings.push_back(p.x + (y - p.y) / (q.y - p.y) * (q.x - p.x));
-                }
-            std::sort(crossings.begin(), crossings.end());
-            for (size_t m = 0; m + 1 < crossings.size(); m += 2) {
-                const double first = std::ceil((crossings[m] - g.origin.x) / g.cell);
-                const double last = std::floor((crossings[m + 1] - g.origin.x) / g.cell);
-                for (double i = std::max(first, 0.0); i <= std::min(last, g.nx - 1.0); ++i)
-                    sea[g.index(static_cast<uint32_t>(i), j)] = 1;
-            }
-        }
+        for_each_node_inside({g.origin, g.cell, g.nx, g.ny}, rings, [&](uint32_t i, uint32_t j) { sea[g.index(i, j)] = 1; });
     }
     return sea;
 }

@@ -120,6 +120,17 @@ double rounded_dem_cell(double metres) {
     return std::round(metres / unit) * unit;
 }
 
+double default_field_cell(double dem_cell, const Box2& bounds) {
+    const double cell = std::min(dem_cell, kRoadFitCell);
+    const double span_x = bounds.max.x - bounds.min.x, span_y = bounds.max.y - bounds.min.y;
+    const double margin = 2 * kDemMarginCells + 2;  // the grid's nodes beyond the bounds, and its rounding
+    const auto nodes = [&](double c) { return (span_x / c + margin) * (span_y / c + margin); };
+    if (nodes(cell) <= kDefaultFieldNodes) return cell;
+    double coarse = rounded_up_cell(cell * std::sqrt(nodes(cell) / kDefaultFieldNodes));
+    while (nodes(coarse) > kDefaultFieldNodes) coarse = rounded_up_cell(coarse * 1.01);
+    return coarse;
+}
+
 void check_dem_files(const std::vector<std::string>& paths) {
     if (!paths.empty()) call(dem_module().check_files, paths);
 }
@@ -129,7 +140,7 @@ DemRead read_dem(const DemRequest& request, const Projection& projection) {
     double cell = request.cell;
     if (cell == 0) {
         call(gdal.native_cell, request.paths, projection.origin_lat(), projection.origin_lon(), cell);
-        cell = rounded_dem_cell(cell);
+        cell = default_field_cell(rounded_dem_cell(cell), request.bounds);
     }
     DemRead out;
     out.grid = grid_over(request.bounds, cell);

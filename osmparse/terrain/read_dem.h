@@ -24,7 +24,7 @@ constexpr int kDemMarginCells = 2;
 struct DemRequest {
     std::vector<std::string> paths;  // read in this order: where DEMs overlap, the first with a height wins
     Box2 bounds;                     // the scene's bounds, local metres
-    double cell = 0;                 // metres between nodes; 0: the finest DEM's own resolution
+    double cell = 0;                 // metres between nodes; 0: default_field_cell of the finest DEM's
 };
 
 // A DEM's extent in degrees, for the message when none overlaps the extract.
@@ -55,5 +55,13 @@ DemRead read_dem(const DemRequest& request, const Projection& projection);
 
 // The grid spacing for a DEM resolution in metres: two significant digits, at least 1 m.
 double rounded_dem_cell(double metres);
+
+// The field's default cell (metres): fine enough that the cells under a road lie within the
+// corridor it is fitted in (fit_terrain.h), so the road comes out level across; the DEM's own
+// resolution where that is finer; coarser where the grid over the bounds would pass
+// kDefaultFieldNodes (64 MB of heights: 12 x 12 km at 3 m).
+constexpr double kRoadFitCell = 3;
+constexpr uint64_t kDefaultFieldNodes = uint64_t(1) << 24;
+double default_field_cell(double dem_cell, const Box2& bounds);
 
 }  // namespace citygen

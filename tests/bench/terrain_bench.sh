@@ -189,17 +189,27 @@ for f in kinds["building"]:
                 gaps.append(c[2] - min(near))
 gaps.sort()
 
-# Road grade along consecutive polygon vertices, beside the DEM's slope on the same segments.
-# Segments under 1 m are left out: a millimetre of rounding there is a large grade.
-grades, dem_grades = [], []
+# A road quad's four sides: the two along it give its grade (beside the DEM's slope on the same
+# sides), the two across it (the shorter pair) its cross-slope, which the fit makes level.
+# Sides under 1 m are left out: a millimetre of rounding there is a large grade.
+grades, dem_grades, cross = [], [], []
 road_vertices = Grid(10.0)
 for f in kinds["road"]:
     for r in rings(f):
         for c in r:
             road_vertices.add(c)
-        for a, b in zip(r, r[1:]):
-            h = metres(a, b)
-            if h >= 1.0:
+        if len(r) != 5:
+            continue
+        sides = [(r[k], r[k + 1]) for k in range(4)]
+        lengths = [metres(a, b) for a, b in sides]
+        across = (1, 3) if lengths[1] + lengths[3] < lengths[0] + lengths[2] else (0, 2)
+        for k, (a, b) in enumerate(sides):
+            h = lengths[k]
+            if h < 1.0:
+                continue
+            if k in across:
+                cross.append(abs(b[2] - a[2]) / h)
+            else:
                 grades.append(abs(b[2] - a[2]) / h)
                 dem_grades.append(abs(dem(b[0], b[1]) - dem(a[0], a[1])) / h)
 
@@ -221,8 +231,9 @@ print("| largest step between road/joint/sidewalk pieces at shared vertices | %.
 if gaps:
     print("| building vertex z - lowest road/land-cover vertex z within 2 m: max | %.3f m | %d vertices | <= 0.05 m (wall foot) |" % (gaps[-1], len(gaps)))
     print("| the same: min, p50, p99 | %.3f / %.3f / %.3f m | | |" % (gaps[0], pct(gaps, 50), pct(gaps, 99)))
-print("| road grade p50 / p99 (abs dz / length, segments >= 1 m, edges across the road too) | %.1f%% / %.1f%% | %d segments | |" % (100 * pct(grades, 50), 100 * pct(grades, 99), len(grades)))
-print("| DEM slope along the same segments p50 / p99 | %.1f%% / %.1f%% | | |" % (100 * pct(dem_grades, 50), 100 * pct(dem_grades, 99)))
+print("| road grade along p50 / p99 (abs dz / length of a quad's sides along the road) | %.1f%% / %.1f%% | %d sides | |" % (100 * pct(grades, 50), 100 * pct(grades, 99), len(grades)))
+print("| DEM slope along the same sides p50 / p99 | %.1f%% / %.1f%% | | |" % (100 * pct(dem_grades, 50), 100 * pct(dem_grades, 99)))
+print("| road cross-slope p50 / p99 / max (the quad's ends) | %.2f%% / %.2f%% / %.1f%% | %d ends | level |" % (100 * pct(cross, 50), 100 * pct(cross, 99), 100 * max(cross or [0]), len(cross)))
 if diffs:
     rms = math.sqrt(sum(d * d for d in diffs) / len(diffs))
     mean = sum(diffs) / len(diffs)

@@ -8,6 +8,7 @@
 #include "common/scene_io.h"
 #include "osmparse/pipeline.h"
 #include "osmparse/terrain/build_terrain.h"
+#include "osmparse/terrain/read_dem.h"
 #include "tests/osmparse/parse_quietly.h"
 #include "tests/test_support.h"
 
@@ -59,7 +60,7 @@ TEST(BuildTerrainMonaco, HeightsArePlausibleAndTheSeaIsAtSeaLevel) {
     const Scene s = parse_osm_to_scene(monaco_job(), report);
     const HeightField& t = s.terrain;
     ASSERT_FALSE(t.empty());
-    EXPECT_EQ(t.cell, 81);  // SRTM3's 3 arc-seconds at 43.7 N, about 93 x 67 m
+    EXPECT_EQ(t.cell, kRoadFitCell);  // finer than SRTM3's 81 m (3 arc-seconds at 43.7 N), for the roads
     EXPECT_LE(t.origin.x, s.header.bounds_min.x);
     EXPECT_GE(t.origin.y + (t.ny - 1) * t.cell, s.header.bounds_max.y);
     EXPECT_EQ(t.reference_altitude, 0);  // the sea is in the scene

@@ -126,12 +126,16 @@ TEST(ReadDem, PlaneInTheScenesProjectionIsThePlaneWithinACentimetre) {
     TempDir dir;
     write_geotiff(dir.file("plane.tif"), scene_raster(plane));
     const DemRead dem = read({dir.file("plane.tif")});
-    EXPECT_EQ(dem.grid.cell, 10);  // the DEM's own resolution
-    EXPECT_LE(dem.grid.origin.x, -500 - kDemMarginCells * 10 + 1e-9);
-    EXPECT_GE(dem.grid.origin.x + (dem.grid.nx - 1) * dem.grid.cell, 600 + kDemMarginCells * 10 - 1e-9);
-    EXPECT_EQ(dem.grid.size(), 115u * 95u);  // -520..620 x -420..520 m
+    EXPECT_EQ(dem.grid.cell, kRoadFitCell);  // finer than the DEM's own 10 m, for the roads
+    EXPECT_LE(dem.grid.origin.x, -500 - kDemMarginCells * kRoadFitCell + 1e-9);
+    EXPECT_GE(dem.grid.origin.x + (dem.grid.nx - 1) * dem.grid.cell, 600 + kDemMarginCells * kRoadFitCell - 1e-9);
+    EXPECT_EQ(dem.grid.size(), 372u * 306u);  // 1113 x 915 m
     EXPECT_LT(largest_plane_error(dem.grid), 0.01);
     EXPECT_EQ(dem.vertical_datum, kAssumedVerticalDatum);
+    // At the DEM's own resolution.
+    const DemRead native = read({dir.file("plane.tif")}, 10);
+    EXPECT_EQ(native.grid.size(), 115u * 95u);  // -520..620 x -420..520 m
+    EXPECT_LT(largest_plane_error(native.grid), 0.01);
     // Between the DEM's pixels too.
     EXPECT_LT(largest_plane_error(read({dir.file("plane.tif")}, 7).grid), 0.01);
 }

@@ -1,0 +1,169 @@
+#include "osmparse/terrain/fit_terrain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "common/ground.h"
+#include "osmparse/terrain/grid_nodes.h"
+
+namespace citygen {
+
+namespace {
+
+GridLayout layout_of(const HeightField& f) { return {f.origin, f.cell, f.nx, f.ny}; }
+
+// One pass of a box filter of 2r + 1 nodes along rows (step 1) or columns (step nx), the edge
+// nodes repeated beyond the grid.
+void box_pass(std::vector<float>& h, uint32_t nx, uint32_t ny, int r, bool along_rows) {
+    const uint32_t lines = along_rows ? ny : nx, n = along_rows ? nx : ny;
+    const size_t step = along_rows ? 1 : nx;
+    std::vector<double> line(n);
+    for (uint32_t l = 0; l < lines; ++l) {
+        const size_t first = along_rows ? static_cast<size_t>(l) * nx : l;
+        for (uint32_t k = 0; k < n; ++k) line[k] = h[first + k * step];
+        const auto at = [&](long k) { return line[static_cast<size_t>(std::clamp<long>(k, 0, n - 1))]; };
+        double sum = 0;
+        for (long k = -r; k <= r; ++k) sum += at(k);
+        for (uint32_t k = 0; k < n; ++k) {
+            h[first + k * step] = static_cast<float>(sum / (2 * r + 1));
+            sum += at(static_cast<long>(k) + r + 1) - at(static_cast<long>(k) - r);
+        }
+    }
+}
+
+// The field smoothed at kProfileSmoothing: three box passes each way approach a Gaussian; three
+// boxes of 2r + 1 nodes have a variance of r (r + 1) cells squared.
+HeightField smoothed(const HeightField& field) {
+    HeightField s = field;
+    const double sigma_cells = kProfileSmoothing / field.cell;
+    const int r = static_cast<int>(std::floor((-1 + std::sqrt(1 + 4 * sigma_cells * sigma_cells)) / 2 + 0.5));
+    if (r < 1) return s;
+    for (int pass = 0; pass < 3; ++pass) {
+        box_pass(s.heights, s.nx, s.ny, r, true);
+        box_pass(s.heights, s.nx, s.ny, r, false);
+    }
+    return s;
+}
+
+// What a node is fitted to: the way that claims it most (weight 1 in a corridor, falling to 0
+// across the shoulder); among equals a road before a path (a footway beside a road is level
+// with the road, not the road tilted towards the footway's axis), then the nearer, then the
+// earlier.
+struct NodeFit {
+    float weight = 0;
+    uint8_t rank = 255;
+    float distance = std::numeric_limits<float>::infinity();
+    float level = 0;
+};
+
+struct Corridor {
+    const std::vector<Vec2>* centreline;
+    double half_width;  // of the surface that must be level: carriageway and sidewalks
+    uint8_t rank;       // 0 roads, 1 paths
+};
+
+void fit_to_corridor(const Corridor& c, const HeightField& profile, double margin, double shoulder,
+                     std::vector<NodeFit>& fits) {
+    const GridLayout g = layout_of(profile);
+    const double level_reach = c.half_width + margin;
+    const std::vector<Vec2>& line = *c.centreline;
+    for (size_t k = 0; k + 1 < line.size(); ++k) {
+        const Vec2 a = line[k], b = line[k + 1];
+        for_each_node_near(g, a, b, level_reach + shoulder, [&](uint32_t i, uint32_t j, double d, double t) {
+            const double s = std::max(0.0, d - level_reach) / shoulder;
+            const auto weight = static_cast<float>(1 - s * s * (3 - 2 * s));  // smoothstep down to 0
+            NodeFit& f = fits[g.index(i, j)];
+            if (weight < f.weight) return;
+            if (weight == f.weight && (c.rank > f.rank || (c.rank == f.rank && !(d < f.distance)))) return;
+            const Vec2 p = a + (b - a) * t;
+            f = {weight, c.rank, static_cast<float>(d), static_cast<float>(profile.at(p.x, p.y))};
+        });
+    }
+}
+
+}  // namespace
+
+void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
+                         const std::vector<PathEdge>& paths, const FitWidths& widths, ParseReport& report) {
+    if (field.empty()) return;
+    const HeightField profile = smoothed(field);
+    // Every cell a way's surface touches has all four nodes within its corridor: the drawn
+    // surface is level across the way, not tilted by a node beyond it.
+    const double margin = field.cell * std::sqrt(2.0);
+    const double shoulder = std::max(kShoulderWidth, 2 * field.cell);
+    std::vector<NodeFit> fits(field.heights.size());
+    int64_t bridges = 0, steps = 0;
+    for (const RoadEdge& r : roads) {
+        if (r.bridge) {
+            ++bridges;
+            continue;
+        }
+        const bool sidewalk = r.sidewalk_left || r.sidewalk_right;
+        fit_to_corridor({&r.centreline, r.width / 2 + (sidewalk ? widths.sidewalk : 0), 0}, profile, margin, shoulder, fits);
+    }
+    for (const PathEdge& p : paths) {
+        if (p.path_class == PathClass::Steps) {
+            ++steps;
+            continue;
+        }
+        fit_to_corridor({&p.centreline, p.width / 2, 1}, profile, margin, shoulder, fits);
+    }
+    int64_t level = 0, blended = 0;
+    for (size_t n = 0; n < fits.size(); ++n) {
+        const NodeFit& f = fits[n];
+        if (f.weight <= 0) continue;
+        field.heights[n] = f.weight * f.level + (1 - f.weight) * field.heights[n];
+        ++(f.weight == 1 ? level : blended);
+    }
+    if (level > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderWay, level);
+    if (blended > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainWayShoulder, blended);
+    if (bridges > 0) report.note(ReportKind::RoadEdges, ReportReason::BridgeOnTheGround, bridges);
+    if (steps > 0) report.note(ReportKind::PathEdges, ReportReason::StepsOnTheGround, steps);
+}
+
+void level_still_water(HeightField& field, const std::vector<LandCover>& land_cover, ParseReport& report) {
+    if (field.empty()) return;
+    const GridLayout g = layout_of(field);
+    const double margin = field.cell * std::sqrt(2.0);
+    int64_t levelled = 0, falling = 0, nodes = 0;
+    for (const LandCover& c : land_cover) {
+        if (c.cover != LandCoverClass::Water) continue;
+        std::vector<const Ring*> rings{&c.outer};
+        for (const Ring& hole : c.holes) rings.push_back(&hole);
+        // The shore's heights on the drawn surface, sampled at least once a cell.
+        double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+        for (const Ring* ring : rings)
+            for (size_t a = 0; a < ring->size(); ++a) {
+                const Vec2 p = (*ring)[a], q = (*ring)[(a + 1) % ring->size()];
+                const int steps = 1 + static_cast<int>(length(q - p) / field.cell);
+                for (int s = 0; s < steps; ++s) {
+                    const Vec2 x = p + (q - p) * (static_cast<double>(s) / steps);
+                    const double h = field_surface_height(field, x.x, x.y);
+                    lowest = std::min(lowest, h), highest = std::max(highest, h);
+                }
+            }
+        if (!(lowest <= highest)) continue;
+        if (highest - lowest > kMaxStillWaterFall) {
+            ++falling;
+            continue;
+        }
+        ++levelled;
+        const auto level = static_cast<float>(lowest);
+        const auto set = [&](uint32_t i, uint32_t j) {
+            float& h = field.heights[g.index(i, j)];
+            nodes += h != level;
+            h = level;
+        };
+        for_each_node_inside(g, rings, set);
+        for (const Ring* ring : rings)
+            for (size_t a = 0; a < ring->size(); ++a)
+                for_each_node_near(g, (*ring)[a], (*ring)[(a + 1) % ring->size()], margin,
+                                   [&](uint32_t i, uint32_t j, double, double) { set(i, j); });
+    }
+    if (levelled > 0) report.note(ReportKind::LandCoverWater, ReportReason::WaterLevelled, levelled);
+    if (falling > 0) report.note(ReportKind::LandCoverWater, ReportReason::WaterOnASlope, falling);
+    if (nodes > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderWater, nodes);
+}
+
+}  // namespace citygen

@@ -1,0 +1,44 @@
+// Fitting the height field to what lies on it (issue 22, items 2 and 4), after the DEM is read:
+// - roads, paths and rails are laid into the ground: under each one the field is level across
+//   it at the height of its centreline's longitudinal profile (the field smoothed along it),
+//   and a shoulder beyond blends that back into the DEM (cut where the ground is above the
+//   road, fill where it is below);
+// - still water (lakes, ponds, reservoirs) is levelled at its shore's lowest height.
+// Render drapes every road, joint, sidewalk, path and land cover polygon on the field (common/
+// ground.h), so the pieces meet without a step and the ground never covers a road nor leaves
+// one floating. docs/terrain.md, "Fitted to roads and water".
+#pragma once
+
+#include <vector>
+
+#include "common/scene.h"
+#include "osmparse/core/report.h"
+
+namespace citygen {
+
+// Gaussian scale (metres) of the smoothing a centreline's profile is taken from: a DEM's pixel
+// noise and what a fine surface model holds (cars, walls, hedges) are shorter than this, a
+// road's vertical curves longer; a hairpin's two legs, 20 m or more apart, stay apart.
+constexpr double kProfileSmoothing = 10;
+// Width (metres) of the shoulder that blends a road's level back into the DEM. At 10 m a cut or
+// fill of 2 m slopes 1:5, a gentle bank.
+constexpr double kShoulderWidth = 10;
+// A water polygon whose shore falls by more than this (metres) is a river down a valley, not
+// still water: levelling it at its lowest shore would dig a canyon, so it is left draped.
+constexpr double kMaxStillWaterFall = 5;
+
+// The ways and the parts of their cross-section the field is fitted to.
+struct FitWidths {
+    double sidewalk = 2;  // a road's sidewalk beyond its carriageway, when it has one
+};
+
+// Lays roads and paths into the field (roads that are bridges and steps are left on the DEM:
+// decks and stairs are not built) and counts what was fitted in the report.
+void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
+                         const std::vector<PathEdge>& paths, const FitWidths& widths, ParseReport& report);
+
+// Levels still water (land cover class Water) at its shore's lowest height, with the nodes
+// within a cell outside its shore, so the cells it is draped over are flat.
+void level_still_water(HeightField& field, const std::vector<LandCover>& land_cover, ParseReport& report);
+
+}  // namespace citygen
