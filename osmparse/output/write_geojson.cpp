@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "common/bridge_deck.h"
 #include "common/ground.h"
 #include "common/scene_io.h"
 #include "common/projection.h"
@@ -20,13 +21,13 @@ public:
         text_ = "{\"type\":\"FeatureCollection\",\"features\":[\n";
     }
 
-    // Each vertex at the ground under it.
-    void polygon(const std::vector<const Ring*>& rings, const std::string& properties) {
-        polygon_at(rings, properties, std::nullopt);
+    // Each vertex at the ground under it, or on the deck when one is given.
+    void polygon(const std::vector<const Ring*>& rings, const std::string& properties, const DeckLine* deck = nullptr) {
+        polygon_at(rings, properties, std::nullopt, deck);
     }
     // Every vertex at `height` (relative to the field's reference altitude, like the field).
     void polygon_at_height(const std::vector<const Ring*>& rings, const std::string& properties, double height) {
-        polygon_at(rings, properties, height);
+        polygon_at(rings, properties, height, nullptr);
     }
     // At the ground under it.
     void point_feature(Vec2 p, const std::string& properties) {
@@ -38,14 +39,15 @@ public:
 
 private:
     void polygon_at(const std::vector<const Ring*>& rings, const std::string& properties,
-                    std::optional<double> height) {
+                    std::optional<double> height, const DeckLine* deck) {
         begin("Polygon");
         for (size_t r = 0; r < rings.size(); ++r) {
             text_ += r ? ",[" : "[";
             const Ring& ring = *rings[r];
             for (size_t i = 0; i <= ring.size(); ++i) {  // GeoJSON rings repeat the first point
                 if (i) text_ += ",";
-                text_ += "[" + coordinates(ring[i % ring.size()], height) + "]";
+                const Vec2 p = ring[i % ring.size()];
+                text_ += "[" + coordinates(p, deck ? std::optional(deck_height(*deck, p)) : height) + "]";
             }
             text_ += "]";
         }
@@ -122,7 +124,13 @@ std::string scene_to_geojson(const Scene& scene) {
             "\",\"part\":" + (b.is_part ? "true" : "false") + building_look_properties(b);
         w.polygon_at_height(rings, properties, building_base(scene, b));
     }
-    for (const RoadEdge& r : scene.roads)
+    // Bridges on a field lie on their decks (common/bridge_deck.h), as render draws them.
+    const std::vector<DeckLine> decks = scene.terrain.empty() ? std::vector<DeckLine>{} : bridge_decks(scene);
+    const auto deck_of = [&](int road) {
+        return road >= 0 && static_cast<size_t>(road) < decks.size() && decks[road].valid ? &decks[road] : nullptr;
+    };
+    for (size_t k = 0; k < scene.roads.size(); ++k) {
+        const RoadEdge& r = scene.roads[k];
         w.polygon({&r.quad}, "\"kind\":\"road\",\"osm\":" + str(to_string(r.osm)) + ",\"from_node\":" +
                                  std::to_string(r.from_node) + ",\"to_node\":" + std::to_string(r.to_node) +
                                  ",\"width\":" + num(r.width) + ",\"class\":\"" + to_string(r.road_class) +
@@ -132,7 +140,9 @@ std::string scene_to_geojson(const Scene& scene) {
                                  ",\"lanes_backward\":" + std::to_string(r.lanes_backward) +
                                  ",\"centre_line\":" + std::to_string(static_cast<int>(r.centre_line)) +
                                  ",\"edge_lines\":" + (r.edge_lines ? "true" : "false") +
-                                 ",\"cycle_lanes\":" + std::to_string(r.cycle_lane_left + r.cycle_lane_right));
+                                 ",\"cycle_lanes\":" + std::to_string(r.cycle_lane_left + r.cycle_lane_right),
+                  deck_of(static_cast<int>(k)));
+    }
     for (const Joint& j : scene.joints)
         w.polygon({&j.polygon}, "\"kind\":\"joint\",\"osm\":" + str(to_string(j.osm)) + ",\"edges\":" +
                                     std::to_string(j.edges.size()));
@@ -141,7 +151,8 @@ std::string scene_to_geojson(const Scene& scene) {
                                     (s.kind == SidewalkKind::Strip ? "strip" : "corner") +
                                     "\",\"height\":" + num(s.curb_height) +
                                     (s.road >= 0 ? ",\"osm\":" + str(to_string(scene.roads[s.road].osm)) : "") +
-                                    (s.joint >= 0 ? ",\"joint\":" + str(to_string(scene.joints[s.joint].osm)) : ""));
+                                    (s.joint >= 0 ? ",\"joint\":" + str(to_string(scene.joints[s.joint].osm)) : ""),
+                  deck_of(s.road));
     for (const Lamp& l : scene.lamps)
         w.point_feature({l.position.x, l.position.y},
                         "\"kind\":\"lamp\",\"osm\":" + str(to_string(l.osm)) + ",\"height\":" + num(l.height) +

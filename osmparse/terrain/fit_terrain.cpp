@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "common/bridge_deck.h"
 #include "common/ground.h"
 #include "osmparse/terrain/grid_nodes.h"
 
@@ -82,6 +83,32 @@ void fit_to_corridor(const Corridor& c, const HeightField& profile, double margi
     }
 }
 
+// Lowers the field under every bridge deck (common/bridge_deck.h, on the fitted field) to
+// kDeckThickness + kUnderDeckGap below its surface, so no hill or bank pokes through the deck or
+// its slab; towards an end on the ground the clearance shrinks along a 1:2 slope, so the ground
+// meets the deck where the bridge meets the road. Returns the nodes lowered.
+int64_t carve_under_decks(HeightField& field, const std::vector<RoadEdge>& roads, const FitWidths& widths,
+                          double margin) {
+    const GridLayout g = layout_of(field);
+    const std::vector<DeckLine> decks = bridge_decks(field, 0, roads);
+    int64_t carved = 0;
+    for (size_t e = 0; e < roads.size(); ++e) {
+        const DeckLine& deck = decks[e];
+        if (!deck.valid) continue;
+        const RoadEdge& r = roads[e];
+        const bool sidewalk = r.sidewalk_left || r.sidewalk_right;
+        const double reach = r.width / 2 + (sidewalk ? widths.sidewalk : 0) + margin;
+        for_each_node_near(g, deck.a, deck.b, reach, [&](uint32_t i, uint32_t j, double, double) {
+            const Vec2 p = g.node(i, j);
+            const double clearance = std::min(kDeckThickness + kUnderDeckGap, 0.5 * deck_end_distance(deck, p));
+            const auto allowed = static_cast<float>(deck_height(deck, p) - clearance);
+            float& h = field.heights[g.index(i, j)];
+            if (h > allowed) h = allowed, ++carved;
+        });
+    }
+    return carved;
+}
+
 }  // namespace
 
 void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
@@ -116,9 +143,11 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
         field.heights[n] = f.weight * f.level + (1 - f.weight) * field.heights[n];
         ++(f.weight == 1 ? level : blended);
     }
+    const int64_t carved = carve_under_decks(field, roads, widths, margin);
     if (level > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderWay, level);
     if (blended > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainWayShoulder, blended);
-    if (bridges > 0) report.note(ReportKind::RoadEdges, ReportReason::BridgeOnTheGround, bridges);
+    if (carved > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderDeck, carved);
+    if (bridges > 0) report.note(ReportKind::RoadEdges, ReportReason::BridgeOnItsDeck, bridges);
     if (steps > 0) report.note(ReportKind::PathEdges, ReportReason::StepsOnTheGround, steps);
 }
 

@@ -32,8 +32,12 @@ struct FitWidths {
     double sidewalk = 2;  // a road's sidewalk beyond its carriageway, when it has one
 };
 
-// Lays roads and paths into the field (roads that are bridges and steps are left on the DEM:
-// decks and stairs are not built) and counts what was fitted in the report.
+// Below a bridge's deck the field keeps this much air under its slab (metres).
+constexpr double kUnderDeckGap = 0.5;
+
+// Lays roads and paths into the field and counts what was fitted in the report. A bridge is not
+// fitted: it keeps its own deck (common/bridge_deck.h) and the field under it is carved below
+// the deck; steps are left on the DEM (their stair is not built).
 void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
                          const std::vector<PathEdge>& paths, const FitWidths& widths, ParseReport& report);
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "render/facade/facade_materials.h"
+#include "render/geometry/bridge_geometry.h"
 #include "render/geometry/ground.h"
 #include "render/geometry/procedural_geometry.h"
 #include "render/geometry/stored_geometry.h"
@@ -16,6 +17,10 @@ ProceduralGeometry::SurfaceMaterials all_surfaces(uint16_t material) {
     ProceduralGeometry::SurfaceMaterials m;
     m.fill(material);
     return m;
+}
+
+void add_faces(const std::vector<BridgeFace>& faces, uint32_t object, ProceduralGeometry& geometry) {
+    for (const BridgeFace& f : faces) geometry.add_face(object, f.points, f.material);
 }
 
 }  // namespace
@@ -62,8 +67,15 @@ std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scen
 
 std::unique_ptr<ProceduralGeometry> build_procedural_roads(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Road, all_surfaces(kAsphalt));
-    for (uint32_t i = 0; i < scene.roads.size(); ++i)
+    const std::vector<DeckLine> decks = drawn_decks(scene);
+    for (uint32_t i = 0; i < scene.roads.size(); ++i) {
+        if (i < decks.size() && decks[i].valid) {
+            add_faces(deck_piece_faces(decks[i], scene.roads[i].quad, kRoadLift, kAsphalt), i, *geometry);
+            add_faces(deck_piers(scene, decks[i], scene.roads[i]), i, *geometry);
+            continue;
+        }
         add_ground_polygon(scene, scene.roads[i].quad, {}, kRoadLift, i, kAsphalt, *geometry);
+    }
     return geometry;
 }
 
@@ -77,8 +89,14 @@ std::unique_ptr<ProceduralGeometry> build_procedural_joints(const Scene& scene) 
 std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Sidewalk, all_surfaces(kCurb));
     SidewalkShape shape;
+    const std::vector<DeckLine> decks = drawn_decks(scene);
     for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
         if (!sidewalk_shape(scene, i, &shape)) continue;
+        if (const DeckLine* deck = sidewalk_deck(scene, decks, i)) {
+            add_faces(deck_piece_faces(*deck, shape.ring, kRoadLift + (shape.top_z - shape.road_z), kSidewalk), i,
+                      *geometry);
+            continue;
+        }
         if (!scene.terrain.empty()) {
             add_ground_polygon(scene, shape.ring, {}, kRoadLift + (shape.top_z - shape.road_z), i, kSidewalk,
                                *geometry);

@@ -1,5 +1,6 @@
 #include <algorithm>
 
+#include "render/geometry/bridge_geometry.h"
 #include "render/geometry/ground.h"
 #include "render/geometry/stored_geometry.h"
 #include "render/geometry/terrain_geometry.h"
@@ -31,11 +32,30 @@ void add_ground_polygon(const Scene& scene, const Ring& outer, const std::vector
     for (const auto& t : draped.triangles) mesh.add_triangle(first + t[0], first + t[1], first + t[2], object, material);
 }
 
+namespace {
+
+void add_faces(const std::vector<BridgeFace>& faces, uint32_t object, TriangleMesh& mesh) {
+    for (const BridgeFace& f : faces) {
+        const uint32_t first = mesh.add_vertex(f.points[0]);
+        for (size_t k = 1; k < f.points.size(); ++k) mesh.add_vertex(f.points[k]);
+        for (uint32_t k = 1; k + 1 < f.points.size(); ++k) mesh.add_triangle(first, first + k, first + k + 1, object, f.material);
+    }
+}
+
+}  // namespace
+
 TriangleMesh build_stored_roads(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Road;
-    for (uint32_t i = 0; i < scene.roads.size(); ++i)
+    const std::vector<DeckLine> decks = drawn_decks(scene);
+    for (uint32_t i = 0; i < scene.roads.size(); ++i) {
+        if (i < decks.size() && decks[i].valid) {
+            add_faces(deck_piece_faces(decks[i], scene.roads[i].quad, kRoadLift, kAsphalt), i, mesh);
+            add_faces(deck_piers(scene, decks[i], scene.roads[i]), i, mesh);
+            continue;
+        }
         add_ground_polygon(scene, scene.roads[i].quad, {}, kRoadLift, i, kAsphalt, mesh);
+    }
     return mesh;
 }
 
@@ -84,8 +104,13 @@ TriangleMesh build_stored_sidewalks(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Sidewalk;
     SidewalkShape shape;
+    const std::vector<DeckLine> decks = drawn_decks(scene);
     for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
         if (!sidewalk_shape(scene, i, &shape)) continue;
+        if (const DeckLine* deck = sidewalk_deck(scene, decks, i)) {
+            add_faces(deck_piece_faces(*deck, shape.ring, kRoadLift + (shape.top_z - shape.road_z), kSidewalk), i, mesh);
+            continue;
+        }
         if (!scene.terrain.empty()) {
             add_draped_sidewalk(scene, shape, i, mesh);
             continue;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "common/bridge_deck.h"
 #include "common/ground.h"
 #include "osmparse/terrain/fit_terrain.h"
 #include "osmparse/terrain/read_dem.h"
@@ -102,19 +103,34 @@ TEST(FitTerrainToWays, AHillsBumpsAreSmoothedAlongTheRoadAndItsEndsMeetTheNextRo
     EXPECT_NEAR(field_surface_height(f, 0, 0), 30 * 40 * 40 / (40 * 40 + 10 * 10), 0.5) << "the hill stays";
 }
 
-TEST(FitTerrainToWays, BridgesAndStepsAreLeftOnTheGroundAndCounted) {
-    HeightField f = slope_north(0.2);
+TEST(FitTerrainToWays, ABridgeIsNotFittedAndTheGroundUnderItsDeckIsCarvedBelowIt) {
+    // A hill the bridge crosses (what a coarse DEM makes of a road in a cutting under it): the
+    // deck runs straight between the roads at its ends, and the hill under it is lowered.
+    HeightField f = field_of([](double x, double y) { return 50 + 12 * std::exp(-(x * x + y * y) / 400); });
     const HeightField raw = f;
-    RoadEdge bridge = road({{-50, 0}, {50, 0}}, 6);
+    RoadEdge west = road({{-90, 0}, {-40, 0}}, 6), east = road({{40, 0}, {90, 0}}, 6);
+    RoadEdge bridge = road({{-40, 0}, {40, 0}}, 6);
+    west.from_node = 1, west.to_node = 2, bridge.from_node = 2, bridge.to_node = 3, east.from_node = 3, east.to_node = 4;
     bridge.bridge = true;
     PathEdge steps;
-    steps.centreline = {{20, -50}, {20, 50}};
+    steps.centreline = {{20, -90}, {20, -50}};
     steps.width = 2;
     steps.path_class = PathClass::Steps;
     ParseReport report;
-    fit_terrain_to_ways(f, {bridge}, {steps}, {}, report);
-    EXPECT_EQ(f.heights, raw.heights);
-    EXPECT_EQ(report.note_count(ReportKind::RoadEdges, ReportReason::BridgeOnTheGround), 1);
+    const std::vector<RoadEdge> roads = {west, bridge, east};
+    fit_terrain_to_ways(f, roads, {steps}, {}, report);
+    const DeckLine deck = bridge_decks(f, 0, roads)[1];
+    ASSERT_TRUE(deck.valid);
+    EXPECT_NEAR(deck.za, field_surface_height(f, -40, 0), 1e-6) << "the deck meets the road at its end";
+    EXPECT_NEAR(deck.za, raw.at(-40, 0), 1) << "near the ground there";
+    for (double x = -30; x <= 30; x += 0.5)
+        for (double y : {-3.0, 0.0, 3.0})
+            EXPECT_LE(field_surface_height(f, x, y), deck_height(deck, {x, y}) - kDeckThickness) << x << " " << y;
+    EXPECT_LT(f.at(0, 0), raw.at(0, 0) - 12) << "the hill is carved";
+    EXPECT_FLOAT_EQ(f.at(0, 40), raw.at(0, 40)) << "beyond the deck the DEM";
+    EXPECT_FLOAT_EQ(f.at(20, -70), raw.at(20, -70)) << "steps stay on the DEM";
+    EXPECT_EQ(report.note_count(ReportKind::RoadEdges, ReportReason::BridgeOnItsDeck), 1);
+    EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainUnderDeck), 0);
     EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::StepsOnTheGround), 1);
 }
 

@@ -1,0 +1,175 @@
+#include "common/bridge_deck.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include "common/ground.h"
+
+namespace citygen {
+
+namespace {
+
+double centreline_length(const RoadEdge& r) {
+    double total = 0;
+    for (size_t k = 0; k + 1 < r.centreline.size(); ++k) total += length(r.centreline[k + 1] - r.centreline[k]);
+    return total;
+}
+
+// A bridge as a chain of edges between two terminal nodes (where it meets a road on the ground,
+// another deck's chain, or ends), each edge with its direction along the chain.
+struct Chain {
+    std::vector<uint32_t> edges;
+    std::vector<bool> forward;  // the edge runs from_node -> to_node along the chain
+    int64_t first = 0, last = 0;
+    double length = 0;
+};
+
+class BridgeGraph {
+public:
+    explicit BridgeGraph(const std::vector<RoadEdge>& roads) : roads_(roads) {
+        for (uint32_t e = 0; e < roads.size(); ++e) {
+            edges_at_[roads[e].from_node].push_back(e);
+            if (roads[e].to_node != roads[e].from_node) edges_at_[roads[e].to_node].push_back(e);
+        }
+    }
+    // Every edge there is a bridge: the node is on a deck.
+    bool on_deck(int64_t node) const {
+        for (uint32_t e : edges_at_.at(node))
+            if (!roads_[e].bridge) return false;
+        return true;
+    }
+    // A chain runs through a node on a deck with exactly two edges; it ends anywhere else.
+    bool terminal(int64_t node) const { return !on_deck(node) || edges_at_.at(node).size() != 2; }
+    int64_t other_node(uint32_t e, int64_t node) const {
+        return roads_[e].from_node == node ? roads_[e].to_node : roads_[e].from_node;
+    }
+    uint32_t other_edge(int64_t node, uint32_t e) const {
+        const std::vector<uint32_t>& at = edges_at_.at(node);
+        return at[0] == e ? at[1] : at[0];
+    }
+    Vec2 position(int64_t node, uint32_t e) const {
+        return roads_[e].from_node == node ? roads_[e].centreline.front() : roads_[e].centreline.back();
+    }
+
+    // The chain through bridge edge e, from one terminal to the other (a closed loop of deck
+    // nodes ends where it started).
+    Chain chain_through(uint32_t e) const {
+        // Back to the terminal before e.
+        int64_t node = roads_[e].from_node;
+        uint32_t edge = e;
+        while (!terminal(node)) {
+            edge = other_edge(node, edge);
+            node = other_node(edge, node);
+            if (edge == e) break;  // a loop
+        }
+        Chain c;
+        c.first = node;
+        for (size_t guard = 0; guard <= roads_.size(); ++guard) {
+            c.edges.push_back(edge);
+            c.forward.push_back(roads_[edge].from_node == node);
+            c.length += centreline_length(roads_[edge]);
+            node = other_node(edge, node);
+            if (terminal(node)) break;
+            edge = other_edge(node, edge);
+            if (edge == c.edges.front()) break;  // around the loop once
+        }
+        c.last = node;
+        return c;
+    }
+
+private:
+    const std::vector<RoadEdge>& roads_;
+    std::unordered_map<int64_t, std::vector<uint32_t>> edges_at_;
+};
+
+}  // namespace
+
+std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, const std::vector<RoadEdge>& roads) {
+    std::vector<DeckLine> decks(roads.size());
+    const auto ground = [&](Vec2 p) { return field.empty() ? flat_z : field_surface_height(field, p.x, p.y); };
+    const BridgeGraph graph(roads);
+    std::vector<Chain> chains;
+    std::vector<bool> chained(roads.size(), false);
+    for (uint32_t e = 0; e < roads.size(); ++e) {
+        if (!roads[e].bridge || chained[e] || roads[e].centreline.size() < 2) continue;
+        chains.push_back(graph.chain_through(e));
+        for (uint32_t c : chains.back().edges) chained[c] = true;
+    }
+    // Heights at the chains' ends: the ground where a chain meets a road on the ground; where
+    // chains meet on a deck, the mean of their far ends weighted by 1 / length (what keeps each
+    // chain straight), found by Gauss-Seidel sweeps from the ground's height.
+    std::unordered_map<int64_t, double> end_z;
+    std::vector<int64_t> deck_ends;  // in first-seen order, for a fixed sweep order
+    for (const Chain& c : chains)
+        for (const auto& [node, edge] : {std::pair{c.first, c.edges.front()}, std::pair{c.last, c.edges.back()}})
+            if (end_z.emplace(node, ground(graph.position(node, edge))).second && graph.on_deck(node))
+                deck_ends.push_back(node);
+    if (!deck_ends.empty()) {
+        std::unordered_map<int64_t, std::vector<const Chain*>> chains_at;
+        for (const Chain& c : chains) {
+            chains_at[c.first].push_back(&c);
+            if (c.last != c.first) chains_at[c.last].push_back(&c);
+        }
+        for (int sweep = 0; sweep < 200; ++sweep)
+            for (int64_t node : deck_ends) {
+                double sum = 0, weight = 0;
+                for (const Chain* c : chains_at[node]) {
+                    const double w = 1 / std::max(c->length, 1.0);
+                    sum += w * end_z[c->first == node ? c->last : c->first];
+                    weight += w;
+                }
+                if (weight > 0) end_z[node] = sum / weight;
+            }
+    }
+    for (const Chain& c : chains) {
+        const double z0 = end_z[c.first], z1 = end_z[c.last];
+        const double span = std::max(c.length, 1e-9);
+        double along = 0;
+        for (size_t k = 0; k < c.edges.size(); ++k) {
+            const RoadEdge& r = roads[c.edges[k]];
+            const double l = centreline_length(r);
+            DeckLine& d = decks[c.edges[k]];
+            d.valid = true;
+            d.a = r.centreline.front();
+            d.b = r.centreline.back();
+            d.bridge_length = c.length;
+            d.starts_on_ground = !graph.on_deck(c.first);
+            d.ends_on_ground = !graph.on_deck(c.last);
+            // Along the chain the edge runs a -> b when it is forward, b -> a otherwise.
+            d.along_a = c.forward[k] ? along : along + l;
+            d.along_b = c.forward[k] ? along + l : along;
+            d.za = z0 + (z1 - z0) * std::clamp(d.along_a / span, 0.0, 1.0);
+            d.zb = z0 + (z1 - z0) * std::clamp(d.along_b / span, 0.0, 1.0);
+            along += l;
+        }
+    }
+    return decks;
+}
+
+std::vector<DeckLine> bridge_decks(const Scene& scene) {
+    return bridge_decks(scene.terrain, scene.ground.z, scene.roads);
+}
+
+double deck_parameter(const DeckLine& deck, Vec2 p) {
+    const Vec2 d = deck.b - deck.a;
+    const double length2 = dot(d, d);
+    return length2 > 0 ? dot(p - deck.a, d) / length2 : 0.0;
+}
+
+double deck_height(const DeckLine& deck, Vec2 p) {
+    const double t = std::clamp(deck_parameter(deck, p), 0.0, 1.0);
+    return deck.za + (deck.zb - deck.za) * t;
+}
+
+double deck_end_distance(const DeckLine& deck, Vec2 p) {
+    const double t = std::clamp(deck_parameter(deck, p), 0.0, 1.0);
+    const double along = deck.along_a + (deck.along_b - deck.along_a) * t;
+    double distance = std::numeric_limits<double>::infinity();
+    if (deck.starts_on_ground) distance = std::min(distance, along);
+    if (deck.ends_on_ground) distance = std::min(distance, deck.bridge_length - along);
+    return distance;
+}
+
+}  // namespace citygen

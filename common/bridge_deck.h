@@ -1,0 +1,53 @@
+// Bridges on a height field, one rule for both programs: a road tagged `bridge` keeps its own
+// deck instead of following the ground under it. A bridge is a chain of road edges (one per
+// segment of its way) between the nodes where it meets roads on the ground; its deck is level
+// across and straight along the chain, from the drawn ground at one end to the other, so it
+// meets the roads at both ends and spans whatever lies between them (a valley, a river, a road
+// below). Where bridges meet on a deck (a junction on a viaduct) the deck's height there is the
+// length-weighted mean of the chains' far ends, so every chain stays straight. osmparse carves
+// the field under the decks (fit_terrain.h); render draws them, their slabs and piers
+// (render/geometry/bridge_geometry.h); the GeoJSON gives their heights.
+#pragma once
+
+#include <vector>
+
+#include "common/geometry.h"
+#include "common/scene.h"
+
+namespace citygen {
+
+// The slab under a deck's surface: its side faces are what makes a bridge read as one from the
+// side, and the field under the deck is kept at least this much below it.
+constexpr double kDeckThickness = 0.8;
+// Piers stand every kPierSpacing metres along a deck where its underside is at least
+// kPierClearance above the ground; lower decks rest on their abutments.
+constexpr double kPierSpacing = 25;
+constexpr double kPierClearance = 2;
+
+// One road edge's deck: the chord of its centreline (a at its first point, b at its last) and
+// the deck's heights there; where a and b lie along the whole bridge (metres from its start),
+// its length and which of its ends stand on the ground (not on another deck).
+struct DeckLine {
+    bool valid = false;  // false for a road that is not a bridge
+    Vec2 a, b;
+    double za = 0, zb = 0;
+    double along_a = 0, along_b = 0, bridge_length = 0;
+    bool starts_on_ground = false, ends_on_ground = false;
+};
+
+// The decks of every road (invalid where the road is not a bridge) on the field, or at flat_z
+// without one.
+std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, const std::vector<RoadEdge>& roads);
+std::vector<DeckLine> bridge_decks(const Scene& scene);
+
+// Where p lies along the deck: its projection onto the chord, 0 at a and 1 at b (not clamped).
+double deck_parameter(const DeckLine& deck, Vec2 p);
+
+// The deck's surface height at p: linear along the chord, level across it, clamped at the ends.
+double deck_height(const DeckLine& deck, Vec2 p);
+
+// How far p (projected on the chord) lies along the bridge from the nearer of its ends on the
+// ground (infinite when neither is).
+double deck_end_distance(const DeckLine& deck, Vec2 p);
+
+}  // namespace citygen

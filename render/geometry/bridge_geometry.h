@@ -1,0 +1,34 @@
+// Bridges on a height field (common/bridge_deck.h): a bridge road's surface on its deck instead
+// of draped on the ground, the slab under it (underside and side faces) and its piers, and the
+// sidewalks along it on the same deck. Both geometry modes build the same faces (stored as
+// triangles, procedural as planar faces). Without a field a bridge is drawn as any road.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/bridge_deck.h"
+#include "common/scene.h"
+
+namespace citygen {
+
+// A planar convex polygon, front side counter-clockwise.
+struct BridgeFace {
+    std::vector<Vec3> points;
+    uint16_t material;
+};
+
+// The decks render draws, one per road (common/bridge_deck.h): none without a height field,
+// where bridges lie on the flat ground as every road does.
+std::vector<DeckLine> drawn_decks(const Scene& scene);
+
+// The deck a sidewalk piece lies on: its road's, when that road has one; null otherwise.
+const DeckLine* sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, uint32_t sidewalk);
+
+// A polygon on a deck, `lift` above its surface, with its slab (kDeckThickness under the
+// surface: an underside facing down and a side face on every edge facing out) and, for a road,
+// its piers: the road's own surface, or a sidewalk along it (lift: its curb top).
+std::vector<BridgeFace> deck_piece_faces(const DeckLine& deck, const Ring& ring, double lift, uint16_t top_material);
+std::vector<BridgeFace> deck_piers(const Scene& scene, const DeckLine& deck, const RoadEdge& road);
+
+}  // namespace citygen

@@ -1,0 +1,122 @@
+// Bridges on a height field (render/geometry/bridge_geometry.h): the deck at its own height over
+// a valley, its slab and piers, the sidewalks on it, the same in both geometry modes; without a
+// field a bridge is any road.
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "render/geometry/bridge_geometry.h"
+#include "render/geometry/build_render_scene.h"
+#include "render/geometry/stored_geometry.h"
+#include "render/materials/materials.h"
+
+using namespace citygen;
+
+namespace {
+
+// A valley along y over [-100, 100]^2, 2 m cells: z = 0.5 |x|, 0 at its floor, 40 m at x = 80.
+HeightField valley() {
+    HeightField f;
+    f.origin = {-100, -100};
+    f.cell = 2;
+    f.nx = f.ny = 101;
+    for (uint32_t j = 0; j < f.ny; ++j)
+        for (uint32_t i = 0; i < f.nx; ++i) f.heights.push_back(static_cast<float>(0.5 * std::fabs(-100.0 + 2 * i)));
+    return f;
+}
+
+RoadEdge road(int64_t from, int64_t to, Vec2 a, Vec2 b, bool bridge) {
+    RoadEdge r;
+    r.from_node = from;
+    r.to_node = to;
+    r.centreline = {a, b};
+    r.width = 8;
+    r.bridge = bridge;
+    const Vec2 n = perp_left(normalize(b - a)) * 4.0;
+    r.quad = {a - n, b - n, b + n, a + n};
+    return r;
+}
+
+// Roads on the ground up to the valley's rims at x = +-60 (30 m up), a bridge of two edges
+// across, and a sidewalk strip along its east half.
+Scene valley_with_bridge() {
+    Scene s;
+    s.terrain = valley();
+    s.roads = {road(10, 1, {-90, 0}, {-60, 0}, false), road(1, 2, {-60, 0}, {0, 0}, true),
+               road(2, 3, {0, 0}, {60, 0}, true), road(3, 11, {60, 0}, {90, 0}, false)};
+    Sidewalk walk;
+    walk.road = 2;
+    walk.polygon = {{0, 4}, {60, 4}, {60, 6}, {0, 6}};
+    s.sidewalks = {walk};
+    return s;
+}
+
+bool hit_from_above(const RenderScene& scene, Vec2 p, Hit& hit) {
+    return scene.intersect(Ray{{p.x, p.y, 200}, {0, 0, -1}, 0, 1e30}, hit);
+}
+
+}  // namespace
+
+TEST(BridgeGeometry, TheDeckSpansTheValleyAtItsEndsHeightWithASlabAndPiers) {
+    const Scene s = valley_with_bridge();
+    const auto stored = build_render_scene(s, GeometryModes{});
+    Hit hit;
+    for (double x : {-50.0, -20.0, 0.0, 10.0, 50.0}) {
+        ASSERT_TRUE(hit_from_above(*stored, {x, 0}, hit)) << x;
+        EXPECT_EQ(hit.kind, ObjectKind::Road) << x;
+        EXPECT_NEAR(200 - hit.t, 30 + kRoadLift, 1e-3) << "level at the rims' height, not the valley's, at " << x;
+    }
+    ASSERT_TRUE(hit_from_above(*stored, {30, 5}, hit));
+    EXPECT_EQ(hit.kind, ObjectKind::Sidewalk);
+    EXPECT_GT(200 - hit.t, 30 + kRoadLift) << "the sidewalk on the deck, a curb above the road";
+    // From below: the slab's underside, kDeckThickness under the surface.
+    ASSERT_TRUE(stored->intersect(Ray{{-10, 0, 6}, {0, 0, 1}, 0, 1e30}, hit));
+    EXPECT_EQ(hit.kind, ObjectKind::Road);
+    EXPECT_NEAR(6 + hit.t, 30 - kDeckThickness, 1e-3);
+    // From the side, under the deck's surface: the slab's side face, not the air.
+    ASSERT_TRUE(stored->intersect(Ray{{-30, -50, 29.7}, {0, 1, 0}, 0, 1e30}, hit));
+    EXPECT_EQ(hit.kind, ObjectKind::Road);
+    EXPECT_NEAR(hit.t, 50 - 4, 1e-3);
+    // Piers where the deck is high (every third of each 60 m edge): a horizontal ray along the
+    // deck's axis under it meets the one at x = -20, 1 m thick.
+    ASSERT_TRUE(stored->intersect(Ray{{-30, 0, 20}, {1, 0, 0}, 0, 1e30}, hit));
+    EXPECT_EQ(hit.kind, ObjectKind::Road);
+    EXPECT_NEAR(hit.t, 9.5, 1e-3);
+    EXPECT_FALSE(deck_piers(s, bridge_decks(s)[1], s.roads[1]).empty());
+}
+
+TEST(BridgeGeometry, BothGeometryModesDrawTheSameBridge) {
+    const Scene s = valley_with_bridge();
+    GeometryModes procedural;
+    for (GeometryClass c : {GeometryClass::Roads, GeometryClass::Sidewalks}) procedural[c] = GeometryMode::Procedural;
+    const auto stored = build_render_scene(s, GeometryModes{});
+    const auto proc = build_render_scene(s, procedural);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1, 1);
+    int on_bridge = 0, mismatches = 0;
+    for (int k = 0; k < 4000; ++k) {
+        const Vec3 origin{80 * u(rng), 60 * u(rng), 20 + 30 * (u(rng) + 1)};
+        const Vec3 target{60 * u(rng), 8 * u(rng), 30 * (u(rng) + 1) / 2};
+        const Ray ray{origin, normalize(target - origin), 0, 1e30};
+        Hit a, b;
+        const bool ha = stored->intersect(ray, a), hb = proc->intersect(ray, b);
+        ASSERT_EQ(ha, hb) << k;
+        if (!ha) continue;
+        on_bridge += a.kind == ObjectKind::Road || a.kind == ObjectKind::Sidewalk;
+        if (a.kind != b.kind || a.object != b.object || std::fabs(a.t - b.t) > 0.01) ++mismatches;
+    }
+    EXPECT_GT(on_bridge, 500);
+    EXPECT_LE(mismatches, 4) << "edges hit within float rounding";
+}
+
+TEST(BridgeGeometry, WithoutAFieldABridgeIsAnyRoad) {
+    Scene s = valley_with_bridge();
+    s.terrain = {};
+    EXPECT_TRUE(drawn_decks(s).empty());
+    Scene plain = s;
+    for (RoadEdge& r : plain.roads) r.bridge = false;
+    const TriangleMesh a = build_stored_roads(s), b = build_stored_roads(plain);
+    EXPECT_EQ(a.vertices, b.vertices);
+    EXPECT_EQ(a.indices, b.indices);
+}
