@@ -163,6 +163,47 @@ double deck_height(const DeckLine& deck, Vec2 p) {
     return deck.za + (deck.zb - deck.za) * t;
 }
 
+StandingSurface::StandingSurface(const Scene& scene) : scene_(scene) {
+    if (scene.terrain.empty()) return;
+    decks_ = bridge_decks(scene);
+    reach_.assign(decks_.size(), 0);
+    // Beyond the carriageway's edge a lamp on a bridge stands on its sidewalk or parapet.
+    constexpr double kBeyondEdge = 2.5;
+    for (uint32_t e = 0; e < decks_.size(); ++e) {
+        if (!decks_[e].valid) continue;
+        const RoadEdge& r = scene.roads[e];
+        reach_[e] = r.width / 2 + kBeyondEdge;
+        Box2 box;
+        box.extend(decks_[e].a);
+        box.extend(decks_[e].b);
+        const auto i0 = static_cast<int64_t>(std::floor((box.min.x - reach_[e]) / kCell));
+        const auto i1 = static_cast<int64_t>(std::floor((box.max.x + reach_[e]) / kCell));
+        const auto j0 = static_cast<int64_t>(std::floor((box.min.y - reach_[e]) / kCell));
+        const auto j1 = static_cast<int64_t>(std::floor((box.max.y + reach_[e]) / kCell));
+        for (int64_t i = i0; i <= i1; ++i)
+            for (int64_t j = j0; j <= j1; ++j) cells_[cell_key(i, j)].push_back(e);
+    }
+}
+
+double StandingSurface::height(Vec2 p) const {
+    double z = ground_height(scene_, p.x, p.y);
+    if (cells_.empty()) return z;
+    const auto found = cells_.find(cell_key(static_cast<int64_t>(std::floor(p.x / kCell)),
+                                            static_cast<int64_t>(std::floor(p.y / kCell))));
+    if (found == cells_.end()) return z;
+    bool on_deck = false;
+    double top = 0;
+    for (uint32_t e : found->second) {
+        const DeckLine& d = decks_[e];
+        const double t = deck_parameter(d, p);
+        if (t < 0 || t > 1 || length(p - (d.a + (d.b - d.a) * t)) > reach_[e]) continue;
+        const double deck = deck_height(d, p);
+        top = on_deck ? std::max(top, deck) : deck;  // bridges over bridges: the upper deck
+        on_deck = true;
+    }
+    return on_deck ? top : z;
+}
+
 double deck_end_distance(const DeckLine& deck, Vec2 p) {
     const double t = std::clamp(deck_parameter(deck, p), 0.0, 1.0);
     const double along = deck.along_a + (deck.along_b - deck.along_a) * t;

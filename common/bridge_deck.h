@@ -9,6 +9,8 @@
 // (render/geometry/bridge_geometry.h); the GeoJSON gives their heights.
 #pragma once
 
+#include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "common/geometry.h"
@@ -49,5 +51,22 @@ double deck_height(const DeckLine& deck, Vec2 p);
 // How far p (projected on the chord) lies along the bridge from the nearer of its ends on the
 // ground (infinite when neither is).
 double deck_end_distance(const DeckLine& deck, Vec2 p);
+
+// What stands at a point (a street lamp) stands on the top surface there: a bridge's deck where
+// the point lies on it (within 2.5 m of its carriageway: its sidewalk or parapet), the ground
+// elsewhere. Built once per scene; without a field, or without bridges, it is the ground.
+class StandingSurface {
+public:
+    explicit StandingSurface(const Scene& scene);
+    double height(Vec2 p) const;
+
+private:
+    const Scene& scene_;
+    std::vector<DeckLine> decks_;
+    std::vector<double> reach_;  // per deck: how far from its chord a point is on it
+    std::unordered_map<int64_t, std::vector<uint32_t>> cells_;  // decks by kCell-metre cell
+    static constexpr double kCell = 64;
+    static int64_t cell_key(int64_t i, int64_t j) { return i * 4194304 + j; }
+};
 
 }  // namespace citygen

@@ -30,9 +30,11 @@ public:
         polygon_at(rings, properties, height, nullptr);
     }
     // At the ground under it.
-    void point_feature(Vec2 p, const std::string& properties) {
+    void point_feature(Vec2 p, const std::string& properties) { point_feature_at(p, std::nullopt, properties); }
+    // At `height`, or the ground under it.
+    void point_feature_at(Vec2 p, std::optional<double> height, const std::string& properties) {
         begin("Point");
-        text_ += coordinates(p, std::nullopt);
+        text_ += coordinates(p, height);
         end(properties);
     }
     std::string finish() { return text_ + "\n]}\n"; }
@@ -153,8 +155,9 @@ std::string scene_to_geojson(const Scene& scene) {
                                     (s.road >= 0 ? ",\"osm\":" + str(to_string(scene.roads[s.road].osm)) : "") +
                                     (s.joint >= 0 ? ",\"joint\":" + str(to_string(scene.joints[s.joint].osm)) : ""),
                   deck_of(s.road));
+    const StandingSurface surface(scene);
     for (const Lamp& l : scene.lamps)
-        w.point_feature({l.position.x, l.position.y},
+        w.point_feature_at({l.position.x, l.position.y}, surface.height({l.position.x, l.position.y}),
                         "\"kind\":\"lamp\",\"osm\":" + str(to_string(l.osm)) + ",\"height\":" + num(l.height) +
                             ",\"source\":\"" + (l.source == LampSource::Tagged ? "tagged" : "generated") + "\"");
     for (const LandCover& c : scene.land_cover) {

@@ -16,8 +16,8 @@ constexpr double kCapThickness = 0.08;
 constexpr double kMinHeight = 1.0 + 2 * kGlobeRadius;
 }  // namespace
 
-double lamp_ground(const Scene& scene, const Lamp& lamp) {
-    return ground_height(scene, lamp.position.x, lamp.position.y);
+double lamp_ground(const StandingSurface& surface, const Lamp& lamp) {
+    return surface.height({lamp.position.x, lamp.position.y});
 }
 
 LampShape lamp_shape(const Lamp& lamp, double ground_z) {

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 
+#include "common/bridge_deck.h"
 #include "common/geometry.h"
 #include "common/scene.h"
 
@@ -28,8 +29,9 @@ struct LampShape {
 // The shape of lamp `lamp` standing on a scene whose ground plane is at ground_z. The globe's
 // top touches the cap at the lamp's tagged height; lamps lower than 1 m keep a 1 m pole.
 LampShape lamp_shape(const Lamp& lamp, double ground_z);
-// The ground under a lamp: what both geometry modes and the lights pass as ground_z.
-double lamp_ground(const Scene& scene, const Lamp& lamp);
+// The ground under a lamp, or the bridge deck it stands on (common/bridge_deck.h): what both
+// geometry modes and the lights pass as ground_z.
+double lamp_ground(const StandingSurface& surface, const Lamp& lamp);
 
 enum class LampPart : uint8_t { Pole = 0, Globe, Cap };
 

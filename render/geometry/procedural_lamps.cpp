@@ -21,7 +21,8 @@ uint16_t material_of(LampPart part) {
 
 std::unique_ptr<ProceduralLamps> build_procedural_lamps(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralLamps>();
-    for (const Lamp& lamp : scene.lamps) geometry->add(lamp_shape(lamp, lamp_ground(scene, lamp)));
+    const StandingSurface surface(scene);
+    for (const Lamp& lamp : scene.lamps) geometry->add(lamp_shape(lamp, lamp_ground(surface, lamp)));
     return geometry;
 }
 

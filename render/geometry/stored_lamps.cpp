@@ -71,8 +71,9 @@ void add_sphere(Vec3 center, double r, uint32_t object, uint16_t material, Trian
 TriangleMesh build_stored_lamps(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Lamp;
+    const StandingSurface surface(scene);
     for (uint32_t i = 0; i < scene.lamps.size(); ++i) {
-        const LampShape s = lamp_shape(scene.lamps[i], lamp_ground(scene, scene.lamps[i]));
+        const LampShape s = lamp_shape(scene.lamps[i], lamp_ground(surface, scene.lamps[i]));
         add_cylinder(s.base, s.pole_radius, s.base.z, s.pole_top, kPoleSides, i, kLampPole, mesh);
         add_sphere(s.globe_center, s.globe_radius, i, kLampGlobe, mesh);
         add_cylinder(s.base, s.cap_radius, s.cap_bottom, s.cap_top, kCapSides, i, kLampCap, mesh);

@@ -57,8 +57,9 @@ SceneLights::SceneLights(const Scene& scene, const FacadeOptions& facades, const
 }
 
 void SceneLights::gather_lamps(std::vector<LightBounds>& bounds) {
+    const StandingSurface surface(*scene_);
     for (const citygen::Lamp& lamp : scene_->lamps) {
-        const LampShape s = lamp_shape(lamp, lamp_ground(*scene_, lamp));
+        const LampShape s = lamp_shape(lamp, lamp_ground(surface, lamp));
         const Vec3 c = s.globe_center;
         const double r = s.globe_radius;
         lamps_.push_back({{float(c.x), float(c.y), float(c.z)}, float(r)});

@@ -6,8 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include "common/ground.h"
 #include "render/geometry/bridge_geometry.h"
 #include "render/geometry/build_render_scene.h"
+#include "render/geometry/lamp_shape.h"
 #include "render/geometry/stored_geometry.h"
 #include "render/materials/materials.h"
 
@@ -108,6 +110,19 @@ TEST(BridgeGeometry, BothGeometryModesDrawTheSameBridge) {
     }
     EXPECT_GT(on_bridge, 500);
     EXPECT_LE(mismatches, 4) << "edges hit within float rounding";
+}
+
+TEST(BridgeGeometry, ALampOnABridgeStandsOnItsDeckAndOneBesideItOnTheGround) {
+    const Scene s = valley_with_bridge();
+    const StandingSurface surface(s);
+    Lamp on, beside;
+    on.position = {-20, 5.5, 0};      // on the bridge's edge, 1.5 m beyond the carriageway
+    beside.position = {-20, 12, 0};  // 8 m beyond it, in the valley
+    EXPECT_NEAR(lamp_ground(surface, on), 30, 1e-6);
+    EXPECT_NEAR(lamp_ground(surface, beside), 10, 1e-6);
+    Lamp away;
+    away.position = {-80, 0, 0};  // on the road to the bridge
+    EXPECT_NEAR(lamp_ground(surface, away), ground_height(s, -80, 0), 1e-9);
 }
 
 TEST(BridgeGeometry, WithoutAFieldABridgeIsAnyRoad) {

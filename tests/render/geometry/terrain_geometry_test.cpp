@@ -159,7 +159,7 @@ TEST(TerrainGeometry, LampsRoadsAndTreesLieOnTheGround) {
     Lamp lamp;
     lamp.position = {60, -21, 0};
     s.lamps.push_back(lamp);
-    EXPECT_NEAR(lamp_shape(lamp, lamp_ground(s, lamp)).base.z,
+    EXPECT_NEAR(lamp_shape(lamp, lamp_ground(StandingSurface(s), lamp)).base.z,
                 ground_height(s, lamp.position.x, lamp.position.y) + lamp.position.z, 1e-9);
     for (const GeometryModes& modes : {GeometryModes{}, GeometryModes::all(GeometryMode::Procedural)}) {
         const auto scene = build_render_scene(s, modes, FacadeOptions{});
