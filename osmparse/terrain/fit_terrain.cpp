@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "common/bridge_deck.h"
 #include "common/ground.h"
 #include "osmparse/terrain/grid_nodes.h"
@@ -15,22 +18,24 @@ namespace {
 GridLayout layout_of(const HeightField& f) { return {f.origin, f.cell, f.nx, f.ny}; }
 
 // One pass of a box filter of 2r + 1 nodes along rows (step 1) or columns (step nx), the edge
-// nodes repeated beyond the grid.
+// nodes repeated beyond the grid. Lines are independent, so they are filtered side by side.
 void box_pass(std::vector<float>& h, uint32_t nx, uint32_t ny, int r, bool along_rows) {
     const uint32_t lines = along_rows ? ny : nx, n = along_rows ? nx : ny;
     const size_t step = along_rows ? 1 : nx;
-    std::vector<double> line(n);
-    for (uint32_t l = 0; l < lines; ++l) {
-        const size_t first = along_rows ? static_cast<size_t>(l) * nx : l;
-        for (uint32_t k = 0; k < n; ++k) line[k] = h[first + k * step];
-        const auto at = [&](long k) { return line[static_cast<size_t>(std::clamp<long>(k, 0, n - 1))]; };
-        double sum = 0;
-        for (long k = -r; k <= r; ++k) sum += at(k);
-        for (uint32_t k = 0; k < n; ++k) {
-            h[first + k * step] = static_cast<float>(sum / (2 * r + 1));
-            sum += at(static_cast<long>(k) + r + 1) - at(static_cast<long>(k) - r);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, lines, 64), [&](const tbb::blocked_range<uint32_t>& range) {
+        std::vector<double> line(n);
+        for (uint32_t l = range.begin(); l < range.end(); ++l) {
+            const size_t first = along_rows ? static_cast<size_t>(l) * nx : l;
+            for (uint32_t k = 0; k < n; ++k) line[k] = h[first + k * step];
+            const auto at = [&](long k) { return line[static_cast<size_t>(std::clamp<long>(k, 0, n - 1))]; };
+            double sum = 0;
+            for (long k = -r; k <= r; ++k) sum += at(k);
+            for (uint32_t k = 0; k < n; ++k) {
+                h[first + k * step] = static_cast<float>(sum / (2 * r + 1));
+                sum += at(static_cast<long>(k) + r + 1) - at(static_cast<long>(k) - r);
+            }
         }
-    }
+    });
 }
 
 // The field smoothed at kProfileSmoothing: three box passes each way approach a Gaussian; three
