@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include "common/grid_nodes.h"
+
 namespace citygen {
 
 double field_surface_height(const HeightField& field, double x, double y) {
@@ -58,6 +60,47 @@ double lowest_along_edge(const HeightField& f, Vec2 a, Vec2 b) {
 }
 
 }  // namespace
+
+namespace {
+
+std::vector<const Ring*> rings_of(const LandCover& c) {
+    std::vector<const Ring*> rings{&c.outer};
+    for (const Ring& hole : c.holes) rings.push_back(&hole);
+    return rings;
+}
+
+}  // namespace
+
+std::vector<uint8_t> sea_nodes(const HeightField& field, const std::vector<LandCover>& land_cover) {
+    std::vector<uint8_t> sea;
+    if (field.empty()) return sea;
+    const GridLayout g{field.origin, field.cell, field.nx, field.ny};
+    for (const LandCover& c : land_cover) {
+        if (c.cover != LandCoverClass::Sea || c.outer.size() < 3) continue;
+        if (sea.empty()) sea.assign(field.heights.size(), 0);
+        for_each_node_inside(g, rings_of(c), [&](uint32_t i, uint32_t j) { sea[g.index(i, j)] = 1; });
+    }
+    return sea;
+}
+
+std::vector<uint8_t> pier_nodes(const HeightField& field, const std::vector<LandCover>& land_cover) {
+    const std::vector<uint8_t> sea = sea_nodes(field, land_cover);
+    if (sea.empty()) return {};
+    std::vector<uint8_t> pier(sea.size(), 0);
+    const GridLayout g{field.origin, field.cell, field.nx, field.ny};
+    const double margin = field.cell * std::sqrt(2.0);
+    const auto mark = [&](uint32_t i, uint32_t j) { pier[g.index(i, j)] = sea[g.index(i, j)]; };
+    for (const LandCover& c : land_cover) {
+        if (c.cover != LandCoverClass::Paved || c.outer.size() < 3) continue;
+        const std::vector<const Ring*> rings = rings_of(c);
+        for_each_node_inside(g, rings, mark);
+        for (const Ring* ring : rings)
+            for (size_t a = 0; a < ring->size(); ++a)
+                for_each_node_near(g, (*ring)[a], (*ring)[(a + 1) % ring->size()], margin,
+                                   [&](uint32_t i, uint32_t j, double, double) { mark(i, j); });
+    }
+    return pier;
+}
 
 double building_base(const Scene& scene, const Building& building) {
     if (scene.terrain.empty() || building.outer.empty()) return scene.ground.z;

@@ -35,4 +35,18 @@ std::vector<double> field_line_crossings(const HeightField& field, Vec2 a, Vec2 
 // so they reach the ground all round. scene.ground.z without a field.
 double building_base(const Scene& scene, const Building& building);
 
+// Piers, quays and breakwaters (paved land cover) reaching into the sea stand on the field at
+// kPierDeck above sea level (the field's reference, where the sea is drawn): osmparse raises the
+// field's nodes under them (fit_terrain.h) and render leaves those nodes when it lowers the field
+// under the sea (render/geometry/ground.h), so the pier's surface is flat to its edge.
+constexpr double kPierDeck = 1.0;
+
+// The field's nodes a pier holds, one flag per node: inside a paved land cover polygon inside
+// the sea, or within a cell's diagonal of its outline there (so every cell the pier is draped
+// over is flat). Empty without a field or without sea.
+std::vector<uint8_t> pier_nodes(const HeightField& field, const std::vector<LandCover>& land_cover);
+
+// One flag per node of the field: inside a sea polygon (holes excepted).
+std::vector<uint8_t> sea_nodes(const HeightField& field, const std::vector<LandCover>& land_cover);
+
 }  // namespace citygen

@@ -293,7 +293,8 @@ void add_empty_blocks(ParseState& s, ParseReport& report) {
 }
 
 void lay_out_land_cover(ParseState& s, ParseReport& report) {
-    std::vector<LandCover> cover = build_land_cover(s.osm, *s.projection, s.params().buildings, report);
+    const bool with_piers = !s.params().terrain.dem_files.empty();
+    std::vector<LandCover> cover = build_land_cover(s.osm, *s.projection, s.params().buildings, with_piers, report);
     std::vector<LandCover> sea =
         assemble_sea(s.osm, *s.projection, extract_box(s.osm, *s.projection), s.scene.buildings, report);
     cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
@@ -420,7 +421,11 @@ std::vector<Stage> parse_stages(ParseState& s) {
          [&](ParseReport& r) { fit_terrain_to_ways(scene.terrain, scene.roads, scene.paths, {p.sidewalks.width}, r); },
          !p.terrain.dem_files.empty()},
         {"water into terrain", {"terrain", "land cover"}, {"terrain"},
-         [&](ParseReport& r) { level_still_water(scene.terrain, scene.land_cover, r); }, !p.terrain.dem_files.empty()},
+         [&](ParseReport& r) {
+             level_still_water(scene.terrain, scene.land_cover, r);
+             raise_piers(scene.terrain, scene.land_cover, r);
+         },
+         !p.terrain.dem_files.empty()},
     };
 }
 

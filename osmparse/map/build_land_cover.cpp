@@ -32,7 +32,7 @@ ReportKind land_cover_row(LandCoverClass c) {
 }
 
 std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& projection,
-                                        const BuildingParams& params, ParseReport& report) {
+                                        const BuildingParams& params, bool with_piers, ParseReport& report) {
     const ReportKind kind = ReportKind::LandCoverAreas;
     std::vector<LandCover> out;
     // Land cover keeps its shape: only edges turning by less than a degree are merged.
@@ -40,7 +40,7 @@ std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& pr
     clean.simplify_angle_deg = std::min(params.simplify_angle_deg, 1.0);
     for (const OsmArea& area : osm.land_cover_areas) {
         const std::optional<LandCoverClass> cover = land_cover_class(area.tags);
-        if (!cover) continue;
+        if (!cover || (!with_piers && is_pier(area.tags))) continue;
         for (const OsmPolygon& polygon : area.polygons) {
             std::vector<Ring> holes;
             for (const std::vector<LatLon>& inner : polygon.inners) holes.push_back(project_ring(inner, projection));

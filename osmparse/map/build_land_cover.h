@@ -18,8 +18,11 @@ namespace citygen {
 // points, self-intersections, orientation, holes; slivers below params.min_area dropped),
 // sorted by (class, OSM identity). Counted under ReportKind::LandCoverAreas, the kept ones also
 // under their class's land_cover_row.
+// Piers and breakwaters (is_pier) are kept only with_piers (on a height field, where
+// fit_terrain.h raises the ground under them above the sea; on the flat ground the scene is
+// what it was before they were read).
 std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& projection,
-                                        const BuildingParams& params, ParseReport& report);
+                                        const BuildingParams& params, bool with_piers, ParseReport& report);
 
 // The report row that counts the kept land cover of a class ("land cover: water", ...).
 ReportKind land_cover_row(LandCoverClass c);

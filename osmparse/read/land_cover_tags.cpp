@@ -16,6 +16,10 @@ bool is_one_of(const char* value, std::initializer_list<const char*> values) {
 
 }  // namespace
 
+bool is_pier(const OsmTags& tags) {
+    return is_one_of(tags.get("man_made"), {"pier", "breakwater"});
+}
+
 std::optional<LandCoverClass> land_cover_class(const OsmTags& tags) {
     const char* natural = tags.get("natural");
     const char* landuse = tags.get("landuse");
@@ -24,7 +28,7 @@ std::optional<LandCoverClass> land_cover_class(const OsmTags& tags) {
         is_one_of(landuse, {"basin", "reservoir"}) || is_one_of(leisure, {"swimming_pool"}))
         return LandCoverClass::Water;
     if ((tags.has("highway", "pedestrian") && tags.has("area", "yes")) || tags.get("area:highway") ||
-        tags.has("place", "square") || tags.has("amenity", "parking"))
+        tags.has("place", "square") || tags.has("amenity", "parking") || is_pier(tags))
         return LandCoverClass::Paved;
     if (is_one_of(natural, {"sand", "beach"})) return LandCoverClass::Sand;
     if (is_one_of(natural, {"wood"}) || is_one_of(landuse, {"forest"})) return LandCoverClass::Forest;
@@ -39,7 +43,7 @@ std::optional<LandCoverClass> land_cover_class(const OsmTags& tags) {
 
 const std::vector<const char*>& land_cover_keys() {
     static const std::vector<const char*> keys{"natural", "waterway", "landuse", "leisure",
-                                               "highway", "area:highway", "place",   "amenity"};
+                                               "highway", "area:highway", "place",   "amenity", "man_made"};
     return keys;
 }
 

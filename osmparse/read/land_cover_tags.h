@@ -15,12 +15,16 @@ namespace citygen {
 //   green     leisure=park|garden|pitch|playground, landuse=grass|meadow|village_green|cemetery|
 //             recreation_ground, natural=grassland|heath|scrub
 //   forest    natural=wood, landuse=forest
-//   paved     highway=pedestrian (area=yes) or area:highway=*, place=square, amenity=parking
+//   paved     highway=pedestrian (area=yes) or area:highway=*, place=square, amenity=parking,
+//             man_made=pier|breakwater (is_pier: kept only on a height field, build_land_cover.h)
 //   sand      natural=sand|beach
 //   farmland  landuse=farmland|orchard|vineyard|allotments
 //   built_up  landuse=residential|commercial|retail|industrial (ground paving)
 // The sea is not an area in OSM: assemble_sea.h builds it from natural=coastline.
 std::optional<LandCoverClass> land_cover_class(const OsmTags& tags);
+
+// man_made=pier or breakwater: a walkable surface above the water.
+bool is_pier(const OsmTags& tags);
 
 // Every tag key land_cover_class reads (read_osm hands areas with these keys to the
 // multipolygon assembler).

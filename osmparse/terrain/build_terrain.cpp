@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "osmparse/terrain/fill_dem_voids.h"
-#include "osmparse/terrain/grid_nodes.h"
+#include "common/grid_nodes.h"
 #include "osmparse/terrain/read_dem.h"
 
 namespace citygen {

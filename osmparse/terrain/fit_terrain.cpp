@@ -9,7 +9,7 @@
 
 #include "common/bridge_deck.h"
 #include "common/ground.h"
-#include "osmparse/terrain/grid_nodes.h"
+#include "common/grid_nodes.h"
 
 namespace citygen {
 
@@ -198,6 +198,14 @@ void level_still_water(HeightField& field, const std::vector<LandCover>& land_co
     if (levelled > 0) report.note(ReportKind::LandCoverWater, ReportReason::WaterLevelled, levelled);
     if (falling > 0) report.note(ReportKind::LandCoverWater, ReportReason::WaterOnASlope, falling);
     if (nodes > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderWater, nodes);
+}
+
+void raise_piers(HeightField& field, const std::vector<LandCover>& land_cover, ParseReport& report) {
+    const std::vector<uint8_t> pier = pier_nodes(field, land_cover);
+    int64_t raised = 0;
+    for (size_t n = 0; n < pier.size(); ++n)
+        if (pier[n]) field.heights[n] = static_cast<float>(kPierDeck), ++raised;
+    if (raised > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderPier, raised);
 }
 
 }  // namespace citygen

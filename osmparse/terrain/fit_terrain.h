@@ -45,4 +45,8 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
 // within a cell outside its shore, so the cells it is draped over are flat.
 void level_still_water(HeightField& field, const std::vector<LandCover>& land_cover, ParseReport& report);
 
+// Sets the nodes piers hold in the sea (common/ground.h's pier_nodes) to kPierDeck, so piers,
+// quays and breakwaters are flat surfaces above the water and what stands on them stands there.
+void raise_piers(HeightField& field, const std::vector<LandCover>& land_cover, ParseReport& report);
+
 }  // namespace citygen

@@ -7,43 +7,13 @@
 
 namespace citygen {
 
-namespace {
-
-// The x of every crossing of the rings' edges with the line y, sorted: between pairs lies the inside.
-void row_crossings(const LandCover& c, double y, std::vector<double>& xs) {
-    xs.clear();
-    auto add = [&](const Ring& ring) {
-        for (size_t k = 0, n = ring.size(); k < n; ++k) {
-            const Vec2 a = ring[k], b = ring[(k + 1) % n];
-            if ((a.y <= y) == (b.y <= y)) continue;
-            xs.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
-        }
-    };
-    add(c.outer);
-    for (const Ring& h : c.holes) add(h);
-    std::sort(xs.begin(), xs.end());
-}
-
-}  // namespace
-
 void sink_field_under_sea(Scene& scene) {
     HeightField& f = scene.terrain;
-    if (f.empty()) return;
-    std::vector<double> xs;
-    for (const LandCover& c : scene.land_cover) {
-        if (c.cover != LandCoverClass::Sea || c.outer.size() < 3) continue;
-        // Scanlines along the node rows: each row's inside spans, nodes within them lowered.
-        for (uint32_t j = 0; j < f.ny; ++j) {
-            row_crossings(c, f.origin.y + j * f.cell, xs);
-            for (size_t k = 0; k + 1 < xs.size(); k += 2) {
-                const double u0 = std::ceil((xs[k] - f.origin.x) / f.cell), u1 = std::floor((xs[k + 1] - f.origin.x) / f.cell);
-                for (double u = std::max(0.0, u0); u <= std::min(f.nx - 1.0, u1); ++u) {
-                    float& h = f.heights[static_cast<size_t>(j) * f.nx + static_cast<uint32_t>(u)];
-                    h = std::min(h, static_cast<float>(kSeaFloor));
-                }
-            }
-        }
-    }
+    const std::vector<uint8_t> sea = sea_nodes(f, scene.land_cover);
+    if (sea.empty()) return;
+    const std::vector<uint8_t> pier = pier_nodes(f, scene.land_cover);
+    for (size_t n = 0; n < sea.size(); ++n)
+        if (sea[n] && !pier[n]) f.heights[n] = std::min(f.heights[n], static_cast<float>(kSeaFloor));
 }
 
 Ring split_at_field_lines(const Scene& scene, const Ring& ring) {

@@ -16,8 +16,9 @@ namespace citygen {
 
 // Where the map has sea, the DEM's coarse cells and its coast often stand above sea level and
 // would cover the sea surface (drawn flat at its level): nodes inside a Sea land-cover polygon
-// (holes excepted) are lowered to kSeaFloor. Render applies it once after loading a scene, so
-// every user of ground_height sees the same field. Without a field it does nothing.
+// (holes excepted) are lowered to kSeaFloor, but those a pier holds (common/ground.h's
+// pier_nodes). Render applies it once after loading a scene, so every user of ground_height
+// sees the same field. Without a field it does nothing.
 constexpr double kSeaFloor = -1.0;  // metres, relative to the field's reference (sea level)
 void sink_field_under_sea(Scene& scene);
 

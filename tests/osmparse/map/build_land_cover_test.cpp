@@ -221,6 +221,24 @@ TEST(LandCover, ClassesFollowTheTable) {
     EXPECT_EQ(cls({{"landuse", "retail"}}), LandCoverClass::BuiltUp);
     EXPECT_EQ(cls({{"natural", "coastline"}}), std::nullopt);
     EXPECT_EQ(cls({{"amenity", "bench"}}), std::nullopt);
+    EXPECT_EQ(cls({{"man_made", "pier"}}), LandCoverClass::Paved);
+    EXPECT_EQ(cls({{"man_made", "breakwater"}}), LandCoverClass::Paved);
+    EXPECT_EQ(cls({{"man_made", "tower"}}), std::nullopt);
+}
+
+TEST(LandCover, PiersAreKeptOnlyOnAHeightField) {
+    OsmData osm;
+    OsmArea pier;
+    pier.ref = {OsmType::Way, 7};
+    pier.tags.entries = {{"man_made", "pier"}, {"area", "yes"}};
+    pier.polygons.push_back({{{43.7, 7.4}, {43.7, 7.4005}, {43.7002, 7.4005}, {43.7002, 7.4}, {43.7, 7.4}}, {}});
+    osm.land_cover_areas.push_back(pier);
+    const Projection projection(43.7, 7.4);
+    ParseReport report;
+    EXPECT_TRUE(build_land_cover(osm, projection, BuildingParams{}, false, report).empty());
+    const std::vector<LandCover> kept = build_land_cover(osm, projection, BuildingParams{}, true, report);
+    ASSERT_EQ(kept.size(), 1u);
+    EXPECT_EQ(kept[0].cover, LandCoverClass::Paved);
 }
 
 TEST(LandCover, EveryClassHasItsReportRow) {

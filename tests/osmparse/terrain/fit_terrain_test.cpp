@@ -134,6 +134,25 @@ TEST(FitTerrainToWays, ABridgeIsNotFittedAndTheGroundUnderItsDeckIsCarvedBelowIt
     EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::StepsOnTheGround), 1);
 }
 
+TEST(RaisePiers, APierIntoTheSeaIsFlatAtItsDeckAndTheRestIsLeftAsItWas) {
+    HeightField f = slope_north(0.1);  // 40 m at y = -100 .. 60 m at y = 100: the DEM's noise at sea
+    const HeightField raw = f;
+    LandCover sea, pier, square;
+    sea.cover = LandCoverClass::Sea;
+    sea.outer = {{-100, -100}, {100, -100}, {100, 0}, {-100, 0}};
+    pier.cover = square.cover = LandCoverClass::Paved;
+    pier.outer = {{-5, -60}, {5, -60}, {5, 10}, {-5, 10}};      // from the quay into the sea
+    square.outer = {{40, 20}, {60, 20}, {60, 40}, {40, 40}};    // on land
+    ParseReport report;
+    raise_piers(f, {sea, pier, square}, report);
+    for (double y : {-59.0, -30.0, -1.0})
+        for (double x : {-4.0, 0.0, 4.5}) EXPECT_NEAR(field_surface_height(f, x, y), kPierDeck, 1e-6) << x << " " << y;
+    EXPECT_FLOAT_EQ(f.at(0, 5), raw.at(0, 5)) << "the pier's root on land keeps the ground";
+    EXPECT_FLOAT_EQ(f.at(50, 30), raw.at(50, 30)) << "a square on land keeps the ground";
+    EXPECT_FLOAT_EQ(f.at(-50, -50), raw.at(-50, -50)) << "the open sea is render's to lower";
+    EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainUnderPier), 70 * 10);
+}
+
 TEST(FitTerrainToWays, AFootwayBesideARoadIsLevelWithTheRoad) {
     HeightField f = slope_north(0.15);
     PathEdge footway;

@@ -207,3 +207,17 @@ TEST(TerrainGeometry, TheFieldSinksUnderTheSeaButNotUnderLand) {
         }
     EXPECT_GT(sunk, 10);
 }
+
+TEST(TerrainGeometry, APierInTheSeaIsNotSunk) {
+    Scene s = scene_on(hilly_field(10));
+    LandCover sea, pier;
+    sea.cover = LandCoverClass::Sea;
+    sea.outer = square(-100, -100, 50);
+    pier.cover = LandCoverClass::Paved;
+    pier.outer = square(-80, -80, 20);
+    s.land_cover = {sea, pier};
+    const HeightField before = s.terrain;
+    sink_field_under_sea(s);
+    EXPECT_EQ(s.terrain.at(-70, -70), before.at(-70, -70)) << "under the pier";
+    EXPECT_LE(s.terrain.at(-95, -60), kSeaFloor) << "the sea beside it";
+}
