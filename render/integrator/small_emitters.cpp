@@ -6,7 +6,6 @@
 #include "common/rng.h"
 #include "render/integrator/pixel_jitter.h"
 #include "render/lights/scene_lights.h"
-#include "render/materials/bsdf.h"
 #include "render/materials/materials.h"
 
 namespace citygen {
@@ -44,7 +43,6 @@ bool SmallEmitters::add(const Camera& camera, Rectangle r, double x0, double y0,
 
 SmallEmitters::SmallEmitters(const SceneLights& lights, const Camera& camera, bool panes) : width_(camera.width()) {
     small_.assign(lights.lamp_count(), 0);
-    const float lamp_luminance = static_cast<float>(luminance(lights.lamp_radiance()));
     for (uint32_t lamp = 0; lamp < lights.lamp_count(); ++lamp) {
         // The projected corners of a cube around the globe bound its image; 1.5 radii also hold
         // the facets of a stored globe (stored_lamps.cpp), which lie a little outside the sphere.
@@ -58,8 +56,7 @@ SmallEmitters::SmallEmitters(const SceneLights& lights, const Camera& camera, bo
             in_front = camera.project(p, &px, &py);
             x0 = std::min(x0, px), x1 = std::max(x1, px), y0 = std::min(y0, py), y1 = std::max(y1, py);
         }
-        if (in_front && add(camera, Rectangle{lamp, 0, 0, 0, 0, 0, 0, lamp_luminance}, x0, y0, x1, y1))
-            small_[lamp] = 1;
+        if (in_front && add(camera, Rectangle{lamp, 0, 0, 0, 0, 0, 0}, x0, y0, x1, y1)) small_[lamp] = 1;
     }
     if (panes) {
         // A pane is flat: the projected corners of (the visible part of) it bound its image.
@@ -70,8 +67,7 @@ SmallEmitters::SmallEmitters(const SceneLights& lights, const Camera& camera, bo
                 if (!camera.project(p, &px, &py)) return;
                 x0 = std::min(x0, px), x1 = std::max(x1, px), y0 = std::min(y0, py), y1 = std::max(y1, py);
             }
-            if (add(camera, Rectangle{pane.building, pane.wall, pane.cell, 0, 0, 0, 0, float(pane.luminance)}, x0, y0,
-                    x1, y1))
+            if (add(camera, Rectangle{pane.building, pane.wall, pane.cell, 0, 0, 0, 0}, x0, y0, x1, y1))
                 panes_.push_back({pane.building, pane.wall, pane.cell});
         });
         std::sort(panes_.begin(), panes_.end());
@@ -96,49 +92,30 @@ SmallEmitters::InPixel SmallEmitters::in_pixel(int x, int y) const {
 
 Color SmallEmitters::light_in_pixel(InPixel emitters, const PathContext& context, const Camera& camera, int x, int y,
                                     uint64_t pixel_key, uint32_t index, uint64_t& rays) const {
-    // The part of the pixel inside a rectangle (the pixel's area is 1), and its share of the
-    // emitters' light there.
-    struct Part {
-        double x0, y0, x1, y1;
-        double area() const { return x1 > x0 && y1 > y0 ? (x1 - x0) * (y1 - y0) : 0; }
-    };
-    auto part = [&](const Rectangle& r) {
-        return Part{std::max<double>(r.x0, x), std::max<double>(r.y0, y), std::min<double>(r.x1, x + 1),
-                    std::min<double>(r.y1, y + 1)};
-    };
-    double total = 0;
+    Color sum{0, 0, 0};
     for (size_t at = emitters.first; at < emitters.last; ++at) {
         const Rectangle& r = rectangles_[covers_[at].rectangle];
-        total += part(r).area() * r.luminance;
+        // The part of the pixel inside the rectangle: a uniform point of it, and its area (the
+        // pixel's is 1).
+        const double x0 = std::max<double>(r.x0, x), x1 = std::min<double>(r.x1, x + 1);
+        const double y0 = std::max<double>(r.y0, y), y1 = std::min<double>(r.y1, y + 1);
+        if (!(x1 > x0 && y1 > y0)) continue;
+        const uint64_t key = r.cell == 0 ? hash_keys(pixel_key, r.object) : hash_keys(pixel_key, r.object, r.wall, r.cell);
+        const Vec2 u = stratified_pair(key, index, kEmitterPair);
+        const Ray ray = camera.generate_ray(x0 + u.x * (x1 - x0), y0 + u.y * (y1 - y0));
+        Hit hit;
+        ++rays;
+        if (!context.scene.intersect(ray, hit) || !r.matches(hit) ||
+            !(dot(hit.geometric_normal, ray.direction) < 0))
+            continue;
+        // As trace_path's camera ray: haze, and the chance of crossing the fog unscattered.
+        double transmittance = 1;
+        const IntegratorSettings& settings = context.settings;
+        if (settings.haze_extinction > 0) transmittance *= aerial_transmittance(settings.haze_extinction, hit.t);
+        if (settings.fog.on()) transmittance *= settings.fog.transmittance(ray.origin, ray.direction, hit.t);
+        sum = sum + context.lights->emitted(hit) * (transmittance * (x1 - x0) * (y1 - y0));
     }
-    if (!(total > 0)) return {0, 0, 0};
-    // The emitter, then a uniform point of its part: the choice and the point's x share one
-    // stratified number (what is left of it after the choice, rescaled to [0, 1)).
-    const Vec2 u = stratified_pair(pixel_key, index, kEmitterPair);
-    double target = u.x * total, weight = 0;
-    const Rectangle* chosen = nullptr;
-    for (size_t at = emitters.first; at < emitters.last; ++at) {
-        const Rectangle& r = rectangles_[covers_[at].rectangle];
-        const double w = part(r).area() * r.luminance;
-        if (!(w > 0)) continue;
-        chosen = &r, weight = w;
-        if (target < w) break;
-        target -= w;  // the last with weight if rounding leaves target above the sum
-    }
-    const Part p = part(*chosen);
-    const double ux = std::min(target / weight, 0x1.fffffffffffffp-1);
-    const Ray ray = camera.generate_ray(p.x0 + ux * (p.x1 - p.x0), p.y0 + u.y * (p.y1 - p.y0));
-    Hit hit;
-    ++rays;
-    if (!context.scene.intersect(ray, hit) || !chosen->matches(hit) || !(dot(hit.geometric_normal, ray.direction) < 0))
-        return {0, 0, 0};
-    // As trace_path's camera ray: haze, and the chance of crossing the fog unscattered.
-    double transmittance = 1;
-    const IntegratorSettings& settings = context.settings;
-    if (settings.haze_extinction > 0) transmittance *= aerial_transmittance(settings.haze_extinction, hit.t);
-    if (settings.fog.on()) transmittance *= settings.fog.transmittance(ray.origin, ray.direction, hit.t);
-    // Radiance x area / (weight / total).
-    return context.lights->emitted(hit) * (transmittance * total / chosen->luminance);
+    return sum;
 }
 
 }  // namespace citygen

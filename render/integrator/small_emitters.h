@@ -8,10 +8,6 @@
 //     the pixel inside the emitter's bounding rectangle on the image, stratified over the
 //     pixel's samples, and counts the emitter's radiance there times that part's area if the
 //     ray hits the emitter's front (so occluders, haze and fog count as for any camera ray).
-//     Where several emitters may show in a pixel, one ray goes to one of them, chosen in
-//     proportion to that area times its mean luminance, and counts 1 / that chance: from afar a
-//     pixel can hold dozens of panes, and a ray at each cost more than the path (Kaiserslautern
-//     from above: 26% more rays).
 // The rectangle is a few times smaller than the pixel, so the light is found in most samples
 // instead of in one of hundreds. A pane's rectangle bounds the part of it the camera sees
 // through its opening (the reveals hide the rest from an oblique view), so few rays miss.
@@ -58,7 +54,6 @@ private:
         uint32_t object;      // the lamp, or the pane's building
         uint32_t wall, cell;  // the pane's, as its Hit carries them; cell 0: a lamp globe
         float x0, y0, x1, y1;  // on the image, in pixels
-        float luminance;       // the emitter's mean
         bool matches(const Hit& hit) const;
     };
     struct PaneId {

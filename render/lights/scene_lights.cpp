@@ -283,12 +283,9 @@ void SceneLights::for_each_lit_pane(Vec3 eye, const std::function<void(const See
             if (!(pane.area() > 0)) continue;
             const double u0 = pane.u0 - kSeenPaneMargin, u1 = pane.u1 + kSeenPaneMargin;
             const double v0 = pane.v0 - kSeenPaneMargin, v1 = pane.v1 + kSeenPaneMargin;
-            const bool shop = cell_kind(g.layout, floor, slot) == CellKind::Shop;
-            const uint64_t key = window_key(facades_.seed, g.building_key, g.wall, floor, slot);
             visit({strip.building, strip.wall, static_cast<uint32_t>(floor) * 65536u + static_cast<uint32_t>(slot) + 1,
                    {g.frame.to_world(u0, v0, pane.at), g.frame.to_world(u1, v0, pane.at),
-                    g.frame.to_world(u1, v1, pane.at), g.frame.to_world(u0, v1, pane.at)},
-                   window_base_luminance(key, shop) * kWindowPatternMean});
+                    g.frame.to_world(u1, v1, pane.at), g.frame.to_world(u0, v1, pane.at)}});
         }
     }
 }

@@ -100,7 +100,6 @@ public:
     // Lamp i's globe, the sphere that glows.
     Vec3 lamp_center(size_t i) const { return {lamps_[i].center[0], lamps_[i].center[1], lamps_[i].center[2]}; }
     double lamp_radius(size_t i) const { return lamps_[i].radius; }
-    Color lamp_radiance() const { return lamp_radiance_; }  // every globe's
     uint64_t lit_window_count() const { return lit_windows_; }
     uint64_t window_count() const { return windows_; }
     // The light choice: light i < lamp_count() is lamp i, the rest window strips in order.
@@ -120,12 +119,10 @@ public:
     bool lit_window_at(const Hit& hit) const;
     // A lit window's pane as one point sees it, for the film's gathering (small_emitters.h): the
     // part of it seen through its opening (visible_pane) widened by kSeenPaneMargin for
-    // rounding, as world corners, the building, wall and cell a Hit on it carries, and its mean
-    // luminance.
+    // rounding, as world corners, and the building, wall and cell a Hit on it carries.
     struct SeenPane {
         uint32_t building, wall, cell;
         Vec3 corner[4];
-        double luminance;
     };
     // Calls visit(pane) for every lit window whose pane's front `eye` sees some of.
     void for_each_lit_pane(Vec3 eye, const std::function<void(const SeenPane&)>& visit) const;

@@ -85,11 +85,11 @@ LightOptions windows_alone() {
 }
 
 // For every pixel: what a 32x32 grid of camera rays through it sees of the emitters the film
-// gathers, against the mean of 256 samples of the light it gathers. Returns the number of pixels
+// gathers, against the mean of 64 samples of the light it gathers. Returns the number of pixels
 // that see some.
 int expect_gathered_light_is_what_camera_rays_see(const Scene& scene, const SceneLights& lights,
                                                   const Camera& camera, const SmallEmitters& emitters) {
-    constexpr int kGrid = 32, kSamples = 256;
+    constexpr int kGrid = 32, kSamples = 64;
     const MaterialTable materials = default_materials();
     const Sky sky = Sky::daylight(TimeOfDay::Night);
     int pixels_seen = 0;
