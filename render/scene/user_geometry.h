@@ -7,6 +7,7 @@
 // and new_user_geometry(device, this, count) makes the Embree geometry that calls them.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 
@@ -53,16 +54,20 @@ void intersect(const RTCIntersectFunctionNArguments* args) {
         if (args->valid[i] != -1) continue;
         const Vec3 origin{RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i)};
         const Vec3 direction{RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i)};
-        UserHit found;
-        if (!self->intersect(args->primID, origin, direction, RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i),
-                             &found))
-            continue;
         // At the same distance as the hit so far (coplanar overlapping surfaces: two road quads,
         // two sidewalk pieces), the lower (geometry, primitive) wins, so that the winner does
-        // not depend on the order the BVH visits them in.
+        // not depend on the order the BVH visits them in. The distance is compared as Embree
+        // keeps it, in float: the search reaches a float step beyond tfar, or a tie whose double
+        // distance lies just above its rounded tfar would never be seen.
+        const float tfar = RTCRayN_tfar(ray, N, i);
+        UserHit found;
+        if (!self->intersect(args->primID, origin, direction, RTCRayN_tnear(ray, N, i),
+                             std::nextafter(tfar, std::numeric_limits<float>::infinity()), &found))
+            continue;
         const float t = static_cast<float>(found.t);
+        if (t > tfar) continue;
         const unsigned held = RTCHitN_geomID(hit, N, i);
-        if (t == RTCRayN_tfar(ray, N, i) && held != RTC_INVALID_GEOMETRY_ID &&
+        if (t == tfar && held != RTC_INVALID_GEOMETRY_ID &&
             (held < args->geomID || (held == args->geomID && RTCHitN_primID(hit, N, i) < args->primID)))
             continue;
         RTCRayN_tfar(ray, N, i) = t;
