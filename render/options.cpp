@@ -233,6 +233,9 @@ void add_integrator_options(CLI::App& app, Options& o) {
                    "least survival probability of a roulette step: a path survives with its largest "
                    "throughput component, clamped to [rr-prob, 1], and is reweighted by 1/survival")
         ->check(CLI::Range(0.01, 1.0))->capture_default_str();
+    app.add_flag("--no-gather-panes{false}", r.gather_panes,
+                 "let camera rays alone find lit panes a few pixels wide (the same expected image, noisier "
+                 "from afar; for checking the film's gathering)");
 }
 
 void add_geometry_mode_options(CLI::App& app, Options& o) {

@@ -13,7 +13,7 @@
 #include "common/error.h"
 #include "common/progress.h"
 #include "render/integrator/pixel_jitter.h"
-#include "render/integrator/small_globes.h"
+#include "render/integrator/small_emitters.h"
 #include "render/lights/scene_lights.h"
 #include "render/materials/bsdf.h"
 
@@ -28,7 +28,7 @@ struct PixelSamples {
     Color sum{0, 0, 0};
     double luminance_squares = 0;  // sum of the samples' squared luminance (for the variance)
     Color direct_sum{0, 0, 0};     // direct_light_at along the sample rays (for --denoise)
-    Color globe_sum{0, 0, 0};      // the small globes' light the film gathered (small_globes.h)
+    Color gathered_sum{0, 0, 0};   // the small globes' and panes' light the film gathered (small_emitters.h)
 };
 
 namespace {
@@ -74,8 +74,8 @@ Color direct_light_at(const PathContext& context, const Ray& ray, Hit hit, uint6
     Color light{0, 0, 0};
     if (front) {  // emitters shine from their front
         light = material.emission;
-        // Small globes: gathered by the film, not seen by camera rays (small_globes.h).
-        const bool gathered = context.small_globes && context.small_globes->counts_on_film(hit);
+        // Small globes and panes: gathered by the film, not seen by camera rays (small_emitters.h).
+        const bool gathered = context.small_emitters && context.small_emitters->counts_on_film(hit);
         if (context.lights && !context.lights->empty() && !gathered) light = light + context.lights->emitted(hit);
     }
     const Sky& sky = context.sky;
@@ -155,8 +155,8 @@ void add_samples(const PathContext& context, const Camera& camera, int x, int y,
     // with the roulettes.
     PairSeeds seeds[5];
     for (uint32_t pair = 0; pair < 5; ++pair) seeds[pair] = pair_seeds(pixel.jitter_key, pair);
-    const SmallGlobes::InPixel globes_here =
-        context.small_globes ? context.small_globes->in_pixel(x, y) : SmallGlobes::InPixel{};
+    const SmallEmitters::InPixel emitters_here =
+        context.small_emitters ? context.small_emitters->in_pixel(x, y) : SmallEmitters::InPixel{};
     for (int s = 0; s < count; ++s) {
         const uint32_t index = pixel.count++;
         const Vec2 j = stratified_pair(seeds[0], index);
@@ -166,14 +166,14 @@ void add_samples(const PathContext& context, const Camera& camera, int x, int y,
         const FirstVertexNumbers first{
             {choice.x, point.x, point.y, choice.y, lobe.y, direction.x, direction.y, lobe.x}};
         Color L = trace_path(context, ray, pixel.rng, rays, &first);
-        const Color globes = globes_here.empty() ? Color{0, 0, 0}
-                                                 : context.small_globes->light_in_pixel(
-                                                       globes_here, context, camera, x, y, pixel.jitter_key, index, rays);
-        L = L + globes;
+        const Color gathered = emitters_here.empty() ? Color{0, 0, 0}
+                                                     : context.small_emitters->light_in_pixel(
+                                                           emitters_here, context, camera, x, y, pixel.jitter_key, index, rays);
+        L = L + gathered;
         // A lone non-finite sample would poison the pixel; count it as black.
         if (std::isfinite(L.x) && std::isfinite(L.y) && std::isfinite(L.z)) {
             pixel.sum = pixel.sum + L;
-            pixel.globe_sum = pixel.globe_sum + globes;
+            pixel.gathered_sum = pixel.gathered_sum + gathered;
             pixel.luminance_squares += luminance(L) * luminance(L);
             Hit hit;
             if (direct && (++rays, context.scene.intersect(ray, hit)))
@@ -190,11 +190,11 @@ void store_pixel(const PixelSamples& pixel, int spp, size_t i, Film& film) {
         const double mean = luminance(pixel.sum) * inv;
         const double sample_variance = std::max(0.0, pixel.luminance_squares * inv - mean * mean) * spp / std::max(1, spp - 1);
         film.guide_variance[i] = static_cast<float>(sample_variance * inv);
-        // The gathered globes are as good as noise-free: the denoiser leaves them out of what it
-        // filters and puts them back (fill_guides adds its grid to guide_direct).
+        // The gathered globes and panes are as good as noise-free: the denoiser leaves them out
+        // of what it filters and puts them back (fill_guides adds its grid to guide_direct).
         for (int c = 0; c < 3; ++c) {
-            film.guide_sample_direct[3 * i + c] = static_cast<float>((pixel.direct_sum[c] + pixel.globe_sum[c]) * inv);
-            film.guide_direct[3 * i + c] = static_cast<float>(pixel.globe_sum[c] * inv);
+            film.guide_sample_direct[3 * i + c] = static_cast<float>((pixel.direct_sum[c] + pixel.gathered_sum[c]) * inv);
+            film.guide_direct[3 * i + c] = static_cast<float>(pixel.gathered_sum[c] * inv);
         }
     }
 }
@@ -289,10 +289,10 @@ Film render_time_limited(const PathContext& context, const Camera& camera, const
 Film render_image(const PathContext& scene_context, const Camera& camera, const RenderSettings& settings,
                   RenderStats* stats) {
     PathContext context = scene_context;
-    SmallGlobes small_globes;
-    if (context.lights && context.lights->lamp_count() > 0) {
-        small_globes = SmallGlobes(*context.lights, camera);
-        context.small_globes = &small_globes;
+    SmallEmitters small_emitters;
+    if (context.lights && !context.lights->empty()) {
+        small_emitters = SmallEmitters(*context.lights, camera, settings.gather_panes);
+        context.small_emitters = &small_emitters;
     }
     Film film = make_film(render_region(settings), settings);
     const size_t pixels = static_cast<size_t>(film.width) * film.height;
@@ -335,9 +335,9 @@ Film render_image(const PathContext& scene_context, const Camera& camera, const 
 
 ProgressiveRender::ProgressiveRender(const PathContext& context, const Camera& camera, const RenderSettings& settings)
     : context_(context), camera_(camera), settings_(settings), film_(make_film(render_region(settings), settings)) {
-    if (context_.lights && context_.lights->lamp_count() > 0) {
-        small_globes_ = std::make_unique<SmallGlobes>(*context_.lights, camera);
-        context_.small_globes = small_globes_.get();
+    if (context_.lights && !context_.lights->empty()) {
+        small_emitters_ = std::make_unique<SmallEmitters>(*context_.lights, camera, settings.gather_panes);
+        context_.small_emitters = small_emitters_.get();
     }
     pixels_.reserve(static_cast<size_t>(film_.width) * film_.height);
     for (int fy = 0; fy < film_.height; ++fy)

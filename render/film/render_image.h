@@ -1,7 +1,7 @@
 // Rendering a whole image: tiles in parallel (TBB), one random stream per pixel so the result
 // does not depend on the thread count (and per pixel scrambled Sobol pairs placing its samples
-// and drawing their first surface's numbers, pixel_jitter.h), the light of lamp globes a few
-// pixels wide gathered per pixel (small_globes.h), optional AOVs from the ray through each pixel
+// and drawing their first surface's numbers, pixel_jitter.h), the light of lamp globes and lit
+// panes a few pixels wide gathered per pixel (small_emitters.h), optional AOVs from the ray through each pixel
 // centre.
 #pragma once
 
@@ -36,6 +36,9 @@ struct RenderSettings {
     bool aovs = false;   // fill depth, normal, albedo and id
     bool denoise_guides = false;  // fill the guide_* buffers (for --denoise)
     bool quiet = false;  // no progress bar
+    // Lit panes a few pixels wide gathered by the film as small globes are (small_emitters.h).
+    // The same expected image either way; false (--no-gather-panes) only to check that.
+    bool gather_panes = true;
 };
 
 // Linear float images, row-major from the top-left pixel.
@@ -54,7 +57,7 @@ struct Film {
     // averaged over 6x6 positions in the pixel, so a window narrower than a pixel still shows.
     std::vector<float> guide_albedo, guide_normal, guide_depth;
     std::vector<float> guide_direct;    // 3 per pixel, emission and haze seen directly and the
-                                        // small globes' gathered light (noise-free)
+                                        // small globes and panes gathered (noise-free)
     std::vector<float> guide_variance;  // of each pixel's mean luminance, from its samples
     std::vector<float> guide_sample_direct;  // 3 per pixel, guide_direct's light along the sample rays (mean)
 };
@@ -98,7 +101,7 @@ private:
     PathContext context_;
     const Camera& camera_;
     RenderSettings settings_;
-    std::unique_ptr<SmallGlobes> small_globes_;
+    std::unique_ptr<SmallEmitters> small_emitters_;
     Film film_;  // the region; rgb filled by film()
     std::vector<PixelSamples> pixels_;
     int spp_ = 0;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render/integrator/small_globes.h"
+#include "render/integrator/small_emitters.h"
 #include "render/lights/scene_lights.h"
 #include "render/materials/bsdf.h"
 
@@ -219,7 +219,7 @@ void PathTracer::add_sky(Vec3 direction) {
 void PathTracer::add_emission(const Vertex& v, int bounce) {
     if (!v.front) return;
     radiance_ = radiance_ + throughput_ * v.material.emission;
-    if (!lights_ || (bounce == 0 && context_.small_globes && context_.small_globes->counts_on_film(v.hit))) return;
+    if (!lights_ || (bounce == 0 && context_.small_emitters && context_.small_emitters->counts_on_film(v.hit))) return;
     const Color emitted = lights_->emitted(v.hit);
     if (emitted.x + emitted.y + emitted.z > 0) {
         const double w = previous_delta_ || !sample_lights_ || previous_inside_room_

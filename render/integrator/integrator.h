@@ -43,7 +43,7 @@ struct IntegratorSettings {
 double shadow_roulette_for(double exposure);
 
 class SceneLights;
-class SmallGlobes;
+class SmallEmitters;
 
 struct PathContext {
     const RenderScene& scene;
@@ -52,9 +52,9 @@ struct PathContext {
     IntegratorSettings settings;
     const BuildingLooks* building_looks = nullptr;  // buildings' own colours and patterns (none: stock)
     const SceneLights* lights = nullptr;  // lamps and lit windows (lights/scene_lights.h); none if null
-    // Lamp globes whose light the film gathers itself (small_globes.h): camera rays that hit one
-    // count no emission. render_image sets it for its camera; none if null.
-    const SmallGlobes* small_globes = nullptr;
+    // Lamp globes and lit panes whose light the film gathers itself (small_emitters.h): camera
+    // rays that hit one count no emission. render_image sets it for its camera; none if null.
+    const SmallEmitters* small_emitters = nullptr;
 };
 
 // Survival probability of a Russian roulette step: the path's largest throughput component,

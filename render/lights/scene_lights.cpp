@@ -270,6 +270,27 @@ bool SceneLights::lit_window_at(const Hit& hit) const {
     return window_lit(facades_, g.building_key, g.wall, g.layout, floor, slot, options_.lit_windows);
 }
 
+void SceneLights::for_each_lit_pane(Vec3 eye, const std::function<void(const SeenPane&)>& visit) const {
+    for (const Strip& strip : strips_) {
+        WallGeometry g;
+        if (!wall_geometry(strip.building, strip.wall, &g)) continue;
+        const Vec3 local = g.frame.point_to_local(eye);
+        if (!(local.z < 0)) continue;  // not in front of the facade: it sees no pane's front
+        for (int bit = 0; bit < strip.floor_count * strip.slot_count; ++bit) {
+            if (!(strip.lit >> bit & 1)) continue;
+            const int floor = strip.first_floor + bit / strip.slot_count;
+            const int slot = strip.first_slot + bit % strip.slot_count;
+            const Pane pane = visible_pane(window_pane(g.layout, floor, slot), local);
+            if (!(pane.area() > 0)) continue;
+            const double u0 = pane.u0 - kSeenPaneMargin, u1 = pane.u1 + kSeenPaneMargin;
+            const double v0 = pane.v0 - kSeenPaneMargin, v1 = pane.v1 + kSeenPaneMargin;
+            visit({strip.building, strip.wall, static_cast<uint32_t>(floor) * 65536u + static_cast<uint32_t>(slot) + 1,
+                   {g.frame.to_world(u0, v0, pane.at), g.frame.to_world(u1, v0, pane.at),
+                    g.frame.to_world(u1, v1, pane.at), g.frame.to_world(u0, v1, pane.at)}});
+        }
+    }
+}
+
 int64_t SceneLights::strip_light(const Hit& hit) const {
     const int floor = static_cast<int>((hit.cell - 1) >> 16), slot = static_cast<int>((hit.cell - 1) & 0xffff);
     // Strips are ordered by (building, wall, first floor, first slot), each wall's on a regular grid.

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "common/scene.h"
@@ -116,6 +117,17 @@ public:
 
     // Whether the pane at `hit` belongs to a lit window (tests).
     bool lit_window_at(const Hit& hit) const;
+    // A lit window's pane as one point sees it, for the film's gathering (small_emitters.h): the
+    // part of it seen through its opening (visible_pane) widened by kSeenPaneMargin for
+    // rounding, as world corners, and the building, wall and cell a Hit on it carries.
+    struct SeenPane {
+        uint32_t building, wall, cell;
+        Vec3 corner[4];
+    };
+    // Calls visit(pane) for every lit window whose pane's front `eye` sees some of.
+    void for_each_lit_pane(Vec3 eye, const std::function<void(const SeenPane&)>& visit) const;
+    static constexpr double kSeenPaneMargin = 0.01;  // metres: stored panes are float triangles
+
     // A window strip's size: at most this many floors by slots of one wall.
     static constexpr int kFloorsPerStrip = 4, kSlotsPerStrip = 4;
     static_assert(kFloorsPerStrip * kSlotsPerStrip <= 16, "Strip::lit keeps one bit per cell");

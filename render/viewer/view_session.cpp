@@ -147,6 +147,9 @@ void ViewSession::render_moving(const ViewRequest& request, uint64_t generation)
     settings.width = width, settings.height = height, settings.spp = 1, settings.quiet = true;
     settings.aovs = request.layer != ViewLayer::Image;
     settings.integrator.max_depth = std::min(settings.integrator.max_depth, 1);  // fewer bounces while moving
+    // A moving frame has one sample: finding the small lit panes (a walk over every window strip,
+    // about 0.1 s of CPU on Monaco) would cost more than their noise; the still frames gather them.
+    settings.gather_panes = false;
     PathContext context = world_.context();
     const std::string key = look_key(request);
     if (key != exposure_key_) {

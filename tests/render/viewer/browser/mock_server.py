@@ -105,7 +105,7 @@ OPTIONS = {
 }
 for _c in CLASSES:
     OPTIONS["--geometry-" + _c] = _choice("stored", "procedural")
-FLAGS = {"--denoise", "--moon", "--procedural"}
+FLAGS = {"--denoise", "--moon", "--procedural", "--no-gather-panes"}
 FILE_OPTIONS = {"-o", "--output", "--camera-path", "--texture-dir", "--export-ply", "--export-gltf", "--aovs"}
 
 
