@@ -132,6 +132,7 @@ std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, cons
             const double l = centreline_length(r);
             DeckLine& d = decks[c.edges[k]];
             d.valid = true;
+            d.bridge = static_cast<uint32_t>(&c - chains.data());
             d.a = r.centreline.front();
             d.b = r.centreline.back();
             d.bridge_length = c.length;
@@ -150,6 +151,29 @@ std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, cons
 
 std::vector<DeckLine> bridge_decks(const Scene& scene) {
     return bridge_decks(scene.terrain, scene.ground.z, scene.roads);
+}
+
+DeckLine joint_deck(const std::vector<DeckLine>& decks, const Joint& joint) {
+    DeckLine flat;
+    if (joint.edges.empty() || joint.polygon.empty()) return flat;
+    for (uint32_t e : joint.edges)
+        if (e >= decks.size() || !decks[e].valid) return flat;
+    // The joint's roads end at its node, where their decks share one height.
+    Vec2 centre{0, 0};
+    for (Vec2 p : joint.polygon) centre = centre + p;
+    centre = centre * (1.0 / joint.polygon.size());
+    const DeckLine& d = decks[joint.edges.front()];
+    flat.valid = true;
+    flat.a = flat.b = centre;
+    flat.za = flat.zb = length(d.a - centre) <= length(d.b - centre) ? d.za : d.zb;
+    return flat;
+}
+
+DeckLine sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Sidewalk& sidewalk) {
+    if (sidewalk.road >= 0 && static_cast<size_t>(sidewalk.road) < decks.size()) return decks[sidewalk.road];
+    if (sidewalk.joint >= 0 && static_cast<size_t>(sidewalk.joint) < scene.joints.size())
+        return joint_deck(decks, scene.joints[sidewalk.joint]);
+    return {};
 }
 
 double deck_parameter(const DeckLine& deck, Vec2 p) {
@@ -202,6 +226,10 @@ double StandingSurface::height(Vec2 p) const {
         on_deck = true;
     }
     return on_deck ? top : z;
+}
+
+double deck_along(const DeckLine& deck, Vec2 p) {
+    return deck.along_a + (deck.along_b - deck.along_a) * deck_parameter(deck, p);
 }
 
 double deck_end_distance(const DeckLine& deck, Vec2 p) {

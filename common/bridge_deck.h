@@ -31,6 +31,7 @@ constexpr double kPierClearance = 2;
 // its length and which of its ends stand on the ground (not on another deck).
 struct DeckLine {
     bool valid = false;  // false for a road that is not a bridge
+    uint32_t bridge = 0;  // which bridge (chain) of the scene's the edge belongs to, from 0
     Vec2 a, b;
     double za = 0, zb = 0;
     double along_a = 0, along_b = 0, bridge_length = 0;
@@ -42,11 +43,22 @@ struct DeckLine {
 std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, const std::vector<RoadEdge>& roads);
 std::vector<DeckLine> bridge_decks(const Scene& scene);
 
+// A joint all of whose roads are bridges (a junction on a viaduct) lies on their decks: the deck
+// at that height, level (a flat DeckLine); invalid for any other joint, which lies on the ground.
+DeckLine joint_deck(const std::vector<DeckLine>& decks, const Joint& joint);
+
+// The deck a sidewalk piece lies on: its road's along a strip, its joint's at a corner; invalid
+// where that lies on the ground.
+DeckLine sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Sidewalk& sidewalk);
+
 // Where p lies along the deck: its projection onto the chord, 0 at a and 1 at b (not clamped).
 double deck_parameter(const DeckLine& deck, Vec2 p);
 
 // The deck's surface height at p: linear along the chord, level across it, clamped at the ends.
 double deck_height(const DeckLine& deck, Vec2 p);
+
+// Where p (projected on the chord, not clamped) lies along the whole bridge, metres from its start.
+double deck_along(const DeckLine& deck, Vec2 p);
 
 // How far p (projected on the chord) lies along the bridge from the nearer of its ends on the
 // ground (infinite when neither is).

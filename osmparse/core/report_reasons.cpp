@@ -262,6 +262,7 @@ constexpr Text<ReportReason> kReasonTexts[] = {
     {R::TerrainWayShoulder, "in a road's or path's shoulder, blended"},
     {R::TerrainUnderWater, "under still water, at its shore's lowest"},
     {R::TerrainUnderDeck, "under a bridge deck, lowered below it"},
+    {R::TerrainUnderAbutment, "at a bridge's end, on its deck (abutment)"},
     {R::TerrainUnderPier, "under a pier or quay in the sea, at its deck"},
     {R::BridgeOnItsDeck, "bridge: on its own deck, not fitted to the ground"},
     {R::StepsOnTheGround, "steps: on the ground (stairs not built)"},

@@ -283,6 +283,7 @@ enum class ReportReason {
     TerrainWayShoulder,
     TerrainUnderWater,
     TerrainUnderDeck,
+    TerrainUnderAbutment,
     TerrainUnderPier,
     BridgeOnItsDeck,
     StepsOnTheGround,

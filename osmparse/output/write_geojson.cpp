@@ -145,16 +145,20 @@ std::string scene_to_geojson(const Scene& scene) {
                                  ",\"cycle_lanes\":" + std::to_string(r.cycle_lane_left + r.cycle_lane_right),
                   deck_of(static_cast<int>(k)));
     }
-    for (const Joint& j : scene.joints)
+    for (const Joint& j : scene.joints) {
+        const DeckLine deck = joint_deck(decks, j);
         w.polygon({&j.polygon}, "\"kind\":\"joint\",\"osm\":" + str(to_string(j.osm)) + ",\"edges\":" +
-                                    std::to_string(j.edges.size()));
-    for (const Sidewalk& s : scene.sidewalks)
+                                    std::to_string(j.edges.size()), deck.valid ? &deck : nullptr);
+    }
+    for (const Sidewalk& s : scene.sidewalks) {
+        const DeckLine deck = sidewalk_deck(scene, decks, s);
         w.polygon({&s.polygon}, std::string("\"kind\":\"sidewalk\",\"piece\":\"") +
                                     (s.kind == SidewalkKind::Strip ? "strip" : "corner") +
                                     "\",\"height\":" + num(s.curb_height) +
                                     (s.road >= 0 ? ",\"osm\":" + str(to_string(scene.roads[s.road].osm)) : "") +
                                     (s.joint >= 0 ? ",\"joint\":" + str(to_string(scene.joints[s.joint].osm)) : ""),
-                  deck_of(s.road));
+                  deck.valid ? &deck : nullptr);
+    }
     const StandingSurface surface(scene);
     for (const Lamp& l : scene.lamps)
         w.point_feature_at({l.position.x, l.position.y}, surface.height({l.position.x, l.position.y}),

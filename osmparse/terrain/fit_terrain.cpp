@@ -88,30 +88,67 @@ void fit_to_corridor(const Corridor& c, const HeightField& profile, double margi
     }
 }
 
-// Lowers the field under every bridge deck (common/bridge_deck.h, on the fitted field) to
-// kDeckThickness + kUnderDeckGap below its surface, so no hill or bank pokes through the deck or
-// its slab; towards an end on the ground the clearance shrinks along a 1:2 slope, so the ground
-// meets the deck where the bridge meets the road. Returns the nodes lowered.
-int64_t carve_under_decks(HeightField& field, const std::vector<RoadEdge>& roads, const FitWidths& widths,
-                          double margin) {
+// The field under the bridges (common/bridge_deck.h, on the fitted field). At each end on the
+// ground, up to a cell past where the bridge's surface begins (its quads start at the edge of the
+// joint there), the field is the deck itself, an abutment: the joint and the road's end lie on it
+// and meet the deck without a step. Beyond, the field is kept kDeckThickness + kUnderDeckGap below
+// the deck, so no hill or bank pokes through it; the clearance grows along a 1:2 slope from the
+// abutment. Counts the nodes set or lowered.
+struct UnderDecks {
+    int64_t abutment = 0, carved = 0;
+};
+
+UnderDecks fit_under_decks(HeightField& field, const std::vector<RoadEdge>& roads, const FitWidths& widths,
+                           double margin) {
     const GridLayout g = layout_of(field);
     const std::vector<DeckLine> decks = bridge_decks(field, 0, roads);
-    int64_t carved = 0;
+    // Per bridge, where its surface begins and ends (metres along it): its quads' extent.
+    std::vector<std::pair<double, double>> surface;
     for (size_t e = 0; e < roads.size(); ++e) {
         const DeckLine& deck = decks[e];
         if (!deck.valid) continue;
-        const RoadEdge& r = roads[e];
-        const bool sidewalk = r.sidewalk_left || r.sidewalk_right;
-        const double reach = r.width / 2 + (sidewalk ? widths.sidewalk : 0) + margin;
-        for_each_node_near(g, deck.a, deck.b, reach, [&](uint32_t i, uint32_t j, double, double) {
-            const Vec2 p = g.node(i, j);
-            const double clearance = std::min(kDeckThickness + kUnderDeckGap, 0.5 * deck_end_distance(deck, p));
-            const auto allowed = static_cast<float>(deck_height(deck, p) - clearance);
-            float& h = field.heights[g.index(i, j)];
-            if (h > allowed) h = allowed, ++carved;
-        });
+        if (surface.size() <= deck.bridge) surface.resize(deck.bridge + 1, {1e300, -1e300});
+        for (Vec2 c : roads[e].quad) {
+            const double along = deck_along(deck, c);
+            surface[deck.bridge].first = std::min(surface[deck.bridge].first, along);
+            surface[deck.bridge].second = std::max(surface[deck.bridge].second, along);
+        }
     }
-    return carved;
+    // Two passes: the carving under every deck, then the abutments, which win where a bridge's
+    // end lies within another's reach (a ramp beside a lower bridge): a step where a bridge
+    // meets its road shows more than the other deck's slab meeting a bank.
+    UnderDecks count;
+    for (const bool abutments : {false, true})
+        for (size_t e = 0; e < roads.size(); ++e) {
+            const DeckLine& deck = decks[e];
+            if (!deck.valid) continue;
+            const RoadEdge& r = roads[e];
+            const bool sidewalk = r.sidewalk_left || r.sidewalk_right;
+            const double reach = r.width / 2 + (sidewalk ? widths.sidewalk : 0) + margin;
+            const auto [first, last] = surface[deck.bridge];
+            const double start = (first <= last ? std::max(0.0, first) : 0.0) + margin;
+            const double end = (first <= last ? std::min(deck.bridge_length, last) : deck.bridge_length) - margin;
+            for_each_node_near(g, deck.a, deck.b, reach, [&](uint32_t i, uint32_t j, double, double) {
+                const Vec2 p = g.node(i, j);
+                const double along = std::clamp(deck_along(deck, p), 0.0, deck.bridge_length);
+                double from_abutment = std::numeric_limits<double>::infinity();
+                if (deck.starts_on_ground) from_abutment = along - start;
+                if (deck.ends_on_ground) from_abutment = std::min(from_abutment, end - along);
+                float& h = field.heights[g.index(i, j)];
+                if (abutments && from_abutment <= 0) {
+                    // The deck's line continued past its end, not clamped: the field's
+                    // triangles then reproduce it exactly, and the ground at the bridge's end
+                    // (which sets the deck's height there) stays what it was.
+                    const double t = deck_parameter(deck, p);
+                    h = static_cast<float>(deck.za + (deck.zb - deck.za) * t), ++count.abutment;
+                } else if (!abutments && from_abutment > 0) {
+                    const double clearance = std::min(kDeckThickness + kUnderDeckGap, 0.5 * from_abutment);
+                    const auto allowed = static_cast<float>(deck_height(deck, p) - clearance);
+                    if (h > allowed) h = allowed, ++count.carved;
+                }
+            });
+        }
+    return count;
 }
 
 }  // namespace
@@ -148,10 +185,11 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
         field.heights[n] = f.weight * f.level + (1 - f.weight) * field.heights[n];
         ++(f.weight == 1 ? level : blended);
     }
-    const int64_t carved = carve_under_decks(field, roads, widths, margin);
+    const UnderDecks decks = fit_under_decks(field, roads, widths, margin);
     if (level > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderWay, level);
     if (blended > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainWayShoulder, blended);
-    if (carved > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderDeck, carved);
+    if (decks.abutment > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderAbutment, decks.abutment);
+    if (decks.carved > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderDeck, decks.carved);
     if (bridges > 0) report.note(ReportKind::RoadEdges, ReportReason::BridgeOnItsDeck, bridges);
     if (steps > 0) report.note(ReportKind::PathEdges, ReportReason::StepsOnTheGround, steps);
 }

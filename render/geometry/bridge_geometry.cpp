@@ -32,12 +32,6 @@ std::vector<DeckLine> drawn_decks(const Scene& scene) {
     return bridge_decks(scene);
 }
 
-const DeckLine* sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, uint32_t sidewalk) {
-    const int road = scene.sidewalks[sidewalk].road;
-    if (road < 0 || static_cast<size_t>(road) >= decks.size() || !decks[road].valid) return nullptr;
-    return &decks[road];
-}
-
 std::vector<BridgeFace> deck_piece_faces(const DeckLine& deck, const Ring& ring, double lift, uint16_t top_material) {
     std::vector<BridgeFace> faces;
     if (ring.size() < 3) return faces;

@@ -22,9 +22,6 @@ struct BridgeFace {
 // where bridges lie on the flat ground as every road does.
 std::vector<DeckLine> drawn_decks(const Scene& scene);
 
-// The deck a sidewalk piece lies on: its road's, when that road has one; null otherwise.
-const DeckLine* sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, uint32_t sidewalk);
-
 // A polygon on a deck, `lift` above its surface, with its slab (kDeckThickness under the
 // surface: an underside facing down and a side face on every edge facing out) and, for a road,
 // its piers: the road's own surface, or a sidewalk along it (lift: its curb top).

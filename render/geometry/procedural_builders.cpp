@@ -81,8 +81,14 @@ std::unique_ptr<ProceduralGeometry> build_procedural_roads(const Scene& scene) {
 
 std::unique_ptr<ProceduralGeometry> build_procedural_joints(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Joint, all_surfaces(kAsphalt));
-    for (uint32_t i = 0; i < scene.joints.size(); ++i)
+    const std::vector<DeckLine> decks = drawn_decks(scene);
+    for (uint32_t i = 0; i < scene.joints.size(); ++i) {
+        if (const DeckLine deck = joint_deck(decks, scene.joints[i]); deck.valid) {
+            add_faces(deck_piece_faces(deck, scene.joints[i].polygon, kRoadLift, kAsphalt), i, *geometry);
+            continue;
+        }
         add_ground_polygon(scene, scene.joints[i].polygon, {}, kRoadLift, i, kAsphalt, *geometry);
+    }
     return geometry;
 }
 
@@ -92,8 +98,8 @@ std::unique_ptr<ProceduralGeometry> build_procedural_sidewalks(const Scene& scen
     const std::vector<DeckLine> decks = drawn_decks(scene);
     for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
         if (!sidewalk_shape(scene, i, &shape)) continue;
-        if (const DeckLine* deck = sidewalk_deck(scene, decks, i)) {
-            add_faces(deck_piece_faces(*deck, shape.ring, kRoadLift + (shape.top_z - shape.road_z), kSidewalk), i,
+        if (const DeckLine deck = sidewalk_deck(scene, decks, scene.sidewalks[i]); deck.valid) {
+            add_faces(deck_piece_faces(deck, shape.ring, kRoadLift + (shape.top_z - shape.road_z), kSidewalk), i,
                       *geometry);
             continue;
         }

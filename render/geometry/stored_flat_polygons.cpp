@@ -62,8 +62,14 @@ TriangleMesh build_stored_roads(const Scene& scene) {
 TriangleMesh build_stored_joints(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Joint;
-    for (uint32_t i = 0; i < scene.joints.size(); ++i)
+    const std::vector<DeckLine> decks = drawn_decks(scene);
+    for (uint32_t i = 0; i < scene.joints.size(); ++i) {
+        if (const DeckLine deck = joint_deck(decks, scene.joints[i]); deck.valid) {
+            add_faces(deck_piece_faces(deck, scene.joints[i].polygon, kRoadLift, kAsphalt), i, mesh);
+            continue;
+        }
         add_ground_polygon(scene, scene.joints[i].polygon, {}, kRoadLift, i, kAsphalt, mesh);
+    }
     return mesh;
 }
 
@@ -107,8 +113,8 @@ TriangleMesh build_stored_sidewalks(const Scene& scene) {
     const std::vector<DeckLine> decks = drawn_decks(scene);
     for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
         if (!sidewalk_shape(scene, i, &shape)) continue;
-        if (const DeckLine* deck = sidewalk_deck(scene, decks, i)) {
-            add_faces(deck_piece_faces(*deck, shape.ring, kRoadLift + (shape.top_z - shape.road_z), kSidewalk), i, mesh);
+        if (const DeckLine deck = sidewalk_deck(scene, decks, scene.sidewalks[i]); deck.valid) {
+            add_faces(deck_piece_faces(deck, shape.ring, kRoadLift + (shape.top_z - shape.road_z), kSidewalk), i, mesh);
             continue;
         }
         if (!scene.terrain.empty()) {

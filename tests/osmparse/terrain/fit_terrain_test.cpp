@@ -112,6 +112,7 @@ TEST(FitTerrainToWays, ABridgeIsNotFittedAndTheGroundUnderItsDeckIsCarvedBelowIt
     RoadEdge bridge = road({{-40, 0}, {40, 0}}, 6);
     west.from_node = 1, west.to_node = 2, bridge.from_node = 2, bridge.to_node = 3, east.from_node = 3, east.to_node = 4;
     bridge.bridge = true;
+    bridge.quad = {{-34, -3}, {34, -3}, {34, 3}, {-34, 3}};  // from the joints' edges, 6 m from the nodes
     PathEdge steps;
     steps.centreline = {{20, -90}, {20, -50}};
     steps.width = 2;
@@ -123,7 +124,9 @@ TEST(FitTerrainToWays, ABridgeIsNotFittedAndTheGroundUnderItsDeckIsCarvedBelowIt
     ASSERT_TRUE(deck.valid);
     EXPECT_NEAR(deck.za, field_surface_height(f, -40, 0), 1e-6) << "the deck meets the road at its end";
     EXPECT_NEAR(deck.za, raw.at(-40, 0), 1) << "near the ground there";
-    for (double x = -30; x <= 30; x += 0.5)
+    for (Vec2 c : bridge.quad)
+        EXPECT_NEAR(field_surface_height(f, c.x, c.y), deck_height(deck, c), 1e-3) << "the deck's end on its abutment";
+    for (double x = -25; x <= 25; x += 0.5)
         for (double y : {-3.0, 0.0, 3.0})
             EXPECT_LE(field_surface_height(f, x, y), deck_height(deck, {x, y}) - kDeckThickness) << x << " " << y;
     EXPECT_LT(f.at(0, 0), raw.at(0, 0) - 12) << "the hill is carved";
@@ -131,6 +134,7 @@ TEST(FitTerrainToWays, ABridgeIsNotFittedAndTheGroundUnderItsDeckIsCarvedBelowIt
     EXPECT_FLOAT_EQ(f.at(20, -70), raw.at(20, -70)) << "steps stay on the DEM";
     EXPECT_EQ(report.note_count(ReportKind::RoadEdges, ReportReason::BridgeOnItsDeck), 1);
     EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainUnderDeck), 0);
+    EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainUnderAbutment), 0);
     EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::StepsOnTheGround), 1);
 }
 
