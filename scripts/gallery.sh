@@ -38,6 +38,8 @@ if [ -f "$data/osm/monaco.osm.pbf" ] && [ -f "$data/dem/N43E007.hgt.zip" ]; then
     monaco=(--width 480 --height 270 -q --spp 16 --denoise)
     run ./render monaco.scene -o "$gallery/monaco_sea.png" "${monaco[@]}" --camera 700,-1500,120 --look-at -150,-650,50
     run ./render monaco.scene -o "$gallery/monaco_town.png" "${monaco[@]}" --camera 200,-1100,180 --look-at -400,0,40
-    run ./render monaco.scene -o "$gallery/monaco_street.png" "${monaco[@]}" --camera -255,-146,53 --look-at -500,-330,95
+    run ./render monaco.scene -o "$gallery/monaco_street.png" "${monaco[@]}" --camera 415,295,47.8 --look-at 356,447,68 --fov 60
+    run ./render monaco.scene -o "$gallery/monaco_bridge.png" "${monaco[@]}" --camera -80,-110,45 --look-at -80,-25,32 --fov 60
+    run ./render monaco.scene -o "$gallery/monaco_harbour.png" "${monaco[@]}" --camera 80,-150,50 --look-at 260,60,0 --fov 60
 fi
 echo "wrote $(ls "$gallery" | wc -l) images to $out" >&2
