@@ -22,8 +22,9 @@ std::map<int64_t, std::vector<int64_t>> group_close_junctions(LayoutState& state
     for (uint32_t e = 0; e < graph.edges.size(); ++e) {
         if (state.removed[e]) continue;
         const RoadGraphEdge& edge = graph.edges[e];
-        if (state.nodes.at(edge.from_node).kind != JoinKind::Joint || state.nodes.at(edge.to_node).kind != JoinKind::Joint) continue;
+        // The cheap test first: most edges are long enough for their joints (no node lookups).
         if (state.own_demand.from[e] + state.own_demand.to[e] <= kJointsTake * state.edge_length(e)) continue;
+        if (state.nodes.at(edge.from_node).kind != JoinKind::Joint || state.nodes.at(edge.to_node).kind != JoinKind::Joint) continue;
         const int64_t a = groups.root(edge.from_node), b = groups.root(edge.to_node);
         if (a == b) continue;
         std::vector<Vec2> pa = positions.count(a) ? positions[a] : std::vector<Vec2>{edge.from};
