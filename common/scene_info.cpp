@@ -148,11 +148,13 @@ double percentile(std::vector<double> v, double p) {
 
 // How the roads lie on the field (docs/terrain.md, "Fitted to roads and water"): every 2 m
 // along each centreline, away from its ends (a joint warps a road's end to meet the others),
-// the slope across the carriageway and the grade along it, on the drawn ground.
+// the slope across the carriageway and the grade along it, on the drawn ground. Bridges lie on
+// their decks (common/bridge_deck.h), level across and straight along by construction.
 void print_road_fit_info(const Scene& s, std::FILE* out) {
     constexpr double kStep = 2;
     std::vector<double> cross, grade;
     for (const RoadEdge& r : s.roads) {
+        if (r.bridge) continue;
         const std::vector<Vec2>& line = r.centreline;
         double along = 0, total = 0;
         for (size_t k = 0; k + 1 < line.size(); ++k) total += length(line[k + 1] - line[k]);
