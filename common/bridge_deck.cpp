@@ -153,26 +153,42 @@ std::vector<DeckLine> bridge_decks(const Scene& scene) {
     return bridge_decks(scene.terrain, scene.ground.z, scene.roads);
 }
 
-DeckLine joint_deck(const std::vector<DeckLine>& decks, const Joint& joint) {
-    DeckLine flat;
-    if (joint.edges.empty() || joint.polygon.empty()) return flat;
-    for (uint32_t e : joint.edges)
-        if (e >= decks.size() || !decks[e].valid) return flat;
-    // The joint's roads end at its node, where their decks share one height.
-    Vec2 centre{0, 0};
-    for (Vec2 p : joint.polygon) centre = centre + p;
-    centre = centre * (1.0 / joint.polygon.size());
-    const DeckLine& d = decks[joint.edges.front()];
-    flat.valid = true;
-    flat.a = flat.b = centre;
-    flat.za = flat.zb = length(d.a - centre) <= length(d.b - centre) ? d.za : d.zb;
-    return flat;
+double DeckSurface::height(Vec2 p) const {
+    if (roads.size() == 1) return deck_height((*decks)[roads[0]], p);
+    const DeckLine* nearest = nullptr;
+    std::pair<double, double> best{std::numeric_limits<double>::infinity(), 0};
+    for (uint32_t r : roads) {
+        const DeckLine& d = (*decks)[r];
+        const Ring& quad = (*road_edges)[r].quad;
+        const double to_quad = quad.size() >= 3 && !point_in_ring(p, quad) ? distance_to_boundary(p, quad) : 0;
+        const Vec2 q = d.a + (d.b - d.a) * std::clamp(deck_parameter(d, p), 0.0, 1.0);
+        const std::pair<double, double> distance{std::round(to_quad * 1e4), length(p - q)};  // 0.1 mm
+        if (distance < best) best = distance, nearest = &d;
+    }
+    return nearest ? deck_height(*nearest, p) : 0.0;
 }
 
-DeckLine sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Sidewalk& sidewalk) {
-    if (sidewalk.road >= 0 && static_cast<size_t>(sidewalk.road) < decks.size()) return decks[sidewalk.road];
+DeckSurface road_deck(const std::vector<DeckLine>& decks, uint32_t road) {
+    DeckSurface s;
+    s.decks = &decks;
+    if (road < decks.size() && decks[road].valid) s.roads = {road};
+    return s;
+}
+
+DeckSurface joint_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Joint& joint) {
+    DeckSurface s;
+    s.decks = &decks;
+    s.road_edges = &scene.roads;
+    for (uint32_t e : joint.edges)
+        if (e >= decks.size() || !decks[e].valid) return s;
+    if (!joint.polygon.empty()) s.roads = joint.edges;
+    return s;
+}
+
+DeckSurface sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Sidewalk& sidewalk) {
+    if (sidewalk.road >= 0) return road_deck(decks, static_cast<uint32_t>(sidewalk.road));
     if (sidewalk.joint >= 0 && static_cast<size_t>(sidewalk.joint) < scene.joints.size())
-        return joint_deck(decks, scene.joints[sidewalk.joint]);
+        return joint_deck(scene, decks, scene.joints[sidewalk.joint]);
     return {};
 }
 

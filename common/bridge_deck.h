@@ -43,13 +43,21 @@ struct DeckLine {
 std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, const std::vector<RoadEdge>& roads);
 std::vector<DeckLine> bridge_decks(const Scene& scene);
 
-// A joint all of whose roads are bridges (a junction on a viaduct) lies on their decks: the deck
-// at that height, level (a flat DeckLine); invalid for any other joint, which lies on the ground.
-DeckLine joint_deck(const std::vector<DeckLine>& decks, const Joint& joint);
-
-// The deck a sidewalk piece lies on: its road's along a strip, its joint's at a corner; invalid
-// where that lies on the ground.
-DeckLine sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Sidewalk& sidewalk);
+// The surface a piece on a deck lies on: its bridge road's deck, or at a junction on a viaduct (a
+// joint all of whose roads are bridges) the deck of the road whose quad is nearest each point
+// (then whose chord), so the joint meets every road's end as a joint on the ground does. No
+// roads (invalid) for a piece on the ground.
+struct DeckSurface {
+    const std::vector<DeckLine>* decks = nullptr;
+    const std::vector<RoadEdge>* road_edges = nullptr;
+    std::vector<uint32_t> roads;
+    bool valid() const { return !roads.empty(); }
+    double height(Vec2 p) const;
+};
+DeckSurface road_deck(const std::vector<DeckLine>& decks, uint32_t road);
+DeckSurface joint_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Joint& joint);
+// A sidewalk strip lies on its road's deck, a corner on its joint's.
+DeckSurface sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Sidewalk& sidewalk);
 
 // Where p lies along the deck: its projection onto the chord, 0 at a and 1 at b (not clamped).
 double deck_parameter(const DeckLine& deck, Vec2 p);

@@ -22,7 +22,7 @@ public:
     }
 
     // Each vertex at the ground under it, or on the deck when one is given.
-    void polygon(const std::vector<const Ring*>& rings, const std::string& properties, const DeckLine* deck = nullptr) {
+    void polygon(const std::vector<const Ring*>& rings, const std::string& properties, const DeckSurface* deck = nullptr) {
         polygon_at(rings, properties, std::nullopt, deck);
     }
     // Every vertex at `height` (relative to the field's reference altitude, like the field).
@@ -41,7 +41,7 @@ public:
 
 private:
     void polygon_at(const std::vector<const Ring*>& rings, const std::string& properties,
-                    std::optional<double> height, const DeckLine* deck) {
+                    std::optional<double> height, const DeckSurface* deck) {
         begin("Polygon");
         for (size_t r = 0; r < rings.size(); ++r) {
             text_ += r ? ",[" : "[";
@@ -49,7 +49,7 @@ private:
             for (size_t i = 0; i <= ring.size(); ++i) {  // GeoJSON rings repeat the first point
                 if (i) text_ += ",";
                 const Vec2 p = ring[i % ring.size()];
-                text_ += "[" + coordinates(p, deck ? std::optional(deck_height(*deck, p)) : height) + "]";
+                text_ += "[" + coordinates(p, deck ? std::optional(deck->height(p)) : height) + "]";
             }
             text_ += "]";
         }
@@ -128,11 +128,9 @@ std::string scene_to_geojson(const Scene& scene) {
     }
     // Bridges on a field lie on their decks (common/bridge_deck.h), as render draws them.
     const std::vector<DeckLine> decks = scene.terrain.empty() ? std::vector<DeckLine>{} : bridge_decks(scene);
-    const auto deck_of = [&](int road) {
-        return road >= 0 && static_cast<size_t>(road) < decks.size() && decks[road].valid ? &decks[road] : nullptr;
-    };
     for (size_t k = 0; k < scene.roads.size(); ++k) {
         const RoadEdge& r = scene.roads[k];
+        const DeckSurface deck = road_deck(decks, static_cast<uint32_t>(k));
         w.polygon({&r.quad}, "\"kind\":\"road\",\"osm\":" + str(to_string(r.osm)) + ",\"from_node\":" +
                                  std::to_string(r.from_node) + ",\"to_node\":" + std::to_string(r.to_node) +
                                  ",\"width\":" + num(r.width) + ",\"class\":\"" + to_string(r.road_class) +
@@ -143,21 +141,21 @@ std::string scene_to_geojson(const Scene& scene) {
                                  ",\"centre_line\":" + std::to_string(static_cast<int>(r.centre_line)) +
                                  ",\"edge_lines\":" + (r.edge_lines ? "true" : "false") +
                                  ",\"cycle_lanes\":" + std::to_string(r.cycle_lane_left + r.cycle_lane_right),
-                  deck_of(static_cast<int>(k)));
+                  deck.valid() ? &deck : nullptr);
     }
     for (const Joint& j : scene.joints) {
-        const DeckLine deck = joint_deck(decks, j);
+        const DeckSurface deck = joint_deck(scene, decks, j);
         w.polygon({&j.polygon}, "\"kind\":\"joint\",\"osm\":" + str(to_string(j.osm)) + ",\"edges\":" +
-                                    std::to_string(j.edges.size()), deck.valid ? &deck : nullptr);
+                                    std::to_string(j.edges.size()), deck.valid() ? &deck : nullptr);
     }
     for (const Sidewalk& s : scene.sidewalks) {
-        const DeckLine deck = sidewalk_deck(scene, decks, s);
+        const DeckSurface deck = sidewalk_deck(scene, decks, s);
         w.polygon({&s.polygon}, std::string("\"kind\":\"sidewalk\",\"piece\":\"") +
                                     (s.kind == SidewalkKind::Strip ? "strip" : "corner") +
                                     "\",\"height\":" + num(s.curb_height) +
                                     (s.road >= 0 ? ",\"osm\":" + str(to_string(scene.roads[s.road].osm)) : "") +
                                     (s.joint >= 0 ? ",\"joint\":" + str(to_string(scene.joints[s.joint].osm)) : ""),
-                  deck.valid ? &deck : nullptr);
+                  deck.valid() ? &deck : nullptr);
     }
     const StandingSurface surface(scene);
     for (const Lamp& l : scene.lamps)

@@ -32,13 +32,13 @@ std::vector<DeckLine> drawn_decks(const Scene& scene) {
     return bridge_decks(scene);
 }
 
-std::vector<BridgeFace> deck_piece_faces(const DeckLine& deck, const Ring& ring, double lift, uint16_t top_material) {
+std::vector<BridgeFace> deck_piece_faces(const DeckSurface& deck, const Ring& ring, double lift, uint16_t top_material) {
     std::vector<BridgeFace> faces;
     if (ring.size() < 3) return faces;
     Ring outline = ring;
     if (signed_area(outline) < 0) std::reverse(outline.begin(), outline.end());
-    const auto top = [&](Vec2 p) { return deck_height(deck, p) + lift; };
-    const auto bottom = [&](Vec2 p) { return deck_height(deck, p) - kDeckThickness; };
+    const auto top = [&](Vec2 p) { return deck.height(p) + lift; };
+    const auto bottom = [&](Vec2 p) { return deck.height(p) - kDeckThickness; };
     const PolygonTriangulation tri = triangulate_polygon(outline);
     for (const auto& t : tri.triangles) {
         const Vec2 a = tri.points[t[0]], b = tri.points[t[1]], c = tri.points[t[2]];

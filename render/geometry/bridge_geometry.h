@@ -25,7 +25,7 @@ std::vector<DeckLine> drawn_decks(const Scene& scene);
 // A polygon on a deck, `lift` above its surface, with its slab (kDeckThickness under the
 // surface: an underside facing down and a side face on every edge facing out) and, for a road,
 // its piers: the road's own surface, or a sidewalk along it (lift: its curb top).
-std::vector<BridgeFace> deck_piece_faces(const DeckLine& deck, const Ring& ring, double lift, uint16_t top_material);
+std::vector<BridgeFace> deck_piece_faces(const DeckSurface& deck, const Ring& ring, double lift, uint16_t top_material);
 std::vector<BridgeFace> deck_piers(const Scene& scene, const DeckLine& deck, const RoadEdge& road);
 
 }  // namespace citygen

@@ -50,7 +50,7 @@ TriangleMesh build_stored_roads(const Scene& scene) {
     const std::vector<DeckLine> decks = drawn_decks(scene);
     for (uint32_t i = 0; i < scene.roads.size(); ++i) {
         if (i < decks.size() && decks[i].valid) {
-            add_faces(deck_piece_faces(decks[i], scene.roads[i].quad, kRoadLift, kAsphalt), i, mesh);
+            add_faces(deck_piece_faces(road_deck(decks, i), scene.roads[i].quad, kRoadLift, kAsphalt), i, mesh);
             add_faces(deck_piers(scene, decks[i], scene.roads[i]), i, mesh);
             continue;
         }
@@ -64,7 +64,7 @@ TriangleMesh build_stored_joints(const Scene& scene) {
     mesh.kind = ObjectKind::Joint;
     const std::vector<DeckLine> decks = drawn_decks(scene);
     for (uint32_t i = 0; i < scene.joints.size(); ++i) {
-        if (const DeckLine deck = joint_deck(decks, scene.joints[i]); deck.valid) {
+        if (const DeckSurface deck = joint_deck(scene, decks, scene.joints[i]); deck.valid()) {
             add_faces(deck_piece_faces(deck, scene.joints[i].polygon, kRoadLift, kAsphalt), i, mesh);
             continue;
         }
@@ -113,7 +113,7 @@ TriangleMesh build_stored_sidewalks(const Scene& scene) {
     const std::vector<DeckLine> decks = drawn_decks(scene);
     for (uint32_t i = 0; i < scene.sidewalks.size(); ++i) {
         if (!sidewalk_shape(scene, i, &shape)) continue;
-        if (const DeckLine deck = sidewalk_deck(scene, decks, scene.sidewalks[i]); deck.valid) {
+        if (const DeckSurface deck = sidewalk_deck(scene, decks, scene.sidewalks[i]); deck.valid()) {
             add_faces(deck_piece_faces(deck, shape.ring, kRoadLift + (shape.top_z - shape.road_z), kSidewalk), i, mesh);
             continue;
         }
