@@ -241,9 +241,9 @@ if diffs:
     rms = math.sqrt(sum(d * d for d in diffs) / len(diffs))
     mean = sum(diffs) / len(diffs)
     print("| land cover z - DEM, vertices beyond 10 m of any road vertex: RMS (mean) | %.2f m (%+.2f) | %d vertices | <= 0.5 m beyond resampling |" % (rms, mean, len(diffs)))
-    for name in sorted(by_class):
-        v = by_class[name]
-        print("| the same, %s | %.2f m (%+.2f) | %d vertices | |" % (name, math.sqrt(sum(d * d for d in v) / len(v)), sum(v) / len(v), len(v)))
+    for cover in sorted(by_class):
+        v = by_class[cover]
+        print("| the same, %s | %.2f m (%+.2f) | %d vertices | |" % (cover, math.sqrt(sum(d * d for d in v) / len(v)), sum(v) / len(v), len(v)))
 print()
 print("The DEM is %s read bilinearly (%d x %d posts). The RMS includes the field's resampling of the" % (name, size, size))
 print("tile to its grid (81 m at native resolution) and the cell triangles (ground_height) against the")
