@@ -248,13 +248,4 @@ double deck_along(const DeckLine& deck, Vec2 p) {
     return deck.along_a + (deck.along_b - deck.along_a) * deck_parameter(deck, p);
 }
 
-double deck_end_distance(const DeckLine& deck, Vec2 p) {
-    const double t = std::clamp(deck_parameter(deck, p), 0.0, 1.0);
-    const double along = deck.along_a + (deck.along_b - deck.along_a) * t;
-    double distance = std::numeric_limits<double>::infinity();
-    if (deck.starts_on_ground) distance = std::min(distance, along);
-    if (deck.ends_on_ground) distance = std::min(distance, deck.bridge_length - along);
-    return distance;
-}
-
 }  // namespace citygen

@@ -68,10 +68,6 @@ double deck_height(const DeckLine& deck, Vec2 p);
 // Where p (projected on the chord, not clamped) lies along the whole bridge, metres from its start.
 double deck_along(const DeckLine& deck, Vec2 p);
 
-// How far p (projected on the chord) lies along the bridge from the nearer of its ends on the
-// ground (infinite when neither is).
-double deck_end_distance(const DeckLine& deck, Vec2 p);
-
 // What stands at a point (a street lamp) stands on the top surface there: a bridge's deck where
 // the point lies on it (within 2.5 m of its carriageway: its sidewalk or parapet), the ground
 // elsewhere. Built once per scene; without a field, or without bridges, it is the ground.

@@ -53,8 +53,9 @@ TEST(BridgeDecks, AChainIsStraightBetweenItsEndsOnTheGroundWhateverItsEdgesOrder
         EXPECT_EQ(decks[e].bridge_length, 80);
         EXPECT_TRUE(decks[e].starts_on_ground && decks[e].ends_on_ground);
     }
-    EXPECT_NEAR(deck_end_distance(decks[1], {0, 0}), 40, 1e-9);
-    EXPECT_NEAR(deck_end_distance(decks[3], {-35, 3}), 5, 1e-9);
+    // The chain runs from node 5 (x = 40) to node 1 (x = -40).
+    EXPECT_NEAR(deck_along(decks[1], {0, 0}), 40, 1e-9);
+    EXPECT_NEAR(deck_along(decks[3], {-35, 3}), 75, 1e-9);
 }
 
 TEST(BridgeDecks, ARisingChainRisesLinearlyAlongItsLength) {
@@ -93,7 +94,7 @@ TEST(BridgeDecks, WhereChainsMeetOnADeckEachStaysStraight) {
     EXPECT_NEAR(decks[0].zb, 20, 1e-6);
     EXPECT_FALSE(decks[0].starts_on_ground);
     EXPECT_TRUE(decks[0].ends_on_ground);
-    EXPECT_NEAR(deck_end_distance(decks[0], {-10, 0}), 30, 1e-9) << "measured from the end on the ground";
+    EXPECT_NEAR(deck_along(decks[0], {-10, 0}), 10, 1e-9) << "from the junction on the deck";
 }
 
 TEST(BridgeDecks, WithoutAFieldADeckLiesOnTheFlatGround) {
