@@ -220,28 +220,34 @@ StandingSurface::StandingSurface(const Scene& scene) : scene_(scene) {
         const auto i1 = static_cast<int64_t>(std::floor((box.max.x + reach_[e]) / kCell));
         const auto j0 = static_cast<int64_t>(std::floor((box.min.y - reach_[e]) / kCell));
         const auto j1 = static_cast<int64_t>(std::floor((box.max.y + reach_[e]) / kCell));
+        if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMaxCells) {  // a deck kilometres long (or a hostile scene's)
+            long_decks_.push_back(e);
+            continue;
+        }
         for (int64_t i = i0; i <= i1; ++i)
             for (int64_t j = j0; j <= j1; ++j) cells_[cell_key(i, j)].push_back(e);
     }
 }
 
 double StandingSurface::height(Vec2 p) const {
-    double z = ground_height(scene_, p.x, p.y);
-    if (cells_.empty()) return z;
+    const double ground = ground_height(scene_, p.x, p.y);
+    if (cells_.empty() && long_decks_.empty()) return ground;
+    static const std::vector<uint32_t> kNone;
     const auto found = cells_.find(cell_key(static_cast<int64_t>(std::floor(p.x / kCell)),
                                             static_cast<int64_t>(std::floor(p.y / kCell))));
-    if (found == cells_.end()) return z;
+    const std::vector<uint32_t>& near = found == cells_.end() ? kNone : found->second;
     bool on_deck = false;
     double top = 0;
-    for (uint32_t e : found->second) {
-        const DeckLine& d = decks_[e];
-        const double t = deck_parameter(d, p);
-        if (t < 0 || t > 1 || length(p - (d.a + (d.b - d.a) * t)) > reach_[e]) continue;
-        const double deck = deck_height(d, p);
-        top = on_deck ? std::max(top, deck) : deck;  // bridges over bridges: the upper deck
-        on_deck = true;
-    }
-    return on_deck ? top : z;
+    for (const std::vector<uint32_t>* decks : {&near, &long_decks_})
+        for (uint32_t e : *decks) {
+            const DeckLine& d = decks_[e];
+            const double t = deck_parameter(d, p);
+            if (t < 0 || t > 1 || length(p - (d.a + (d.b - d.a) * t)) > reach_[e]) continue;
+            const double deck = deck_height(d, p);
+            top = on_deck ? std::max(top, deck) : deck;  // bridges over bridges: the upper deck
+            on_deck = true;
+        }
+    return on_deck ? top : ground;
 }
 
 double deck_along(const DeckLine& deck, Vec2 p) {

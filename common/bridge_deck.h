@@ -81,6 +81,8 @@ private:
     std::vector<DeckLine> decks_;
     std::vector<double> reach_;  // per deck: how far from its chord a point is on it
     std::unordered_map<int64_t, std::vector<uint32_t>> cells_;  // decks by kCell-metre cell
+    std::vector<uint32_t> long_decks_;  // decks over more than kMaxCells cells, tried for every point
+    static constexpr int64_t kMaxCells = 4096;
     static constexpr double kCell = 64;
     static int64_t cell_key(int64_t i, int64_t j) { return i * 4194304 + j; }
 };

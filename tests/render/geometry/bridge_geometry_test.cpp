@@ -125,6 +125,17 @@ TEST(BridgeGeometry, ALampOnABridgeStandsOnItsDeckAndOneBesideItOnTheGround) {
     EXPECT_NEAR(lamp_ground(surface, away), ground_height(s, -80, 0), 1e-9);
 }
 
+TEST(BridgeGeometry, ADeckHundredsOfKilometresLongIsFoundWithoutIndexingEveryCellAcrossIt) {
+    Scene s = valley_with_bridge();
+    s.roads = {road(1, 2, {-60, -60}, {400000, 400000}, true)};  // what a hostile scene may hold
+    const StandingSurface surface(s);  // its bounding box holds 39 million 64 m cells
+    Lamp on;
+    on.position = {0, 0, 0};
+    const double deck = deck_height(bridge_decks(s)[0], {0, 0});
+    EXPECT_GT(deck, 29);
+    EXPECT_NEAR(lamp_ground(surface, on), deck, 1e-9);
+}
+
 TEST(BridgeGeometry, WithoutAFieldABridgeIsAnyRoad) {
     Scene s = valley_with_bridge();
     s.terrain = {};
