@@ -11,7 +11,8 @@ namespace citygen {
 
 namespace {
 
-double centreline_length(const RoadEdge& r) {
+template <class Edge>
+double centreline_length(const Edge& r) {
     double total = 0;
     for (size_t k = 0; k + 1 < r.centreline.size(); ++k) total += length(r.centreline[k + 1] - r.centreline[k]);
     return total;
@@ -26,9 +27,11 @@ struct Chain {
     double length = 0;
 };
 
+// The edges (roads, or paths and rails) and the nodes where they meet.
+template <class Edge>
 class BridgeGraph {
 public:
-    explicit BridgeGraph(const std::vector<RoadEdge>& roads) : roads_(roads) {
+    explicit BridgeGraph(const std::vector<Edge>& roads) : roads_(roads) {
         for (uint32_t e = 0; e < roads.size(); ++e) {
             edges_at_[roads[e].from_node].push_back(e);
             if (roads[e].to_node != roads[e].from_node) edges_at_[roads[e].to_node].push_back(e);
@@ -80,16 +83,15 @@ public:
     }
 
 private:
-    const std::vector<RoadEdge>& roads_;
+    const std::vector<Edge>& roads_;
     std::unordered_map<int64_t, std::vector<uint32_t>> edges_at_;
 };
 
-}  // namespace
-
-std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, const std::vector<RoadEdge>& roads) {
+template <class Edge>
+std::vector<DeckLine> decks_of(const HeightField& field, double flat_z, const std::vector<Edge>& roads) {
     std::vector<DeckLine> decks(roads.size());
     const auto ground = [&](Vec2 p) { return field.empty() ? flat_z : field_surface_height(field, p.x, p.y); };
-    const BridgeGraph graph(roads);
+    const BridgeGraph<Edge> graph(roads);
     std::vector<Chain> chains;
     std::vector<bool> chained(roads.size(), false);
     for (uint32_t e = 0; e < roads.size(); ++e) {
@@ -128,7 +130,7 @@ std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, cons
         const double span = std::max(c.length, 1e-9);
         double along = 0;
         for (size_t k = 0; k < c.edges.size(); ++k) {
-            const RoadEdge& r = roads[c.edges[k]];
+            const Edge& r = roads[c.edges[k]];
             const double l = centreline_length(r);
             DeckLine& d = decks[c.edges[k]];
             d.valid = true;
@@ -149,17 +151,43 @@ std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, cons
     return decks;
 }
 
+template <class Edge>
+DeckSurface joint_deck_of(const std::vector<Edge>& edges, const std::vector<DeckLine>& decks, const Joint& joint) {
+    DeckSurface s;
+    s.decks = &decks;
+    for (uint32_t e : joint.edges)
+        if (e >= decks.size() || e >= edges.size() || !decks[e].valid) return s;
+    if (joint.polygon.empty()) return s;
+    s.edges = joint.edges;
+    for (uint32_t e : joint.edges) s.quads.push_back(&edges[e].quad);
+    return s;
+}
+
+}  // namespace
+
+std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, const std::vector<RoadEdge>& roads) {
+    return decks_of(field, flat_z, roads);
+}
+
+std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, const std::vector<PathEdge>& paths) {
+    return decks_of(field, flat_z, paths);
+}
+
 std::vector<DeckLine> bridge_decks(const Scene& scene) {
     return bridge_decks(scene.terrain, scene.ground.z, scene.roads);
 }
 
+std::vector<DeckLine> path_bridge_decks(const Scene& scene) {
+    return bridge_decks(scene.terrain, scene.ground.z, scene.paths);
+}
+
 double DeckSurface::height(Vec2 p) const {
-    if (roads.size() == 1) return deck_height((*decks)[roads[0]], p);
+    if (edges.size() == 1) return deck_height((*decks)[edges[0]], p);
     const DeckLine* nearest = nullptr;
     std::pair<double, double> best{std::numeric_limits<double>::infinity(), 0};
-    for (uint32_t r : roads) {
-        const DeckLine& d = (*decks)[r];
-        const Ring& quad = (*road_edges)[r].quad;
+    for (size_t k = 0; k < edges.size(); ++k) {
+        const DeckLine& d = (*decks)[edges[k]];
+        const Ring& quad = *quads[k];
         const double to_quad = quad.size() >= 3 && !point_in_ring(p, quad) ? distance_to_boundary(p, quad) : 0;
         const Vec2 q = d.a + (d.b - d.a) * std::clamp(deck_parameter(d, p), 0.0, 1.0);
         const std::pair<double, double> distance{std::round(to_quad * 1e4), length(p - q)};  // 0.1 mm
@@ -168,25 +196,23 @@ double DeckSurface::height(Vec2 p) const {
     return nearest ? deck_height(*nearest, p) : 0.0;
 }
 
-DeckSurface road_deck(const std::vector<DeckLine>& decks, uint32_t road) {
+DeckSurface edge_deck(const std::vector<DeckLine>& decks, uint32_t edge) {
     DeckSurface s;
     s.decks = &decks;
-    if (road < decks.size() && decks[road].valid) s.roads = {road};
+    if (edge < decks.size() && decks[edge].valid) s.edges = {edge};
     return s;
 }
 
 DeckSurface joint_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Joint& joint) {
-    DeckSurface s;
-    s.decks = &decks;
-    s.road_edges = &scene.roads;
-    for (uint32_t e : joint.edges)
-        if (e >= decks.size() || !decks[e].valid) return s;
-    if (!joint.polygon.empty()) s.roads = joint.edges;
-    return s;
+    return joint_deck_of(scene.roads, decks, joint);
+}
+
+DeckSurface path_joint_deck(const Scene& scene, const std::vector<DeckLine>& path_decks, const Joint& joint) {
+    return joint_deck_of(scene.paths, path_decks, joint);
 }
 
 DeckSurface sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Sidewalk& sidewalk) {
-    if (sidewalk.road >= 0) return road_deck(decks, static_cast<uint32_t>(sidewalk.road));
+    if (sidewalk.road >= 0) return edge_deck(decks, static_cast<uint32_t>(sidewalk.road));
     if (sidewalk.joint >= 0 && static_cast<size_t>(sidewalk.joint) < scene.joints.size())
         return joint_deck(scene, decks, scene.joints[sidewalk.joint]);
     return {};

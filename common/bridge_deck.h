@@ -1,6 +1,7 @@
-// Bridges on a height field, one rule for both programs: a road tagged `bridge` keeps its own
-// deck instead of following the ground under it. A bridge is a chain of road edges (one per
-// segment of its way) between the nodes where it meets roads on the ground; its deck is level
+// Bridges on a height field, one rule for both programs: a road, path or rail tagged `bridge`
+// keeps its own deck instead of following the ground under it. A bridge is a chain of edges (one
+// per segment of its way) between the nodes where it meets edges of its network (roads, or
+// paths and rails) on the ground; its deck is level
 // across and straight along the chain, from the drawn ground at one end to the other, so it
 // meets the roads at both ends and spans whatever lies between them (a valley, a river, a road
 // below). Where bridges meet on a deck (a junction on a viaduct) the deck's height there is the
@@ -39,23 +40,28 @@ struct DeckLine {
 };
 
 // The decks of every road (invalid where the road is not a bridge) on the field, or at flat_z
-// without one.
+// without one; of every path and rail the same, their chains ending where they meet paths on the
+// ground (the two networks meet only on the ground).
 std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, const std::vector<RoadEdge>& roads);
+std::vector<DeckLine> bridge_decks(const HeightField& field, double flat_z, const std::vector<PathEdge>& paths);
 std::vector<DeckLine> bridge_decks(const Scene& scene);
+std::vector<DeckLine> path_bridge_decks(const Scene& scene);
 
-// The surface a piece on a deck lies on: its bridge road's deck, or at a junction on a viaduct (a
-// joint all of whose roads are bridges) the deck of the road whose quad is nearest each point
-// (then whose chord), so the joint meets every road's end as a joint on the ground does. No
-// roads (invalid) for a piece on the ground.
+// The surface a piece on a deck lies on: its bridge edge's deck, or at a junction on a viaduct (a
+// joint all of whose edges are bridges) the deck of the edge whose quad is nearest each point
+// (then whose chord), so the joint meets every edge's end as a joint on the ground does. No
+// edges (invalid) for a piece on the ground.
 struct DeckSurface {
     const std::vector<DeckLine>* decks = nullptr;
-    const std::vector<RoadEdge>* road_edges = nullptr;
-    std::vector<uint32_t> roads;
-    bool valid() const { return !roads.empty(); }
+    std::vector<uint32_t> edges;     // into decks
+    std::vector<const Ring*> quads;  // the edges' quads, at a joint
+    bool valid() const { return !edges.empty(); }
     double height(Vec2 p) const;
 };
-DeckSurface road_deck(const std::vector<DeckLine>& decks, uint32_t road);
+// The deck of a road, or of a path (decks from path_bridge_decks).
+DeckSurface edge_deck(const std::vector<DeckLine>& decks, uint32_t edge);
 DeckSurface joint_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Joint& joint);
+DeckSurface path_joint_deck(const Scene& scene, const std::vector<DeckLine>& path_decks, const Joint& joint);
 // A sidewalk strip lies on its road's deck, a corner on its joint's.
 DeckSurface sidewalk_deck(const Scene& scene, const std::vector<DeckLine>& decks, const Sidewalk& sidewalk);
 

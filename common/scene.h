@@ -200,6 +200,7 @@ struct PathEdge {
     PathClass path_class = PathClass::Footway;
     int from_joint = -1, to_joint = -1;  // into Scene::path_joints
     bool sidewalk = false;
+    bool bridge = false;  // set only with a height field (osmparse --dem)
 };
 
 enum class CrossingKind : uint8_t { Zebra = 0, StopLine = 1 };

@@ -378,9 +378,21 @@ std::vector<flatbuffers::Offset<fb::PathEdge>> encode_paths(Builder& b, const st
         fb::OsmRef osm = to_fb(x.osm);
         const auto quad = points(b, x.quad);
         const auto centreline = points(b, x.centreline);
-        paths.push_back(fb::CreatePathEdge(b, &osm, x.from_node, x.to_node, centreline, quad,
-                                           static_cast<float>(x.width), static_cast<fb::PathClass>(x.path_class),
-                                           x.from_joint, x.to_joint, x.sidewalk));
+        // Fields in CreatePathEdge's order; `bridge` only when set (it is set only on a height
+        // field), so a scene without one keeps the bytes it had before the field existed.
+        fb::PathEdgeBuilder p(b);
+        p.add_to_node(x.to_node);
+        p.add_from_node(x.from_node);
+        p.add_to_joint(x.to_joint);
+        p.add_from_joint(x.from_joint);
+        p.add_width(static_cast<float>(x.width));
+        p.add_quad(quad);
+        p.add_centreline(centreline);
+        p.add_osm(&osm);
+        if (x.bridge) p.add_bridge(true);
+        p.add_sidewalk(x.sidewalk);
+        p.add_path_class(static_cast<fb::PathClass>(x.path_class));
+        paths.push_back(p.Finish());
     }
     return paths;
 }
@@ -715,6 +727,7 @@ void decode_paths(const fb::Scene* in, Checker& check, Scene& s) {
             p.from_joint = check.index(x->from_joint(), path_joint_count, "path joint");
             p.to_joint = check.index(x->to_joint(), path_joint_count, "path joint");
             p.sidewalk = x->sidewalk();
+            p.bridge = x->bridge();
             s.paths.push_back(std::move(p));
         }
     if (in->path_joints())

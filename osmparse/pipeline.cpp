@@ -34,6 +34,7 @@
 #include "osmparse/roads/narrow_roads.h"
 #include "osmparse/roofs/build_roofs.h"
 #include "osmparse/run_stages.h"
+#include "osmparse/terrain/bridges_from_layers.h"
 #include "osmparse/terrain/build_terrain.h"
 #include "osmparse/terrain/fit_terrain.h"
 #include "osmparse/tiles/keep_inside_box.h"
@@ -229,6 +230,7 @@ struct ParseState {
     RoofEvidence roof_evidence;  // "roof evidence": the map's tagged roofs, which untagged ones follow
     size_t map_buildings = 0;  // the map's buildings come first; the empty blocks' after them
     RoadGraph road_graph;      // "road graph"
+    std::unordered_map<int64_t, int> way_layers;  // "way layers": the nonzero layers of highways and railways
     NarrowedRoads narrowed;    // "narrowed roads"
     RoadSurface surface;       // "road surface"
     PathSurface paths;         // "paths"
@@ -280,7 +282,8 @@ void lay_out_sidewalks(ParseState& s, ParseReport& report) {
 }
 
 void lay_out_paths(ParseState& s, ParseReport& report) {
-    s.paths = build_paths(s.osm, *s.projection, s.params().roads, report);
+    const bool with_bridges = !s.params().terrain.dem_files.empty();
+    s.paths = build_paths(s.osm, *s.projection, s.params().roads, with_bridges, report);
     s.scene.sidewalks = drop_doubled_sidewalks(std::move(s.scene.sidewalks), s.paths.paths, report);
     s.scene.paths = std::move(s.paths.paths);
     s.scene.path_joints = std::move(s.paths.joints);
@@ -373,6 +376,8 @@ std::vector<Stage> parse_stages(ParseState& s) {
          {"buildings", "building tags", "roof evidence", "osm building areas"}, run(infer_building_heights)},
         {"road graph", {"osm ways", "projection"}, {"road graph"},
          [&](ParseReport& r) { s.road_graph = build_road_graph(s.osm, *s.projection, p.roads, r); }},
+        {"way layers", {"osm ways"}, {"way layers"}, [&](ParseReport&) { s.way_layers = way_layers(s.osm); },
+         !p.terrain.dem_files.empty()},
         {"roads vs buildings", {"road graph", "buildings"}, {"narrowed roads"},
          [&](ParseReport& r) { s.narrowed = narrow_roads(std::move(s.road_graph), scene.buildings, p.roads, r); }},
         {"road polygons", {"narrowed roads"}, {"road surface"},
@@ -390,6 +395,10 @@ std::vector<Stage> parse_stages(ParseState& s) {
              scene.lamps.shrink_to_fit();  // counted as placed (grown by doubling), then kept to the end
          }},
         {"land cover", {"osm", "projection", "buildings"}, {"land cover"}, run(lay_out_land_cover)},
+        // --dem: ways above others by their layer get decks, as bridges do.
+        {"layered bridges", {"roads", "paths", "way layers", "land cover"}, {"roads", "paths"},
+         [&](ParseReport& r) { mark_layered_bridges(scene.roads, scene.paths, s.way_layers, scene.land_cover, r); },
+         !p.terrain.dem_files.empty()},
         {"trees", {"osm", "projection", "buildings", "roads", "joints", "paths", "land cover"}, {"trees"},
          [&](ParseReport& r) {
              scene.trees = place_trees(s.osm, *s.projection, scene, p.trees, p.seed, r);
@@ -438,6 +447,7 @@ StageHooks parse_hooks(ParseState& s) {
         {"osm ways", [&s] { release(s.osm.highways); release(s.osm.railways); }},
         {"building tags", [&s] { s.building_tags.reset(); }},
         {"road graph", [&s] { s.road_graph = RoadGraph(); }},
+        {"way layers", [&s] { s.way_layers = {}; }},
         {"narrowed roads", [&s] { s.narrowed = NarrowedRoads(); }},
         {"road surface", [&s] { s.surface = RoadSurface(); }},
         {"paths", [&s] { s.paths = PathSurface(); }},

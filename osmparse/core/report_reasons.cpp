@@ -265,6 +265,7 @@ constexpr Text<ReportReason> kReasonTexts[] = {
     {R::TerrainUnderAbutment, "at a bridge's end, on its deck (abutment)"},
     {R::TerrainUnderPier, "under a pier or quay in the sea, at its deck"},
     {R::BridgeOnItsDeck, "bridge: on its own deck, not fitted to the ground"},
+    {R::BridgeFromLayer, "bridge by its layer: above a lower way or water, no bridge tag"},
     {R::StepsOnTheGround, "steps: on the ground (stairs not built)"},
     {R::WaterLevelled, "still water, level at its lowest shore"},
     {R::WaterOnASlope, "shore falls over 5 m: draped, not level"},

@@ -286,6 +286,7 @@ enum class ReportReason {
     TerrainUnderAbutment,
     TerrainUnderPier,
     BridgeOnItsDeck,
+    BridgeFromLayer,
     StepsOnTheGround,
     WaterLevelled,
     WaterOnASlope,

@@ -122,6 +122,7 @@ std::string road_change(const RoadEdge& x, const RoadEdge& y, double tol) {
     if ((d = max_point_distance(x.centreline, y.centreline)) > tol) return "centreline moved " + metres(d);
     if (std::fabs(x.width - y.width) > tol) return "width changed by " + metres(std::fabs(x.width - y.width));
     if (x.sidewalk_left != y.sidewalk_left || x.sidewalk_right != y.sidewalk_right) return "sidewalks differ";
+    if (x.bridge != y.bridge) return "bridge differs";
     if (x.lanes_forward != y.lanes_forward || x.lanes_backward != y.lanes_backward ||
         x.centre_line != y.centre_line || x.edge_lines != y.edge_lines ||
         x.cycle_lane_left != y.cycle_lane_left || x.cycle_lane_right != y.cycle_lane_right)
@@ -148,6 +149,7 @@ std::string path_change(const PathEdge& x, const PathEdge& y, double tol) {
     double d = max_point_distance(x.quad, y.quad);
     if (d > tol) return "quadrangle moved " + metres(d);
     if (x.path_class != y.path_class) return "class differs";
+    if (x.bridge != y.bridge) return "bridge differs";
     return "";
 }
 

@@ -130,7 +130,7 @@ std::string scene_to_geojson(const Scene& scene) {
     const std::vector<DeckLine> decks = scene.terrain.empty() ? std::vector<DeckLine>{} : bridge_decks(scene);
     for (size_t k = 0; k < scene.roads.size(); ++k) {
         const RoadEdge& r = scene.roads[k];
-        const DeckSurface deck = road_deck(decks, static_cast<uint32_t>(k));
+        const DeckSurface deck = edge_deck(decks, static_cast<uint32_t>(k));
         w.polygon({&r.quad}, "\"kind\":\"road\",\"osm\":" + str(to_string(r.osm)) + ",\"from_node\":" +
                                  std::to_string(r.from_node) + ",\"to_node\":" + std::to_string(r.to_node) +
                                  ",\"width\":" + num(r.width) + ",\"class\":\"" + to_string(r.road_class) +
@@ -168,12 +168,20 @@ std::string scene_to_geojson(const Scene& scene) {
         w.polygon(rings, "\"kind\":\"land_cover\",\"class\":\"" + std::string(to_string(c.cover)) +
                              "\",\"osm\":" + str(to_string(c.osm)));
     }
-    for (const PathEdge& p : scene.paths)
+    const std::vector<DeckLine> path_decks = scene.terrain.empty() ? std::vector<DeckLine>{} : path_bridge_decks(scene);
+    for (size_t k = 0; k < scene.paths.size(); ++k) {
+        const PathEdge& p = scene.paths[k];
+        const DeckSurface deck = edge_deck(path_decks, static_cast<uint32_t>(k));
         w.polygon({&p.quad}, "\"kind\":\"path\",\"class\":\"" + std::string(to_string(p.path_class)) +
                                  "\",\"osm\":" + str(to_string(p.osm)) + ",\"width\":" + num(p.width) +
-                                 ",\"sidewalk\":" + (p.sidewalk ? "true" : "false"));
-    for (const Joint& j : scene.path_joints)
-        w.polygon({&j.polygon}, "\"kind\":\"path_joint\",\"osm\":" + str(to_string(j.osm)));
+                                 ",\"sidewalk\":" + (p.sidewalk ? "true" : "false") +
+                                 (p.bridge ? ",\"bridge\":true" : ""),  // only with a field: the same bytes without
+                  deck.valid() ? &deck : nullptr);
+    }
+    for (const Joint& j : scene.path_joints) {
+        const DeckSurface deck = path_joint_deck(scene, path_decks, j);
+        w.polygon({&j.polygon}, "\"kind\":\"path_joint\",\"osm\":" + str(to_string(j.osm)), deck.valid() ? &deck : nullptr);
+    }
     for (const Crossing& c : scene.crossings)
         w.point_feature(c.position, std::string("\"kind\":\"") +
                                         (c.kind == CrossingKind::Zebra ? "zebra_crossing" : "stop_line") +

@@ -34,10 +34,16 @@ const ClassInfo kTable[] = {
 // The graph builder reads highway=*: every path way gets a highway value naming its class.
 std::string graph_key(PathClass c) { return std::string("citygen-path-") + to_string(c); }
 
+// What a path edge takes from its way besides its class and width.
+struct PathWayFlags {
+    bool sidewalk = false;
+    bool bridge = false;
+};
+
 // Lays out one network (paths, or rails) and appends its edges and joints to `out`.
 void lay_out(std::vector<OsmWay> ways, const Projection& projection, const RoadParams& roads,
              const std::unordered_map<int64_t, std::pair<PathClass, double>>& info,
-             const std::unordered_map<int64_t, bool>& sidewalk, PathSurface& out, ParseReport& report) {
+             const std::unordered_map<int64_t, PathWayFlags>& flags, PathSurface& out, ParseReport& report) {
     if (ways.empty()) return;
     OsmData data;
     data.highways = std::move(ways);
@@ -72,8 +78,10 @@ void lay_out(std::vector<OsmWay> ways, const Projection& projection, const RoadP
         p.quad = std::move(layout.quads[e]);  // moved, as the joints below: nothing reads the layout after
         p.width = g.width;
         p.path_class = info.at(g.way_id).first;
-        auto s = sidewalk.find(g.way_id);
-        p.sidewalk = s != sidewalk.end() && s->second;
+        if (auto f = flags.find(g.way_id); f != flags.end()) {
+            p.sidewalk = f->second.sidewalk;
+            p.bridge = f->second.bridge;
+        }
         path_of_edge[e] = static_cast<int>(out.paths.size());
         out.paths.push_back(std::move(p));
     }
@@ -126,7 +134,7 @@ double path_width(const OsmTags& tags, PathClass c, ParseReport* report) {
 }
 
 // The tags build_paths reads (path_class_of, take, path_width).
-constexpr const char* kPathTagsRead[] = {"highway", "railway", "tunnel", "area", "indoor", "width", "footway"};
+constexpr const char* kPathTagsRead[] = {"highway", "railway", "tunnel", "area", "indoor", "width", "footway", "bridge"};
 
 void keep_path_ways(std::vector<OsmWay>& highways) {
     std::vector<OsmWay> kept;
@@ -148,10 +156,10 @@ void keep_path_ways(std::vector<OsmWay>& highways) {
 }
 
 PathSurface build_paths(const OsmData& osm, const Projection& projection, const RoadParams& roads,
-                        ParseReport& report) {
+                        bool with_bridges, ParseReport& report) {
     std::vector<OsmWay> paths, rails;
     std::unordered_map<int64_t, std::pair<PathClass, double>> info;
-    std::unordered_map<int64_t, bool> sidewalk;
+    std::unordered_map<int64_t, PathWayFlags> flags;
     auto take = [&](const OsmWay& way, std::vector<OsmWay>& into) {
         const std::optional<PathClass> c = path_class_of(way.tags);
         if (!c) return;
@@ -163,7 +171,7 @@ PathSurface build_paths(const OsmData& osm, const Projection& projection, const 
         }
         report.read(ReportKind::PathWays);
         if (!info.count(way.id)) info[way.id] = {*c, path_width(way.tags, *c, &report)};
-        sidewalk[way.id] = way.tags.has("footway", "sidewalk");
+        flags[way.id] = {way.tags.has("footway", "sidewalk"), with_bridges && is_bridge(way.tags)};
         OsmWay copy = way;
         copy.tags.entries = {{"highway", graph_key(*c)}};
         into.push_back(std::move(copy));
@@ -171,8 +179,8 @@ PathSurface build_paths(const OsmData& osm, const Projection& projection, const 
     for (const OsmWay& way : osm.highways) take(way, paths);
     for (const OsmWay& way : osm.railways) take(way, rails);
     PathSurface out;
-    lay_out(std::move(paths), projection, roads, info, sidewalk, out, report);
-    lay_out(std::move(rails), projection, roads, info, sidewalk, out, report);
+    lay_out(std::move(paths), projection, roads, info, flags, out, report);
+    lay_out(std::move(rails), projection, roads, info, flags, out, report);
     report.kept(ReportKind::PathEdges, static_cast<int64_t>(out.paths.size()));
     for (const PathEdge& p : out.paths) report.kept(path_class_row(p.path_class));
     report.kept(ReportKind::PathJoints, static_cast<int64_t>(out.joints.size()));

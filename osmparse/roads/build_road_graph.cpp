@@ -109,7 +109,7 @@ RoadGraphEdge edge_template(const OsmWay& way, const RoadParams& params, ParseRe
     if (std::optional<double> lanes = parse_osm_count(tags.get("lanes")); lanes && *lanes <= kMaxLanes)
         proto.lanes = static_cast<int>(*lanes);
     proto.oneway = is_oneway(tags);
-    proto.bridge = tags.get("bridge") && !tags.has("bridge", "no");
+    proto.bridge = is_bridge(tags);
     const SidewalkSides sides = sidewalk_sides(tags);
     proto.sidewalk_left = sides.left;
     proto.sidewalk_right = sides.right;
@@ -204,6 +204,8 @@ double default_road_width(const std::string& highway, bool oneway) {
     if (it == table.end()) return oneway ? 3.5 : 5.0;
     return oneway ? it->second.one_way : it->second.two_way;
 }
+
+bool is_bridge(const OsmTags& tags) { return tags.get("bridge") && !tags.has("bridge", "no"); }
 
 bool is_oneway(const OsmTags& tags) {
     const char* v = tags.get("oneway");

@@ -48,6 +48,9 @@ double default_road_width(const std::string& highway, bool oneway);
 // oneway=* says otherwise.
 bool is_oneway(const OsmTags& tags);
 
+// bridge=* but bridge=no: the way keeps its own deck on a height field (common/bridge_deck.h).
+bool is_bridge(const OsmTags& tags);
+
 // Width of a carriageway: `width` (any unit parse_osm_length knows), else `lanes` x
 // params.lane_width, else default_road_width() for the way's class and is_oneway(). Unparseable or absurd values (width
 // outside [1, params.max_width], lanes outside [1, 12]) fall back to the next rule and

@@ -90,7 +90,7 @@ void fit_to_corridor(const Corridor& c, const HeightField& profile, double margi
 
 // The field under the bridges (common/bridge_deck.h, on the fitted field). At each end on the
 // ground, up to a cell past where the bridge's surface begins (its quads start at the edge of the
-// joint there), the field is the deck itself, an abutment: the joint and the road's end lie on it
+// joint there), the field is the deck itself, an abutment: the joint and the way's end lie on it
 // and meet the deck without a step. Beyond, the field is kept kDeckThickness + kUnderDeckGap below
 // the deck, so no hill or bank pokes through it; the clearance grows along a 1:2 slope from the
 // abutment. Counts the nodes set or lowered.
@@ -98,42 +98,57 @@ struct UnderDecks {
     int64_t abutment = 0, carved = 0;
 };
 
-UnderDecks fit_under_decks(HeightField& field, const std::vector<RoadEdge>& roads, const FitWidths& widths,
-                           double margin) {
-    const GridLayout g = layout_of(field);
-    const std::vector<DeckLine> decks = bridge_decks(field, 0, roads);
+// One bridge edge's deck, how far from its chord the field is fitted to it, and where along its
+// bridge the abutments end (metres).
+struct DeckReach {
+    DeckLine deck;
+    double reach;
+    double start, end;
+};
+
+// The decks of one network's bridge edges (roads, or paths and rails); `half_width(e)`: the half
+// width of edge e's surface.
+template <class Edge, class HalfWidth>
+void add_deck_reaches(const HeightField& field, const std::vector<Edge>& edges, HalfWidth half_width,
+                      double margin, std::vector<DeckReach>& out) {
+    const std::vector<DeckLine> decks = bridge_decks(field, 0, edges);
     // Per bridge, where its surface begins and ends (metres along it): its quads' extent.
     std::vector<std::pair<double, double>> surface;
-    for (size_t e = 0; e < roads.size(); ++e) {
+    for (size_t e = 0; e < edges.size(); ++e) {
         const DeckLine& deck = decks[e];
         if (!deck.valid) continue;
         if (surface.size() <= deck.bridge) surface.resize(deck.bridge + 1, {1e300, -1e300});
-        for (Vec2 c : roads[e].quad) {
+        for (Vec2 c : edges[e].quad) {
             const double along = deck_along(deck, c);
             surface[deck.bridge].first = std::min(surface[deck.bridge].first, along);
             surface[deck.bridge].second = std::max(surface[deck.bridge].second, along);
         }
     }
+    for (size_t e = 0; e < edges.size(); ++e) {
+        const DeckLine& deck = decks[e];
+        if (!deck.valid) continue;
+        const auto [first, last] = surface[deck.bridge];
+        const double start = (first <= last ? std::max(0.0, first) : 0.0) + margin;
+        const double end = (first <= last ? std::min(deck.bridge_length, last) : deck.bridge_length) - margin;
+        out.push_back({deck, half_width(edges[e]) + margin, start, end});
+    }
+}
+
+UnderDecks fit_under_decks(HeightField& field, const std::vector<DeckReach>& decks) {
+    const GridLayout g = layout_of(field);
     // Two passes: the carving under every deck, then the abutments, which win where a bridge's
     // end lies within another's reach (a ramp beside a lower bridge): a step where a bridge
     // meets its road shows more than the other deck's slab meeting a bank.
     UnderDecks count;
     for (const bool abutments : {false, true})
-        for (size_t e = 0; e < roads.size(); ++e) {
-            const DeckLine& deck = decks[e];
-            if (!deck.valid) continue;
-            const RoadEdge& r = roads[e];
-            const bool sidewalk = r.sidewalk_left || r.sidewalk_right;
-            const double reach = r.width / 2 + (sidewalk ? widths.sidewalk : 0) + margin;
-            const auto [first, last] = surface[deck.bridge];
-            const double start = (first <= last ? std::max(0.0, first) : 0.0) + margin;
-            const double end = (first <= last ? std::min(deck.bridge_length, last) : deck.bridge_length) - margin;
-            for_each_node_near(g, deck.a, deck.b, reach, [&](uint32_t i, uint32_t j, double, double) {
+        for (const DeckReach& d : decks) {
+            const DeckLine& deck = d.deck;
+            for_each_node_near(g, deck.a, deck.b, d.reach, [&](uint32_t i, uint32_t j, double, double) {
                 const Vec2 p = g.node(i, j);
                 const double along = std::clamp(deck_along(deck, p), 0.0, deck.bridge_length);
                 double from_abutment = std::numeric_limits<double>::infinity();
-                if (deck.starts_on_ground) from_abutment = along - start;
-                if (deck.ends_on_ground) from_abutment = std::min(from_abutment, end - along);
+                if (deck.starts_on_ground) from_abutment = along - d.start;
+                if (deck.ends_on_ground) from_abutment = std::min(from_abutment, d.end - along);
                 float& h = field.heights[g.index(i, j)];
                 if (abutments && from_abutment <= 0) {
                     // The deck's line continued past its end, not clamped: the field's
@@ -162,7 +177,7 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
     const double margin = field.cell * std::sqrt(2.0);
     const double shoulder = std::max(kShoulderWidth, 2 * field.cell);
     std::vector<NodeFit> fits(field.heights.size());
-    int64_t bridges = 0, steps = 0;
+    int64_t bridges = 0, path_bridges = 0, steps = 0;
     for (const RoadEdge& r : roads) {
         if (r.bridge) {
             ++bridges;
@@ -172,6 +187,10 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
         fit_to_corridor({&r.centreline, r.width / 2 + (sidewalk ? widths.sidewalk : 0), 0}, profile, margin, shoulder, fits);
     }
     for (const PathEdge& p : paths) {
+        if (p.bridge) {
+            ++path_bridges;
+            continue;
+        }
         if (p.path_class == PathClass::Steps) {
             ++steps;
             continue;
@@ -185,12 +204,18 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
         field.heights[n] = f.weight * f.level + (1 - f.weight) * field.heights[n];
         ++(f.weight == 1 ? level : blended);
     }
-    const UnderDecks decks = fit_under_decks(field, roads, widths, margin);
+    std::vector<DeckReach> reaches;
+    add_deck_reaches(field, roads, [&](const RoadEdge& r) {
+        return r.width / 2 + (r.sidewalk_left || r.sidewalk_right ? widths.sidewalk : 0);
+    }, margin, reaches);
+    add_deck_reaches(field, paths, [](const PathEdge& p) { return p.width / 2; }, margin, reaches);
+    const UnderDecks decks = fit_under_decks(field, reaches);
     if (level > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderWay, level);
     if (blended > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainWayShoulder, blended);
     if (decks.abutment > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderAbutment, decks.abutment);
     if (decks.carved > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderDeck, decks.carved);
     if (bridges > 0) report.note(ReportKind::RoadEdges, ReportReason::BridgeOnItsDeck, bridges);
+    if (path_bridges > 0) report.note(ReportKind::PathEdges, ReportReason::BridgeOnItsDeck, path_bridges);
     if (steps > 0) report.note(ReportKind::PathEdges, ReportReason::StepsOnTheGround, steps);
 }
 

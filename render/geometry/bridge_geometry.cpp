@@ -32,6 +32,11 @@ std::vector<DeckLine> drawn_decks(const Scene& scene) {
     return bridge_decks(scene);
 }
 
+std::vector<DeckLine> drawn_path_decks(const Scene& scene) {
+    if (scene.terrain.empty()) return {};
+    return path_bridge_decks(scene);
+}
+
 std::vector<BridgeFace> deck_piece_faces(const DeckSurface& deck, const Ring& ring, double lift, uint16_t top_material) {
     std::vector<BridgeFace> faces;
     if (ring.size() < 3) return faces;
@@ -52,11 +57,11 @@ std::vector<BridgeFace> deck_piece_faces(const DeckSurface& deck, const Ring& ri
     return faces;
 }
 
-std::vector<BridgeFace> deck_piers(const Scene& scene, const DeckLine& deck, const RoadEdge& road) {
+std::vector<BridgeFace> deck_piers(const Scene& scene, const DeckLine& deck, double width) {
     std::vector<BridgeFace> faces;
     const Vec2 chord = deck.b - deck.a;
     const double span = length(chord);
-    const double half_width = 0.5 * road.width - kPierInset;
+    const double half_width = 0.5 * width - kPierInset;
     if (!(span > kPierSpacing) || !(half_width > 0)) return faces;
     const Vec2 u = chord * (1 / span), v = perp_left(u);
     const int bays = static_cast<int>(std::ceil(span / kPierSpacing));
@@ -72,6 +77,18 @@ std::vector<BridgeFace> deck_piers(const Scene& scene, const DeckLine& deck, con
         for (int e = 0; e < 4; ++e) faces.push_back(side_face(corners[e], corners[(e + 1) % 4], foot, underside));
     }
     return faces;
+}
+
+void add_faces(const std::vector<BridgeFace>& faces, uint32_t object, TriangleMesh& mesh) {
+    for (const BridgeFace& f : faces) {
+        const uint32_t first = mesh.add_vertex(f.points[0]);
+        for (size_t k = 1; k < f.points.size(); ++k) mesh.add_vertex(f.points[k]);
+        for (uint32_t k = 1; k + 1 < f.points.size(); ++k) mesh.add_triangle(first, first + k, first + k + 1, object, f.material);
+    }
+}
+
+void add_faces(const std::vector<BridgeFace>& faces, uint32_t object, ProceduralGeometry& geometry) {
+    for (const BridgeFace& f : faces) geometry.add_face(object, f.points, f.material);
 }
 
 }  // namespace citygen

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "render/geometry/bridge_geometry.h"
 #include "render/geometry/road_markings.h"
 #include "render/geometry/stored_geometry.h"
 #include "render/geometry/surface_detail.h"
@@ -19,6 +20,30 @@ ProceduralGeometry::SurfaceMaterials walls() {
     ProceduralGeometry::SurfaceMaterials m;
     m.fill(kPathPaving);
     return m;
+}
+
+// A path on the ground, draped, or on its deck with its slab and piers (bridge_geometry.h); a
+// path joint the same, on its deck where every path meeting there is a bridge.
+template <class Geometry>
+void add_path(const Scene& scene, const std::vector<DeckLine>& decks, uint32_t i, Geometry& geometry) {
+    const PathEdge& p = scene.paths[i];
+    const uint16_t material = path_material(p.path_class);
+    if (i < decks.size() && decks[i].valid) {
+        add_faces(deck_piece_faces(edge_deck(decks, i), p.quad, path_lift(p), material), i, geometry);
+        add_faces(deck_piers(scene, decks[i], p.width), i, geometry);
+        return;
+    }
+    add_ground_polygon(scene, p.quad, {}, path_lift(p), i, material, geometry);
+}
+
+template <class Geometry>
+void add_path_joint(const Scene& scene, const std::vector<DeckLine>& decks, uint32_t i, Geometry& geometry) {
+    const Joint& j = scene.path_joints[i];
+    if (const DeckSurface deck = path_joint_deck(scene, decks, j); deck.valid()) {
+        add_faces(deck_piece_faces(deck, j.polygon, kPathLift, joint_material(scene, j)), i, geometry);
+        return;
+    }
+    add_ground_polygon(scene, j.polygon, {}, kPathLift, i, joint_material(scene, j), geometry);
 }
 
 }  // namespace
@@ -47,36 +72,32 @@ double path_z(const Scene& scene, const PathEdge& path) { return scene.ground.z 
 TriangleMesh build_stored_paths(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Path;
-    for (uint32_t i = 0; i < scene.paths.size(); ++i)
-        add_ground_polygon(scene, scene.paths[i].quad, {}, path_lift(scene.paths[i]), i,
-                           path_material(scene.paths[i].path_class), mesh);
+    const std::vector<DeckLine> decks = drawn_path_decks(scene);
+    for (uint32_t i = 0; i < scene.paths.size(); ++i) add_path(scene, decks, i, mesh);
     return mesh;
 }
 
 TriangleMesh build_stored_path_joints(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::PathJoint;
-    for (uint32_t i = 0; i < scene.path_joints.size(); ++i)
-        add_ground_polygon(scene, scene.path_joints[i].polygon, {}, kPathLift, i, joint_material(scene, scene.path_joints[i]),
-                           mesh);
+    const std::vector<DeckLine> decks = drawn_path_decks(scene);
+    for (uint32_t i = 0; i < scene.path_joints.size(); ++i) add_path_joint(scene, decks, i, mesh);
     return mesh;
 }
 
 std::unique_ptr<ProceduralGeometry> build_procedural_paths(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Path, walls());
+    const std::vector<DeckLine> decks = drawn_path_decks(scene);
     for (uint32_t i = 0; i < scene.paths.size(); ++i)
-        if (scene.paths[i].quad.size() >= 3)
-            add_ground_polygon(scene, scene.paths[i].quad, {}, path_lift(scene.paths[i]), i,
-                               path_material(scene.paths[i].path_class), *geometry);
+        if (scene.paths[i].quad.size() >= 3) add_path(scene, decks, i, *geometry);
     return geometry;
 }
 
 std::unique_ptr<ProceduralGeometry> build_procedural_path_joints(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::PathJoint, walls());
+    const std::vector<DeckLine> decks = drawn_path_decks(scene);
     for (uint32_t i = 0; i < scene.path_joints.size(); ++i)
-        if (scene.path_joints[i].polygon.size() >= 3)
-            add_ground_polygon(scene, scene.path_joints[i].polygon, {}, kPathLift, i,
-                               joint_material(scene, scene.path_joints[i]), *geometry);
+        if (scene.path_joints[i].polygon.size() >= 3) add_path_joint(scene, decks, i, *geometry);
     return geometry;
 }
 

@@ -19,10 +19,6 @@ ProceduralGeometry::SurfaceMaterials all_surfaces(uint16_t material) {
     return m;
 }
 
-void add_faces(const std::vector<BridgeFace>& faces, uint32_t object, ProceduralGeometry& geometry) {
-    for (const BridgeFace& f : faces) geometry.add_face(object, f.points, f.material);
-}
-
 }  // namespace
 
 void add_ground_polygon(const Scene& scene, const Ring& outer, const std::vector<Ring>& holes, double lift,
@@ -70,8 +66,8 @@ std::unique_ptr<ProceduralGeometry> build_procedural_roads(const Scene& scene) {
     const std::vector<DeckLine> decks = drawn_decks(scene);
     for (uint32_t i = 0; i < scene.roads.size(); ++i) {
         if (i < decks.size() && decks[i].valid) {
-            add_faces(deck_piece_faces(road_deck(decks, i), scene.roads[i].quad, kRoadLift, kAsphalt), i, *geometry);
-            add_faces(deck_piers(scene, decks[i], scene.roads[i]), i, *geometry);
+            add_faces(deck_piece_faces(edge_deck(decks, i), scene.roads[i].quad, kRoadLift, kAsphalt), i, *geometry);
+            add_faces(deck_piers(scene, decks[i], scene.roads[i].width), i, *geometry);
             continue;
         }
         add_ground_polygon(scene, scene.roads[i].quad, {}, kRoadLift, i, kAsphalt, *geometry);

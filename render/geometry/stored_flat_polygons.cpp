@@ -32,26 +32,14 @@ void add_ground_polygon(const Scene& scene, const Ring& outer, const std::vector
     for (const auto& t : draped.triangles) mesh.add_triangle(first + t[0], first + t[1], first + t[2], object, material);
 }
 
-namespace {
-
-void add_faces(const std::vector<BridgeFace>& faces, uint32_t object, TriangleMesh& mesh) {
-    for (const BridgeFace& f : faces) {
-        const uint32_t first = mesh.add_vertex(f.points[0]);
-        for (size_t k = 1; k < f.points.size(); ++k) mesh.add_vertex(f.points[k]);
-        for (uint32_t k = 1; k + 1 < f.points.size(); ++k) mesh.add_triangle(first, first + k, first + k + 1, object, f.material);
-    }
-}
-
-}  // namespace
-
 TriangleMesh build_stored_roads(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Road;
     const std::vector<DeckLine> decks = drawn_decks(scene);
     for (uint32_t i = 0; i < scene.roads.size(); ++i) {
         if (i < decks.size() && decks[i].valid) {
-            add_faces(deck_piece_faces(road_deck(decks, i), scene.roads[i].quad, kRoadLift, kAsphalt), i, mesh);
-            add_faces(deck_piers(scene, decks[i], scene.roads[i]), i, mesh);
+            add_faces(deck_piece_faces(edge_deck(decks, i), scene.roads[i].quad, kRoadLift, kAsphalt), i, mesh);
+            add_faces(deck_piers(scene, decks[i], scene.roads[i].width), i, mesh);
             continue;
         }
         add_ground_polygon(scene, scene.roads[i].quad, {}, kRoadLift, i, kAsphalt, mesh);

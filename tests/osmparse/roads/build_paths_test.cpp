@@ -100,7 +100,7 @@ TEST(Paths, KeepPathWaysKeepsWhatBuildPathsReads) {
     const Projection projection(0.5 * (osm.min.lat + osm.max.lat), 0.5 * (osm.min.lon + osm.max.lon));
     const RoadParams params;
     ParseReport all_report, kept_report;
-    const PathSurface all = build_paths(osm, projection, params, all_report);
+    const PathSurface all = build_paths(osm, projection, params, false, all_report);
     const size_t ways = osm.highways.size();
     keep_path_ways(osm.highways);
     EXPECT_LT(osm.highways.size(), ways);  // the street is gone
@@ -108,7 +108,7 @@ TEST(Paths, KeepPathWaysKeepsWhatBuildPathsReads) {
         EXPECT_TRUE(path_class_of(w.tags).has_value());
         EXPECT_EQ(w.tags.get("surface"), nullptr);
     }
-    const PathSurface kept = build_paths(osm, projection, params, kept_report);
+    const PathSurface kept = build_paths(osm, projection, params, false, kept_report);
     ASSERT_GT(all.paths.size(), 0u);
     ASSERT_EQ(kept.paths.size(), all.paths.size());
     for (size_t i = 0; i < all.paths.size(); ++i) {

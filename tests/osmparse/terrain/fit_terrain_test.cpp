@@ -138,6 +138,33 @@ TEST(FitTerrainToWays, ABridgeIsNotFittedAndTheGroundUnderItsDeckIsCarvedBelowIt
     EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::StepsOnTheGround), 1);
 }
 
+TEST(FitTerrainToWays, AFootbridgeIsNotFittedAndTheGroundUnderItsDeckIsCarvedBelowIt) {
+    // The same hill as above, crossed by footways: paths and rails keep decks as roads do.
+    HeightField f = field_of([](double x, double y) { return 50 + 12 * std::exp(-(x * x + y * y) / 400); });
+    const HeightField raw = f;
+    auto path = [](int64_t from, int64_t to, Vec2 a, Vec2 b, bool bridge) {
+        PathEdge p;
+        p.from_node = from;
+        p.to_node = to;
+        p.centreline = {a, b};
+        p.width = 2;
+        p.bridge = bridge;
+        p.quad = {{a.x + 1, -1}, {b.x - 1, -1}, {b.x - 1, 1}, {a.x + 1, 1}};
+        return p;
+    };
+    const std::vector<PathEdge> paths = {path(1, 2, {-90, 0}, {-40, 0}, false), path(2, 3, {-40, 0}, {40, 0}, true),
+                                         path(3, 4, {40, 0}, {90, 0}, false)};
+    ParseReport report;
+    fit_terrain_to_ways(f, {}, paths, {}, report);
+    const DeckLine deck = bridge_decks(f, 0, paths)[1];
+    ASSERT_TRUE(deck.valid);
+    EXPECT_NEAR(deck.za, field_surface_height(f, -40, 0), 1e-6) << "the deck meets the path at its end";
+    for (double x = -25; x <= 25; x += 0.5)
+        EXPECT_LE(field_surface_height(f, x, 0), deck_height(deck, {x, 0}) - kDeckThickness) << x;
+    EXPECT_LT(f.at(0, 0), raw.at(0, 0) - 12) << "the hill is carved, not the path laid over it";
+    EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::BridgeOnItsDeck), 1);
+}
+
 TEST(RaisePiers, APierIntoTheSeaIsFlatAtItsDeckAndTheRestIsLeftAsItWas) {
     HeightField f = slope_north(0.1);  // 40 m at y = -100 .. 60 m at y = 100: the DEM's noise at sea
     const HeightField raw = f;

@@ -10,6 +10,7 @@
 #include "render/geometry/bridge_geometry.h"
 #include "render/geometry/build_render_scene.h"
 #include "render/geometry/lamp_shape.h"
+#include "render/geometry/path_geometry.h"
 #include "render/geometry/stored_geometry.h"
 #include "render/materials/materials.h"
 
@@ -85,7 +86,7 @@ TEST(BridgeGeometry, TheDeckSpansTheValleyAtItsEndsHeightWithASlabAndPiers) {
     ASSERT_TRUE(stored->intersect(Ray{{-30, 0, 20}, {1, 0, 0}, 0, 1e30}, hit));
     EXPECT_EQ(hit.kind, ObjectKind::Road);
     EXPECT_NEAR(hit.t, 9.5, 1e-3);
-    EXPECT_FALSE(deck_piers(s, bridge_decks(s)[1], s.roads[1]).empty());
+    EXPECT_FALSE(deck_piers(s, bridge_decks(s)[1], s.roads[1].width).empty());
 }
 
 TEST(BridgeGeometry, BothGeometryModesDrawTheSameBridge) {
@@ -110,6 +111,52 @@ TEST(BridgeGeometry, BothGeometryModesDrawTheSameBridge) {
     }
     EXPECT_GT(on_bridge, 500);
     EXPECT_LE(mismatches, 4) << "edges hit within float rounding";
+}
+
+TEST(BridgeGeometry, AFootbridgeAndItsJointLieOnTheirDeckInBothModes) {
+    // Footways on the ground to the valley's rims, a footbridge of two edges across meeting at a
+    // joint on the deck (node 2).
+    Scene s = valley_with_bridge();
+    s.roads.clear();
+    s.sidewalks.clear();
+    for (const RoadEdge& r : valley_with_bridge().roads) {
+        PathEdge p;
+        p.from_node = r.from_node;
+        p.to_node = r.to_node;
+        p.centreline = r.centreline;
+        p.width = 3;
+        p.bridge = r.bridge;
+        const Vec2 a = r.centreline.front(), b = r.centreline.back(), n = perp_left(normalize(b - a)) * 1.5;
+        const Vec2 inset = normalize(b - a) * (p.from_node == 2 ? 1.5 : 0.0);
+        const Vec2 outset = normalize(b - a) * (p.to_node == 2 ? 1.5 : 0.0);
+        p.quad = {a + inset - n, b - outset - n, b - outset + n, a + inset + n};
+        s.paths.push_back(p);
+    }
+    Joint j;
+    j.edges = {1, 2};
+    j.polygon = {{-1.5, -1.5}, {1.5, -1.5}, {1.5, 1.5}, {-1.5, 1.5}};
+    s.path_joints = {j};
+    GeometryModes procedural;
+    procedural[GeometryClass::Paths] = GeometryMode::Procedural;
+    const auto stored = build_render_scene(s, GeometryModes{});
+    const auto proc = build_render_scene(s, procedural);
+    for (const RenderScene* scene : {stored.get(), proc.get()}) {
+        Hit hit;
+        // The ground is 30 m up at both rims: a level deck 30 m over the valley's floor.
+        for (Vec2 p : {Vec2{-30, 0}, Vec2{25, 0.5}}) {
+            ASSERT_TRUE(hit_from_above(*scene, p, hit));
+            EXPECT_EQ(hit.kind, ObjectKind::Path);
+            EXPECT_NEAR(200 - hit.t, 30 + kPathLift, 1e-3) << p.x;
+        }
+        ASSERT_TRUE(hit_from_above(*scene, {0, 0}, hit));
+        EXPECT_EQ(hit.kind, ObjectKind::PathJoint);
+        EXPECT_NEAR(200 - hit.t, 30 + kPathLift, 1e-3) << "the joint on the deck";
+        ASSERT_TRUE(hit_from_above(*scene, {-80, 0}, hit));
+        EXPECT_NEAR(200 - hit.t, ground_height(s, -80, 0) + kPathLift, 1e-3) << "a footway on the ground";
+        // Its slab from below, over the valley's floor (15 m there).
+        ASSERT_TRUE(scene->intersect(Ray{{-30, 0, 20}, {0, 0, 1}, 0, 1e30}, hit));
+        EXPECT_NEAR(20 + hit.t, 30 - kDeckThickness, 1e-3);
+    }
 }
 
 TEST(BridgeGeometry, ALampOnABridgeStandsOnItsDeckAndOneBesideItOnTheGround) {
