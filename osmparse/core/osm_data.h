@@ -75,6 +75,7 @@ struct OsmData {
     std::vector<OsmNode> road_marks;        // highway=crossing and highway=traffic_signals nodes
     std::vector<OsmWay> tree_rows;          // natural=tree_row ways, cut into runs of present nodes
     std::vector<OsmWay> railways;           // railway=rail|tram|light_rail|subway ways, runs of present nodes
+    std::vector<OsmWay> retaining_walls;    // barrier=retaining_wall ways (closed ones too), runs of present nodes
     // The extract's bounds from the file header (<bounds> or the PBF header box), when given.
     bool has_extract_bounds = false;
     LatLon extract_min, extract_max;
