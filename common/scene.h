@@ -232,6 +232,17 @@ struct HeightField {
     double at(double x, double y) const;
 };
 
+// Format 1.2: a mapped retaining wall (barrier=retaining_wall), kept only with a height field
+// (osmparse --dem). OSM's convention: the ground is lower on the right of the way's direction.
+// docs/terrain.md, "Retaining walls".
+struct RetainingWall {
+    OsmRef osm;
+    std::vector<Vec2> line;   // the way's direction; a closed way repeats its first point
+    double height = 0;        // low side's ground to the high side's
+    bool height_tagged = false;
+    WallMaterial material = WallMaterial::Concrete;
+};
+
 struct SceneHeader {
     uint16_t format_major = kSceneFormatMajor;
     uint16_t format_minor = kSceneFormatMinor;
@@ -258,6 +269,7 @@ struct Scene {
     std::vector<Joint> path_joints;     // format 1.1; edges index into paths
     std::vector<Crossing> crossings;    // format 1.1
     HeightField terrain;                // format 1.2
+    std::vector<RetainingWall> retaining_walls;  // format 1.2, with the terrain only
 };
 
 }  // namespace citygen

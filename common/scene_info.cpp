@@ -202,6 +202,14 @@ void print_terrain_info(const Scene& s, std::FILE* out) {
                  t.reference_altitude + *lowest, t.reference_altitude + *highest, t.vertical_datum.c_str(),
                  t.reference_altitude);
     print_road_fit_info(s, out);
+    size_t tagged = 0;
+    double metres = 0;
+    for (const RetainingWall& w : s.retaining_walls) {
+        tagged += w.height_tagged;
+        for (size_t k = 0; k + 1 < w.line.size(); ++k) metres += length(w.line[k + 1] - w.line[k]);
+    }
+    std::fprintf(out, "retaining_walls: %zu (%zu with a tagged height), %.0f m long\n", s.retaining_walls.size(), tagged,
+                 metres);
 }
 
 }  // namespace

@@ -252,6 +252,7 @@ size_t encoded_size_bound(const Scene& scene) {
     }
     for (const PathEdge& x : scene.paths) n += 4 + kTable + 2 * kVector + kPoint2 * (x.quad.size() + x.centreline.size());
     for (const Joint& x : scene.path_joints) n += 4 + kTable + 2 * kVector + kPoint2 * x.polygon.size() + 4 * x.edges.size();
+    for (const RetainingWall& x : scene.retaining_walls) n += 4 + kTable + kVector + kPoint2 * x.line.size();
     return std::min<size_t>(n, FLATBUFFERS_MAX_BUFFER_SIZE / 2);
 }
 
@@ -416,6 +417,20 @@ flatbuffers::Offset<fb::HeightField> encode_terrain(Builder& b, const HeightFiel
     return fb::CreateHeightField(b, t.origin.x, t.origin.y, t.cell, t.nx, t.ny, heights, t.reference_altitude, datum);
 }
 
+// Absent (a null offset) when there are none: a scene without a field keeps its bytes.
+flatbuffers::Offset<flatbuffers::Vector<flatbuffers::Offset<fb::RetainingWall>>> encode_retaining_walls(
+    Builder& b, const std::vector<RetainingWall>& items) {
+    if (items.empty()) return 0;
+    std::vector<flatbuffers::Offset<fb::RetainingWall>> walls;
+    for (const RetainingWall& x : items) {
+        fb::OsmRef osm = to_fb(x.osm);
+        const auto line = points(b, x.line);
+        walls.push_back(fb::CreateRetainingWall(b, &osm, line, static_cast<float>(x.height), x.height_tagged,
+                                                static_cast<fb::WallMaterial>(x.material)));
+    }
+    return b.CreateVector(walls);
+}
+
 std::vector<fb::Tree> encode_trees(const std::vector<Tree>& items) {
     std::vector<fb::Tree> trees;
     trees.reserve(items.size());
@@ -492,6 +507,9 @@ void SceneEncoder::finish_parts(S& scene, const std::function<void()>* release) 
     const auto terrain = encode_terrain(b, scene.terrain);
     release_part(scene.terrain.heights, release);
 
+    const auto retaining_walls = encode_retaining_walls(b, scene.retaining_walls);
+    release_part(scene.retaining_walls, release);
+
     const auto crossing_vector = b.CreateVector(crossings);
     const auto path_joint_vector = b.CreateVector(path_joints);
     const auto path_vector = b.CreateVector(paths);
@@ -504,7 +522,7 @@ void SceneEncoder::finish_parts(S& scene, const std::function<void()>* release) 
     const auto building_vector = b.CreateVector(state_->buildings);
     auto root = fb::CreateScene(b, state_->header, building_vector, road_vector, joint_vector, sidewalk_vector, lamp_vector,
                                 ground, land_cover_vector, tree_vector, path_vector, path_joint_vector,
-                                crossing_vector, terrain);
+                                crossing_vector, terrain, retaining_walls);
     fb::FinishSceneBuffer(b, root);
 }
 
@@ -789,6 +807,24 @@ void decode_terrain(const fb::Scene* in, Checker& check, Scene& s) {
     f.vertical_datum = str(t->vertical_datum());
 }
 
+// Retaining walls: a line of at least two points within the object limits, a height in
+// (0, kMaxHeight], a known material.
+void decode_retaining_walls(const fb::Scene* in, Checker& check, Scene& s) {
+    if (in->retaining_walls())
+        for (const fb::RetainingWall* x : *in->retaining_walls()) {
+            RetainingWall w;
+            w.osm = check.osm(x->osm());
+            w.line = check.pts(x->line(), "retaining wall line");
+            if (w.line.size() < 2) check.fail("retaining wall with fewer than 2 points");
+            w.height = check.height(x->height(), "retaining wall height");
+            if (!(w.height > 0)) check.fail("retaining wall with zero height");
+            w.height_tagged = x->height_tagged();
+            if (x->material() > fb::WallMaterial::MAX) check.fail("invalid retaining wall material");
+            w.material = static_cast<WallMaterial>(x->material());
+            s.retaining_walls.push_back(std::move(w));
+        }
+}
+
 }  // namespace
 
 Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
@@ -814,7 +850,8 @@ Scene decode_scene(const uint8_t* data, size_t size, const std::string& name) {
     using Decoder = void (*)(const fb::Scene*, Checker&, Scene&);
     static constexpr Decoder kDecoders[] = {decode_buildings, decode_roads,      decode_joints, decode_sidewalks,
                                             decode_lamps,     decode_ground,     decode_land_cover, decode_trees,
-                                            decode_paths,     decode_crossings,  decode_terrain};
+                                            decode_paths,     decode_crossings,  decode_terrain,
+                                            decode_retaining_walls};
     constexpr size_t kParts = std::size(kDecoders);
     std::exception_ptr errors[kParts];
     tbb::parallel_for(size_t{0}, kParts, [&](size_t i) {

@@ -22,6 +22,7 @@
 #include "common/projection.h"
 #include "osmparse/map/assemble_sea.h"
 #include "osmparse/map/build_land_cover.h"
+#include "osmparse/map/build_retaining_walls.h"
 #include "osmparse/map/fill_empty_blocks.h"
 #include "osmparse/map/place_lamps.h"
 #include "osmparse/map/place_trees.h"
@@ -37,6 +38,7 @@
 #include "osmparse/terrain/bridges_from_layers.h"
 #include "osmparse/terrain/build_terrain.h"
 #include "osmparse/terrain/fit_terrain.h"
+#include "osmparse/terrain/retaining_wall_steps.h"
 #include "osmparse/tiles/keep_inside_box.h"
 
 namespace citygen {
@@ -399,6 +401,10 @@ std::vector<Stage> parse_stages(ParseState& s) {
         {"layered bridges", {"roads", "paths", "way layers", "land cover"}, {"roads", "paths"},
          [&](ParseReport& r) { mark_layered_bridges(scene.roads, scene.paths, s.way_layers, scene.land_cover, r); },
          !p.terrain.dem_files.empty()},
+        // Only with a field, as the piers: on the flat ground the scene stays what it was.
+        {"retaining walls", {"osm", "projection"}, {"retaining walls"},
+         [&](ParseReport& r) { scene.retaining_walls = build_retaining_walls(s.osm, *s.projection, r); },
+         !p.terrain.dem_files.empty()},
         {"trees", {"osm", "projection", "buildings", "roads", "joints", "paths", "land cover"}, {"trees"},
          [&](ParseReport& r) {
              scene.trees = place_trees(s.osm, *s.projection, scene, p.trees, p.seed, r);
@@ -428,6 +434,12 @@ std::vector<Stage> parse_stages(ParseState& s) {
          !p.terrain.dem_files.empty()},
         {"roads into terrain", {"terrain", "roads", "paths"}, {"terrain"},
          [&](ParseReport& r) { fit_terrain_to_ways(scene.terrain, scene.roads, scene.paths, {p.sidewalks.width}, r); },
+         !p.terrain.dem_files.empty()},
+        {"walls into terrain", {"terrain", "roads", "paths", "retaining walls"}, {"terrain"},
+         [&](ParseReport& r) {
+             step_terrain_at_walls(scene.terrain, scene.retaining_walls,
+                                   way_corridor_nodes(scene.terrain, scene.roads, scene.paths, {p.sidewalks.width}), r);
+         },
          !p.terrain.dem_files.empty()},
         {"water into terrain", {"terrain", "land cover"}, {"terrain"},
          [&](ParseReport& r) {

@@ -70,11 +70,13 @@ struct OsmData {
     LatLon min{90, 180}, max{-90, -180};  // bounds of every kept location
     // The map beyond roads and buildings.
     std::vector<OsmArea> land_cover_areas;  // areas with a land cover class (build_land_cover.h)
+    std::vector<OsmWay> pier_lines;         // man_made=pier|breakwater ways that are lines, not areas
     std::vector<OsmWay> coastlines;         // natural=coastline ways, cut into runs of present nodes
     std::vector<OsmNode> trees;             // natural=tree nodes
     std::vector<OsmNode> road_marks;        // highway=crossing and highway=traffic_signals nodes
     std::vector<OsmWay> tree_rows;          // natural=tree_row ways, cut into runs of present nodes
     std::vector<OsmWay> railways;           // railway=rail|tram|light_rail|subway ways, runs of present nodes
+    std::vector<OsmWay> retaining_walls;    // barrier=retaining_wall ways (closed ones too), runs of present nodes
     // The extract's bounds from the file header (<bounds> or the PBF header box), when given.
     bool has_extract_bounds = false;
     LatLon extract_min, extract_max;

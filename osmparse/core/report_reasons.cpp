@@ -79,6 +79,7 @@ constexpr Text<ReportKind> kKindTexts[] = {
     {K::GeneratedBuildings, "generated buildings"},
     {K::DemFiles, "dem files"},
     {K::TerrainNodes, "terrain nodes"},
+    {K::RetainingWalls, "retaining walls"},
     {K::TileBuildings, "tile: buildings"},
     {K::TileRoadEdges, "tile: road edges"},
     {K::TileRoadJoints, "tile: road joints"},
@@ -267,8 +268,14 @@ constexpr Text<ReportReason> kReasonTexts[] = {
     {R::BridgeOnItsDeck, "bridge: on its own deck, not fitted to the ground"},
     {R::BridgeFromLayer, "bridge by its layer: above a lower way or water, no bridge tag"},
     {R::StepsOnTheGround, "steps: on the ground (stairs not built)"},
+    {R::PierLineWidthDefault, "pier mapped as a line, width untagged: a 3 m strip"},
     {R::WaterLevelled, "still water, level at its lowest shore"},
     {R::WaterOnASlope, "shore falls over 5 m: draped, not level"},
+    {R::RetainingWallHeightDefault, "height untagged: default 2 m"},
+    {R::RetainingWallHeightUnusable, "height tag unusable: default 2 m"},
+    {R::RetainingWallUnderWays, "low side under roads or paths: ground not stepped"},
+    {R::TerrainAtRetainingWall, "on a retaining wall's low side, lowered"},
+    {R::TerrainRetainingWallShoulder, "in a retaining wall's shoulder, blended"},
     {R::AnchorInAnotherTile, "anchor outside --keep-inside (another tile's)"},
 };
 static_assert(in_declaration_order(kReasonTexts), "one text per ReportReason, in declaration order");

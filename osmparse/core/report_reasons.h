@@ -76,6 +76,7 @@ enum class ReportKind {
     // terrain (--dem)
     DemFiles,
     TerrainNodes,
+    RetainingWalls,
     // --keep-inside: what the tile keeps of what it parsed (osmparse/tiles/keep_inside_box.h)
     TileBuildings,
     TileRoadEdges,
@@ -288,8 +289,15 @@ enum class ReportReason {
     BridgeOnItsDeck,
     BridgeFromLayer,
     StepsOnTheGround,
+    PierLineWidthDefault,
     WaterLevelled,
     WaterOnASlope,
+    // retaining_walls: the walls, then the field at them
+    RetainingWallHeightDefault,
+    RetainingWallHeightUnusable,
+    RetainingWallUnderWays,
+    TerrainAtRetainingWall,
+    TerrainRetainingWallShoulder,
     // keep_inside_box
     AnchorInAnotherTile,
     Count  // not a reason: the number of reasons

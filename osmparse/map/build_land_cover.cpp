@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "common/scene_limits.h"
+#include "osmparse/core/osm_units.h"
 #include "osmparse/polygons/clean_footprint.h"
 #include "osmparse/read/land_cover_tags.h"
 #include "osmparse/read/read_osm.h"
@@ -18,6 +19,26 @@ Ring project_ring(const std::vector<LatLon>& points, const Projection& projectio
     for (const LatLon& p : points) ring.push_back(round_to_stored_precision(projection.to_local(p.lat, p.lon)));
     if (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();
     return ring;
+}
+
+std::vector<Vec2> project_line(const std::vector<LatLon>& points, const Projection& projection) {
+    std::vector<Vec2> line;
+    for (const LatLon& p : points) line.push_back(projection.to_local(p.lat, p.lon));
+    return line;
+}
+
+// A rectangle per segment of the line, `width` wide, reaching width / 2 past both ends.
+std::vector<Ring> pier_strips(const std::vector<Vec2>& line, double width) {
+    std::vector<Ring> strips;
+    for (size_t k = 0; k + 1 < line.size(); ++k) {
+        const Vec2 a = line[k], b = line[k + 1];
+        if (!(length(b - a) > 0)) continue;
+        const Vec2 u = normalize(b - a) * (0.5 * width), v = perp_left(u);
+        Ring r{a - u - v, b + u - v, b + u + v, a - u + v};  // counter-clockwise
+        for (Vec2& p : r) p = round_to_stored_precision(p);
+        strips.push_back(std::move(r));
+    }
+    return strips;
 }
 
 }  // namespace
@@ -53,6 +74,21 @@ std::vector<LandCover> build_land_cover(const OsmData& osm, const Projection& pr
                 out.push_back(std::move(c));
             }
         }
+    }
+    if (with_piers) {
+        int64_t untagged = 0;
+        for (const OsmWay& line : osm.pier_lines) {
+            std::optional<double> width = parse_osm_length(line.tags.get("width"));
+            if (!width || *width < 1 || *width > 50) width = kLinearPierWidth, ++untagged;
+            for (Ring& strip : pier_strips(project_line(line.locations, projection), *width)) {
+                LandCover c;
+                c.osm = {OsmType::Way, line.id};
+                c.cover = LandCoverClass::Paved;
+                c.outer = std::move(strip);
+                out.push_back(std::move(c));
+            }
+        }
+        if (untagged > 0) report.note(ReportKind::LandCoverPaved, ReportReason::PierLineWidthDefault, untagged);
     }
     std::stable_sort(out.begin(), out.end(), [](const LandCover& a, const LandCover& b) {
         return a.cover != b.cover ? a.cover < b.cover : a.osm < b.osm;

@@ -5,6 +5,7 @@
 
 #include "common/bridge_deck.h"
 #include "common/ground.h"
+#include "common/retaining_wall.h"
 #include "common/scene_io.h"
 #include "common/projection.h"
 
@@ -35,6 +36,13 @@ public:
     void point_feature_at(Vec2 p, std::optional<double> height, const std::string& properties) {
         begin("Point");
         text_ += coordinates(p, height);
+        end(properties);
+    }
+    // A line, each point at its height (relative to the field's reference altitude).
+    void line_at(const std::vector<Vec3>& points, const std::string& properties) {
+        begin("LineString");
+        for (size_t i = 0; i < points.size(); ++i)
+            text_ += std::string(i ? "," : "") + "[" + coordinates({points[i].x, points[i].y}, points[i].z) + "]";
         end(properties);
     }
     std::string finish() { return text_ + "\n]}\n"; }
@@ -193,6 +201,19 @@ std::string scene_to_geojson(const Scene& scene) {
                                         ",\"leaf_type\":\"" +
                                         (t.leaf_type == LeafType::Needleleaved ? "needleleaved" : "broadleaved") +
                                         "\",\"source\":\"" + to_string(t.source) + "\"");
+    // Retaining walls (only with a field): the line along the wall's top, as render draws it, a
+    // point at each of its stations (common/retaining_wall.h).
+    for (const RetainingWall& rw : scene.retaining_walls) {
+        std::vector<Vec3> top;
+        for (const WallStation& st : wall_stations(scene, rw)) {
+            const Vec2 c = (st.left + st.right) * 0.5;
+            top.push_back({c.x, c.y, st.top});
+        }
+        if (top.size() < 2) continue;
+        w.line_at(top, "\"kind\":\"retaining_wall\",\"osm\":" + str(to_string(rw.osm)) + ",\"height\":" + num(rw.height) +
+                           ",\"height_tagged\":" + (rw.height_tagged ? "true" : "false") + ",\"material\":" +
+                           str(to_string(rw.material)));
+    }
     return w.finish();
 }
 

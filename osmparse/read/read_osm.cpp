@@ -171,6 +171,8 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
         StreetLampHandler street_lamps{data, report};
         RailwayHandler railways{data, report};
         HighwayHandler highways{data, report};
+        RetainingWallHandler retaining_walls{data, report};
+        PierLineHandler pier_lines{data, report};
         LandCoverHandler land_cover{data, report};
 
         // One walk over the file. Multipolygon assembly must know the relations before it sees
@@ -188,7 +190,7 @@ OsmData read_osm(const std::string& path, bool quiet, ParseReport& report) {
             while (osmium::memory::Buffer buffer = reader.read()) {
                 // The order of the handlers is the order of the report's rows.
                 osmium::apply(buffer, locations, multipolygons, buildings, coastlines, trees, road_marks,
-                              street_lamps, railways, highways);
+                              street_lamps, railways, highways, retaining_walls, pier_lines);
                 for (const osmium::Way& way : buffer.select<osmium::Way>()) {
                     ways.add_item(way);
                     ways.commit();

@@ -163,6 +163,40 @@ void RailwayHandler::way(const osmium::Way& way) {
         report_.dropped(ReportKind::RailwayWays, ReportReason::NodesMissing);
 }
 
+void RetainingWallHandler::way(const osmium::Way& way) {
+    if (!way.tags().has_tag("barrier", "retaining_wall")) return;
+    const size_t before = data_.retaining_walls.size();
+    keep_runs(way, data_.retaining_walls, nullptr);
+    // A run keeps only the tags build_retaining_walls reads.
+    for (size_t k = before; k < data_.retaining_walls.size(); ++k) {
+        OsmWay& run = data_.retaining_walls[k];
+        auto& entries = run.tags.entries;
+        entries.erase(std::remove_if(entries.begin(), entries.end(),
+                                     [](const auto& kv) { return kv.first != "height" && kv.first != "material"; }),
+                      entries.end());
+    }
+    // A way without two present nodes in a row leaves no run: an empty one stands for it, so
+    // build_retaining_walls counts it as dropped.
+    if (data_.retaining_walls.size() == before) {
+        OsmWay missing;
+        missing.id = way.id();
+        data_.retaining_walls.push_back(std::move(missing));
+    }
+}
+
+void PierLineHandler::way(const osmium::Way& way) {
+    const char* man_made = way.tags()["man_made"];
+    if (!man_made || (std::strcmp(man_made, "pier") != 0 && std::strcmp(man_made, "breakwater") != 0)) return;
+    if (way.is_closed() && !way.tags().has_tag("area", "no")) return;  // an area: LandCoverHandler's
+    const size_t before = data_.pier_lines.size();
+    keep_runs(way, data_.pier_lines, nullptr);
+    for (size_t k = before; k < data_.pier_lines.size(); ++k) {
+        auto& entries = data_.pier_lines[k].tags.entries;
+        entries.erase(std::remove_if(entries.begin(), entries.end(), [](const auto& kv) { return kv.first != "width"; }),
+                      entries.end());
+    }
+}
+
 void BuildingAreaHandler::way(const osmium::Way& way) {
     if (!is_building_tags(way.tags())) return;
     report_.read(ReportKind::BuildingWays);

@@ -73,6 +73,24 @@ public:
     void way(const osmium::Way& way);
 };
 
+// barrier=retaining_wall ways, closed ones too -> data.retaining_walls, cut into runs of present
+// nodes. Not counted here: the walls are kept only with a height field (build_retaining_walls.h
+// counts them then), so a parse without one reports what it did before.
+class RetainingWallHandler : public ReadHandler {
+public:
+    using ReadHandler::ReadHandler;
+    void way(const osmium::Way& way);
+};
+
+// man_made=pier|breakwater ways that are lines (not closed, or area=no) -> data.pier_lines, cut
+// into runs of present nodes, with their width tag only. Counted, as the areas, by
+// build_land_cover when it keeps them (only on a height field).
+class PierLineHandler : public ReadHandler {
+public:
+    using ReadHandler::ReadHandler;
+    void way(const osmium::Way& way);
+};
+
 // The one route of building=* and building:part=* areas into data.building_areas. way() and
 // relation() count what the file holds; area() keeps what libosmium assembled. libosmium
 // refuses a self-intersecting ring (it yields an empty area): then the closed way's own

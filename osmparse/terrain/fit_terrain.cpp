@@ -69,6 +69,12 @@ struct Corridor {
     uint8_t rank;       // 0 roads, 1 paths
 };
 
+// The half width of the surface that must be level across a road: carriageway and sidewalks.
+double corridor_half_width(const RoadEdge& r, const FitWidths& widths) {
+    const bool sidewalk = r.sidewalk_left || r.sidewalk_right;
+    return r.width / 2 + (sidewalk ? widths.sidewalk : 0);
+}
+
 void fit_to_corridor(const Corridor& c, const HeightField& profile, double margin, double shoulder,
                      std::vector<NodeFit>& fits) {
     const GridLayout g = layout_of(profile);
@@ -183,8 +189,7 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
             ++bridges;
             continue;
         }
-        const bool sidewalk = r.sidewalk_left || r.sidewalk_right;
-        fit_to_corridor({&r.centreline, r.width / 2 + (sidewalk ? widths.sidewalk : 0), 0}, profile, margin, shoulder, fits);
+        fit_to_corridor({&r.centreline, corridor_half_width(r, widths), 0}, profile, margin, shoulder, fits);
     }
     for (const PathEdge& p : paths) {
         if (p.bridge) {
@@ -217,6 +222,22 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
     if (bridges > 0) report.note(ReportKind::RoadEdges, ReportReason::BridgeOnItsDeck, bridges);
     if (path_bridges > 0) report.note(ReportKind::PathEdges, ReportReason::BridgeOnItsDeck, path_bridges);
     if (steps > 0) report.note(ReportKind::PathEdges, ReportReason::StepsOnTheGround, steps);
+}
+
+std::vector<uint8_t> way_corridor_nodes(const HeightField& field, const std::vector<RoadEdge>& roads,
+                                        const std::vector<PathEdge>& paths, const FitWidths& widths) {
+    std::vector<uint8_t> under(field.heights.size(), 0);
+    if (field.empty()) return under;
+    const GridLayout g = layout_of(field);
+    const double margin = field.cell * std::sqrt(2.0);  // as fit_terrain_to_ways's corridors
+    const auto mark = [&](const std::vector<Vec2>& line, double reach) {
+        for (size_t k = 0; k + 1 < line.size(); ++k)
+            for_each_node_near(g, line[k], line[k + 1], reach,
+                               [&](uint32_t i, uint32_t j, double, double) { under[g.index(i, j)] = 1; });
+    };
+    for (const RoadEdge& r : roads) mark(r.centreline, corridor_half_width(r, widths) + margin);
+    for (const PathEdge& p : paths) mark(p.centreline, p.width / 2 + margin);
+    return under;
 }
 
 void level_still_water(HeightField& field, const std::vector<LandCover>& land_cover, ParseReport& report) {

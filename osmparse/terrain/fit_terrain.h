@@ -9,6 +9,7 @@
 // one floating. docs/terrain.md, "Fitted to roads and water".
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "common/scene.h"
@@ -40,6 +41,12 @@ constexpr double kUnderDeckGap = 0.5;
 // the deck; steps are left on the DEM (their stair is not built).
 void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
                          const std::vector<PathEdge>& paths, const FitWidths& widths, ParseReport& report);
+
+// One flag per node of the field: within a road's or path's corridor (every one's: bridges and
+// steps too), the nodes fit_terrain_to_ways levels or keeps, which what is fitted after it (the
+// retaining walls' steps) leaves as they are.
+std::vector<uint8_t> way_corridor_nodes(const HeightField& field, const std::vector<RoadEdge>& roads,
+                                        const std::vector<PathEdge>& paths, const FitWidths& widths);
 
 // Levels still water (land cover class Water) at its shore's lowest height, with the nodes
 // within a cell outside its shore, so the cells it is draped over are flat.

@@ -14,6 +14,7 @@
 #include "render/geometry/stored_geometry.h"
 #include "render/geometry/terrain_geometry.h"
 #include "render/geometry/tree_geometry.h"
+#include "render/geometry/wall_geometry.h"
 
 namespace citygen {
 
@@ -70,6 +71,12 @@ std::vector<std::function<Geometry()>> class_builders(const Scene& scene, const 
         builders.push_back([&, stored, procedural]() -> Geometry {
             if (procedural(GeometryClass::Trees)) return build_procedural_trees(scene);
             return build_stored_trees(scene);
+        });
+    // Retaining walls (format 1.2) stand only on a field; none without one.
+    if (!scene.retaining_walls.empty() && !scene.terrain.empty())
+        builders.push_back([&, stored, procedural]() -> Geometry {
+            if (procedural(GeometryClass::RetainingWalls)) return build_procedural_retaining_walls(scene);
+            return stored(build_stored_retaining_walls(scene));
         });
     builders.push_back([&, stored, procedural]() -> Geometry {
         if (procedural(GeometryClass::Lamps)) return build_procedural_lamps(scene);

@@ -46,6 +46,11 @@ MaterialTable default_materials() {
     t[kLampPole] = {"lamp_pole", MaterialType::Glossy, {0.04, 0.045, 0.05}, {0.15, 0.15, 0.15}, 30, 1.5, {}};
     t[kLampGlobe] = {"lamp_globe", MaterialType::Diffuse, {0.8, 0.8, 0.8}, {}, 1, 1.5, {}};
     t[kLampCap] = {"lamp_cap", MaterialType::Glossy, {0.04, 0.045, 0.05}, {0.15, 0.15, 0.15}, 30, 1.5, {}};
+    // Weathered retaining walls: grey concrete, a warm limestone (Monaco's walls), brick, timber.
+    t[kRetainingConcrete] = {"retaining_concrete", MaterialType::Diffuse, {0.33, 0.33, 0.31}, {}, 1, 1.5, {}};
+    t[kRetainingStone] = {"retaining_stone", MaterialType::Diffuse, {0.42, 0.38, 0.31}, {}, 1, 1.5, {}};
+    t[kRetainingBrick] = {"retaining_brick", MaterialType::Diffuse, {0.33, 0.16, 0.11}, {}, 1, 1.5, {}};
+    t[kRetainingWood] = {"retaining_wood", MaterialType::Diffuse, {0.2, 0.14, 0.09}, {}, 1, 1.5, {}};
     return t;
 }
 

@@ -72,6 +72,11 @@ enum MaterialId : uint16_t {
     kLampPole,
     kLampGlobe,
     kLampCap,
+    // Retaining walls (render/geometry/wall_geometry.h), by their material tag.
+    kRetainingConcrete,
+    kRetainingStone,
+    kRetainingBrick,
+    kRetainingWood,
     kStockMaterialCount
 };
 

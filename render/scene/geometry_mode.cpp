@@ -17,6 +17,7 @@ const char* to_string(ObjectKind kind) {
         case ObjectKind::Tree: return "tree";
         case ObjectKind::Path: return "path";
         case ObjectKind::PathJoint: return "path_joint";
+        case ObjectKind::RetainingWall: return "retaining_wall";
     }
     return "?";
 }
@@ -42,6 +43,7 @@ const char* to_string(GeometryClass c) {
         case GeometryClass::Trees: return "trees";
         case GeometryClass::Paths: return "paths";
         case GeometryClass::Lamps: return "lamps";
+        case GeometryClass::RetainingWalls: return "retaining-walls";
     }
     return "?";
 }

@@ -9,8 +9,10 @@ namespace citygen {
 
 // The object classes of a scene file; a hit reports one of these plus the object's index in the
 // scene file's list of that class, whatever geometry mode produced it.
-enum class ObjectKind : uint8_t { None = 0, Building, Road, Joint, Sidewalk, Terrain, Lamp, LandCover, Tree, Path, PathJoint };
-constexpr int kObjectKindCount = 11;
+enum class ObjectKind : uint8_t {
+    None = 0, Building, Road, Joint, Sidewalk, Terrain, Lamp, LandCover, Tree, Path, PathJoint, RetainingWall
+};
+constexpr int kObjectKindCount = 12;
 
 const char* to_string(ObjectKind kind);  // "building", "road", ...
 
@@ -23,8 +25,10 @@ const char* to_string(GeometryMode mode);  // "stored" / "procedural"
 GeometryMode parse_geometry_mode(const std::string& text, const std::string& option_name);
 
 // The classes that have a selectable geometry mode.
-enum class GeometryClass : uint8_t { Buildings = 0, Roads, Joints, Sidewalks, Terrain, LandCover, Trees, Paths, Lamps };
-constexpr int kGeometryClassCount = 9;
+enum class GeometryClass : uint8_t {
+    Buildings = 0, Roads, Joints, Sidewalks, Terrain, LandCover, Trees, Paths, Lamps, RetainingWalls
+};
+constexpr int kGeometryClassCount = 10;
 const char* to_string(GeometryClass c);  // "buildings", "roads", ...
 
 struct GeometryModes {

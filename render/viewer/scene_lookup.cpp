@@ -106,6 +106,11 @@ bool object_info(const Scene& scene, const Hit& at, OsmRef& osm, json& fields) {
             if (i >= scene.path_joints.size()) return false;
             osm = scene.path_joints[i].osm;
             return true;
+        case ObjectKind::RetainingWall:
+            if (i >= scene.retaining_walls.size()) return false;
+            osm = scene.retaining_walls[i].osm, fields["height"] = metres(scene.retaining_walls[i].height);
+            fields["material"] = to_string(scene.retaining_walls[i].material);
+            return true;
         case ObjectKind::Terrain:
         case ObjectKind::None:
             return false;

@@ -163,6 +163,10 @@ TEST(SceneIo, EncoderPartByPartGivesEncodeScenesBytes) {
     s.terrain.cell = 10;
     s.terrain.nx = s.terrain.ny = 3;
     s.terrain.heights = {0, 1, 2, 3, 4, 5, 6, 7, 8};
+    RetainingWall wall;
+    wall.line = {{0, 0}, {5, 1}};
+    wall.height = 2;
+    s.retaining_walls = {wall};
     const std::vector<uint8_t> whole = encode_scene(s);
 
     SceneHeader early = s.header;
@@ -173,8 +177,9 @@ TEST(SceneIo, EncoderPartByPartGivesEncodeScenesBytes) {
     int released = 0;
     encoder.finish_releasing(rest, [&] { ++released; });
     EXPECT_EQ(std::vector<uint8_t>(encoder.data(), encoder.data() + encoder.size()), whole);
-    EXPECT_EQ(released, 10) << "one call per part after the buildings";
-    EXPECT_TRUE(rest.roads.empty() && rest.joints.empty() && rest.lamps.empty() && rest.terrain.heights.empty())
+    EXPECT_EQ(released, 11) << "one call per part after the buildings";
+    EXPECT_TRUE(rest.roads.empty() && rest.joints.empty() && rest.lamps.empty() && rest.terrain.heights.empty() &&
+                rest.retaining_walls.empty())
         << "encoded parts are freed";
 
     const Scene t = decode_scene(encoder.data(), encoder.size(), "mem");
@@ -183,4 +188,5 @@ TEST(SceneIo, EncoderPartByPartGivesEncodeScenesBytes) {
     ASSERT_EQ(t.buildings.size(), 2u);
     EXPECT_EQ(t.buildings[1].roof_faces.size(), 1u);
     EXPECT_EQ(t.terrain.heights, s.terrain.heights);
+    EXPECT_EQ(t.retaining_walls.size(), 1u);
 }

@@ -241,6 +241,37 @@ TEST(LandCover, PiersAreKeptOnlyOnAHeightField) {
     EXPECT_EQ(kept[0].cover, LandCoverClass::Paved);
 }
 
+TEST(LandCover, APierMappedAsALineIsAPavedStripAlongItOnlyOnAHeightField) {
+    OsmData osm;
+    OsmWay jetty;  // about 80 m east, then 40 m north; width untagged
+    jetty.id = 9;
+    jetty.locations = {{43.7, 7.4}, {43.7, 7.401}, {43.70036, 7.401}};
+    osm.pier_lines.push_back(jetty);
+    OsmWay wide = jetty;  // a breakwater 8 m wide, about 200 m south
+    wide.id = 10;
+    wide.tags.entries = {{"width", "8"}};
+    for (LatLon& l : wide.locations) l.lat -= 0.0018;
+    osm.pier_lines.push_back(wide);
+    const Projection projection(43.7, 7.4);
+    ParseReport report;
+    EXPECT_TRUE(build_land_cover(osm, projection, BuildingParams{}, false, report).empty());
+    const std::vector<LandCover> kept = build_land_cover(osm, projection, BuildingParams{}, true, report);
+    ASSERT_EQ(kept.size(), 4u) << "a strip per segment";
+    Scene s;
+    s.land_cover = kept;
+    for (const LandCover& c : kept) EXPECT_EQ(c.cover, LandCoverClass::Paved);
+    const Vec2 a = projection.to_local(43.7, 7.4), b = projection.to_local(43.7, 7.401);
+    const Vec2 c = projection.to_local(43.70036, 7.401);
+    const Vec2 across = perp_left(normalize(b - a)), up = normalize(c - b);
+    // Along the jetty within 1.5 m of it, around its bend, near its end; not 2 m off it.
+    for (Vec2 p : {(a + b) * 0.5 + across * 1.4, b + normalize(b - a) * 1.4 - up * 1.4, c - up * 1.0})
+        EXPECT_TRUE(covered(s, LandCoverClass::Paved, p)) << p.x << " " << p.y;
+    EXPECT_FALSE(covered(s, LandCoverClass::Paved, (a + b) * 0.5 + across * 2.0));
+    const Vec2 south = projection.to_local(43.6982, 7.4005);
+    EXPECT_TRUE(covered(s, LandCoverClass::Paved, south + across * 3.9)) << "its width tag";
+    EXPECT_EQ(report.note_count(ReportKind::LandCoverPaved, ReportReason::PierLineWidthDefault), 1);
+}
+
 TEST(LandCover, EveryClassHasItsReportRow) {
     for (int i = 0; i < kLandCoverClassCount; ++i) {
         const LandCoverClass c = static_cast<LandCoverClass>(i);

@@ -252,3 +252,27 @@ TEST(ReadOsm, AssemblesAMultipolygonWhoseRelationComesAfterItsWays) {
     EXPECT_EQ(relations, 1);
     EXPECT_EQ(report.read_count(ReportKind::BuildingRelations), 1);
 }
+
+TEST(RetainingWallHandler, KeepsOpenAndClosedWallsWithTheirHeightAndMaterialOnly) {
+    OsmData data;
+    ParseReport report;
+    RetainingWallHandler walls{data, report};
+    Objects objects;
+    osmium::builder::add_way(objects.buffer(), _id(20), _tag("barrier", "retaining_wall"), _tag("height", "4"),
+                             _tag("material", "stone"), _tag("name", "Mur"),
+                             _nodes({at(1, 7.0, 49.0), at(2, 7.001, 49.0)}));
+    osmium::builder::add_way(objects.buffer(), _id(21), _tag("barrier", "retaining_wall"),
+                             _nodes({at(3, 7.0, 49.0), at(4, 7.001, 49.0), at(5, 7.001, 49.001), at(3, 7.0, 49.0)}));
+    osmium::builder::add_way(objects.buffer(), _id(22), _tag("barrier", "retaining_wall"), _nodes({missing(6), missing(7)}));
+    osmium::builder::add_way(objects.buffer(), _id(23), _tag("barrier", "wall"), _nodes({at(1, 7.0, 49.0), at(2, 7.001, 49.0)}));
+    objects.apply(walls);
+    ASSERT_EQ(data.retaining_walls.size(), 3u);
+    EXPECT_EQ(data.retaining_walls[0].id, 20);
+    EXPECT_STREQ(data.retaining_walls[0].tags.get("height"), "4");
+    EXPECT_STREQ(data.retaining_walls[0].tags.get("material"), "stone");
+    EXPECT_EQ(data.retaining_walls[0].tags.get("name"), nullptr) << "only the tags that are read";
+    EXPECT_EQ(data.retaining_walls[1].locations.size(), 4u) << "a closed way, its first node repeated";
+    EXPECT_TRUE(data.retaining_walls[2].locations.empty()) << "no node present: an empty run, counted later";
+    EXPECT_EQ(report.read_count(ReportKind::RetainingWalls), 0) << "counted only when kept (with a field)";
+    EXPECT_GT(data.min.lat, data.max.lat) << "walls do not extend the bounds";
+}
