@@ -95,6 +95,64 @@ bool ray_triangle(Vec3 a, Vec3 b, Vec3 c, Vec3 o, Vec3 d, double tmin, double tm
     return true;
 }
 
+// A block's cells are walked in groups of kGroup x kGroup: a group whose height range the ray
+// does not meet is crossed in one step instead of kGroup cell steps.
+constexpr uint32_t kGroup = 4;
+constexpr uint32_t kGroupsAcross = kTerrainBlock / kGroup;
+static_assert(kTerrainBlock % kGroup == 0, "a block holds whole groups");
+
+struct HeightRange {
+    float lo = std::numeric_limits<float>::max(), hi = -std::numeric_limits<float>::max();
+    void add(float h) {
+        lo = std::min(lo, h);
+        hi = std::max(hi, h);
+    }
+};
+
+// Whether the ray's height between t_in and t_out meets `range`, padded by 1 mm so that rounding
+// never skips a cell with a hit (a false "meets" costs only the triangle tests).
+bool meets(double z, double dz, double t_in, double t_out, HeightRange range) {
+    const double z_in = z + dz * t_in, z_out = z + dz * t_out;
+    return std::max(z_in, z_out) >= range.lo - 1e-3 && std::min(z_in, z_out) <= range.hi + 1e-3;
+}
+
+// A 2D DDA: visits the cells of [i0, i1) x [j0, j1) that the line (u + du t, v + dv t) crosses for
+// t in [t0, t1], in order, as visit(i, j, t_in, t_out) with the t span inside the cell, until a
+// visit returns true (then true). Coordinates are in cell units.
+template <typename Visit>
+bool walk_cells(double u, double v, double du, double dv, double t0, double t1, uint32_t i0, uint32_t i1,
+                uint32_t j0, uint32_t j1, const Visit& visit) {
+    const double inf = std::numeric_limits<double>::infinity();
+    auto start_cell = [&](double s, double ds, uint32_t lo, uint32_t hi) {
+        const double at = std::floor(s + ds * t0);
+        return static_cast<uint32_t>(std::clamp(at, static_cast<double>(lo), hi - 1.0));
+    };
+    uint32_t i = start_cell(u, du, i0, i1), j = start_cell(v, dv, j0, j1);
+    const int step_i = du > 0 ? 1 : -1, step_j = dv > 0 ? 1 : -1;
+    double next_u = du > 0 ? (i + 1 - u) / du : du < 0 ? (i - u) / du : inf;
+    double next_v = dv > 0 ? (j + 1 - v) / dv : dv < 0 ? (j - v) / dv : inf;
+    const double delta_u = du != 0 ? std::abs(1 / du) : inf, delta_v = dv != 0 ? std::abs(1 / dv) : inf;
+    double t_in = t0;
+    for (;;) {
+        if (visit(i, j, t_in, std::min({next_u, next_v, t1}))) return true;
+        if (next_u < next_v) {
+            if (next_u > t1) return false;
+            const long ni = static_cast<long>(i) + step_i;
+            if (ni < static_cast<long>(i0) || ni >= static_cast<long>(i1)) return false;
+            i = static_cast<uint32_t>(ni);
+            t_in = next_u;
+            next_u += delta_u;
+        } else {
+            if (next_v > t1) return false;
+            const long nj = static_cast<long>(j) + step_j;
+            if (nj < static_cast<long>(j0) || nj >= static_cast<long>(j1)) return false;
+            j = static_cast<uint32_t>(nj);
+            t_in = next_v;
+            next_v += delta_v;
+        }
+    }
+}
+
 class ProceduralTerrain : public RenderGeometry {
 public:
     explicit ProceduralTerrain(const Scene& scene)
@@ -102,15 +160,18 @@ public:
         blocks_x_ = (field_.nx - 2) / kTerrainBlock + 1;
         blocks_y_ = (field_.ny - 2) / kTerrainBlock + 1;
         block_range_.resize(static_cast<size_t>(blocks_x_) * blocks_y_);
-        for (uint32_t by = 0; by < blocks_y_; ++by)
-            for (uint32_t bx = 0; bx < blocks_x_; ++bx) {
-                float lo = std::numeric_limits<float>::max(), hi = -lo;
-                for (uint32_t j = by * kTerrainBlock; j <= std::min(field_.ny - 1, (by + 1) * kTerrainBlock); ++j)
-                    for (uint32_t i = bx * kTerrainBlock; i <= std::min(field_.nx - 1, (bx + 1) * kTerrainBlock); ++i) {
-                        lo = std::min(lo, field_.heights[static_cast<size_t>(j) * field_.nx + i]);
-                        hi = std::max(hi, field_.heights[static_cast<size_t>(j) * field_.nx + i]);
-                    }
-                block_range_[static_cast<size_t>(by) * blocks_x_ + bx] = {lo, hi};
+        group_range_.resize(block_range_.size() * kGroupsAcross * kGroupsAcross);
+        // A cell's range is its four nodes'; a group's and a block's, their cells'.
+        for (uint32_t j = 0; j + 1 < field_.ny; ++j)
+            for (uint32_t i = 0; i + 1 < field_.nx; ++i) {
+                const unsigned block = (j / kTerrainBlock) * blocks_x_ + i / kTerrainBlock;
+                HeightRange& group = group_range_[group_index(block, (i % kTerrainBlock) / kGroup,
+                                                              (j % kTerrainBlock) / kGroup)];
+                for (uint32_t n = 0; n < 4; ++n) {
+                    const float h = field_node_height(i + n % 2, j + n / 2);
+                    group.add(h);
+                    block_range_[block].add(h);
+                }
             }
     }
     ObjectKind kind() const override { return ObjectKind::Terrain; }
@@ -118,7 +179,8 @@ public:
     uint64_t primitive_count() const override { return block_range_.size() + skirt_count_; }
     uint64_t triangle_count() const override { return 0; }
     size_t buffer_bytes() const override {
-        return field_.heights.capacity() * sizeof(float) + block_range_.capacity() * sizeof(BlockRange);
+        return field_.heights.capacity() * sizeof(float) +
+               (block_range_.capacity() + group_range_.capacity()) * sizeof(HeightRange);
     }
     RTCGeometry create_embree_geometry(RTCDevice device) override {
         return new_user_geometry(device, this, primitive_count());
@@ -135,9 +197,12 @@ public:
     }
 
 private:
-    struct BlockRange {
-        float lo, hi;
-    };
+    float field_node_height(uint32_t i, uint32_t j) const {
+        return field_.heights[static_cast<size_t>(j) * field_.nx + i];
+    }
+    static size_t group_index(unsigned block, uint32_t gi, uint32_t gj) {
+        return (size_t{block} * kGroupsAcross + gj) * kGroupsAcross + gi;
+    }
     // Cells [i0, i1) x [j0, j1) of block `prim`.
     void block_cells(unsigned prim, uint32_t* i0, uint32_t* i1, uint32_t* j0, uint32_t* j1) const {
         const uint32_t bx = prim % blocks_x_, by = prim / blocks_x_;
@@ -161,7 +226,9 @@ private:
     HeightField field_;
     Box2 extent_;
     size_t skirt_count_;
-    std::vector<BlockRange> block_range_;
+    std::vector<HeightRange> block_range_;
+    // kGroupsAcross x kGroupsAcross per block, rows south to north (group_index).
+    std::vector<HeightRange> group_range_;
     uint32_t blocks_x_ = 0, blocks_y_ = 0;
 };
 
@@ -197,8 +264,10 @@ bool ProceduralTerrain::intersect(unsigned prim, Vec3 o, Vec3 d, double tmin, do
     return true;
 }
 
-// A 2D DDA over the block's cells in grid units: cells come in the ray's order, so the first
-// cell with a hit holds the nearest one.
+// The block's groups along the ray, then the cells of each group the ray comes within the height
+// range of, each cell tested only where the ray meets its own range (most cells a block's box lets
+// through lie wholly under the ray). Cells come in the ray's order, so the first cell with a hit
+// holds the nearest one.
 bool ProceduralTerrain::intersect_block(unsigned prim, Vec3 o, Vec3 d, double tmin, double tmax,
                                         UserHit* hit) const {
     uint32_t i0, i1, j0, j1;
@@ -214,33 +283,23 @@ bool ProceduralTerrain::intersect_block(unsigned prim, Vec3 o, Vec3 d, double tm
         t1 = std::min(t1, tb);
         return t0 <= t1;
     };
-    if (!clip(u, du, i0, i1) || !clip(v, dv, j0, j1)) return false;
-    const double inf = std::numeric_limits<double>::infinity();
-    auto start_cell = [&](double s, double ds, uint32_t lo, uint32_t hi) {
-        const double at = std::floor(s + ds * t0);
-        return static_cast<uint32_t>(std::clamp(at, static_cast<double>(lo), hi - 1.0));
-    };
-    uint32_t i = start_cell(u, du, i0, i1), j = start_cell(v, dv, j0, j1);
-    const int step_i = du > 0 ? 1 : -1, step_j = dv > 0 ? 1 : -1;
-    double next_u = du > 0 ? (i + 1 - u) / du : du < 0 ? (i - u) / du : inf;
-    double next_v = dv > 0 ? (j + 1 - v) / dv : dv < 0 ? (j - v) / dv : inf;
-    const double delta_u = du != 0 ? std::abs(1 / du) : inf, delta_v = dv != 0 ? std::abs(1 / dv) : inf;
-    for (;;) {
-        if (intersect_cell(i, j, o, d, tmin, tmax, hit)) return true;
-        if (next_u < next_v) {
-            if (next_u > t1) return false;
-            const long ni = static_cast<long>(i) + step_i;
-            if (ni < static_cast<long>(i0) || ni >= static_cast<long>(i1)) return false;
-            i = static_cast<uint32_t>(ni);
-            next_u += delta_u;
-        } else {
-            if (next_v > t1) return false;
-            const long nj = static_cast<long>(j) + step_j;
-            if (nj < static_cast<long>(j0) || nj >= static_cast<long>(j1)) return false;
-            j = static_cast<uint32_t>(nj);
-            next_v += delta_v;
-        }
-    }
+    // To the block's cells, and to where the ray is within the block's heights (padded as in meets).
+    const HeightRange block = block_range_[prim];
+    if (!clip(u, du, i0, i1) || !clip(v, dv, j0, j1) || !clip(o.z, d.z, block.lo - 1e-3, block.hi + 1e-3))
+        return false;
+    // Group coordinates are the cell ones over kGroup, a power of two: exact, so a group's edges
+    // fall at the same t as its cells'.
+    const uint32_t g0 = i0 / kGroup, h0 = j0 / kGroup;
+    return walk_cells(u / kGroup, v / kGroup, du / kGroup, dv / kGroup, t0, t1, g0, (i1 + kGroup - 1) / kGroup, h0,
+                      (j1 + kGroup - 1) / kGroup, [&](uint32_t gi, uint32_t gj, double g_in, double g_out) {
+        if (!meets(o.z, d.z, g_in, g_out, group_range_[group_index(prim, gi - g0, gj - h0)])) return false;
+        return walk_cells(u, v, du, dv, g_in, g_out, gi * kGroup, std::min(i1, (gi + 1) * kGroup), gj * kGroup,
+                          std::min(j1, (gj + 1) * kGroup), [&](uint32_t i, uint32_t j, double c_in, double c_out) {
+            HeightRange cell;
+            for (uint32_t n = 0; n < 4; ++n) cell.add(field_node_height(i + n % 2, j + n / 2));
+            return meets(o.z, d.z, c_in, c_out, cell) && intersect_cell(i, j, o, d, tmin, tmax, hit);
+        });
+    });
 }
 
 }  // namespace

@@ -5,6 +5,9 @@
 //   procedural: a user geometry keeping only the heights; one primitive per block of
 //               kTerrainBlock x kTerrainBlock cells, whose callback walks the block's cells along
 //               the ray and intersects the same two triangles per cell; one primitive per skirt quad.
+//               A height range per block and per group of 4 x 4 cells lets the walk cross the
+//               groups the ray passes above (or below) in one step, and a cell's own nodes'
+//               range spares the triangle tests where the ray does not come down to it.
 #pragma once
 
 #include <array>
