@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "render/geometry/road_markings.h"
+#include "render/geometry/stair_geometry.h"
 #include "render/geometry/stored_geometry.h"
 #include "render/geometry/surface_detail.h"
 #include "render/materials/materials.h"
@@ -48,8 +49,9 @@ TriangleMesh build_stored_paths(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Path;
     for (uint32_t i = 0; i < scene.paths.size(); ++i)
-        add_ground_polygon(scene, scene.paths[i].quad, {}, path_lift(scene.paths[i]), i,
-                           path_material(scene.paths[i].path_class), mesh);
+        if (!add_stair(scene, i, path_lift(scene.paths[i]), path_material(scene.paths[i].path_class), mesh))
+            add_ground_polygon(scene, scene.paths[i].quad, {}, path_lift(scene.paths[i]), i,
+                               path_material(scene.paths[i].path_class), mesh);
     return mesh;
 }
 
@@ -65,7 +67,8 @@ TriangleMesh build_stored_path_joints(const Scene& scene) {
 std::unique_ptr<ProceduralGeometry> build_procedural_paths(const Scene& scene) {
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Path, walls());
     for (uint32_t i = 0; i < scene.paths.size(); ++i)
-        if (scene.paths[i].quad.size() >= 3)
+        if (scene.paths[i].quad.size() >= 3 &&
+            !add_stair(scene, i, path_lift(scene.paths[i]), path_material(scene.paths[i].path_class), *geometry))
             add_ground_polygon(scene, scene.paths[i].quad, {}, path_lift(scene.paths[i]), i,
                                path_material(scene.paths[i].path_class), *geometry);
     return geometry;
