@@ -287,6 +287,7 @@ enum class ReportReason {
     TerrainUnderPier,
     BridgeOnItsDeck,
     StepsOnTheGround,
+    StepsAsStair,
     WaterLevelled,
     WaterOnASlope,
     // keep_inside_box

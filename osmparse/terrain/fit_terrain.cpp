@@ -10,6 +10,7 @@
 #include "common/bridge_deck.h"
 #include "common/ground.h"
 #include "common/grid_nodes.h"
+#include "common/stairs.h"
 
 namespace citygen {
 
@@ -162,7 +163,7 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
     const double margin = field.cell * std::sqrt(2.0);
     const double shoulder = std::max(kShoulderWidth, 2 * field.cell);
     std::vector<NodeFit> fits(field.heights.size());
-    int64_t bridges = 0, steps = 0;
+    int64_t bridges = 0;
     for (const RoadEdge& r : roads) {
         if (r.bridge) {
             ++bridges;
@@ -172,10 +173,7 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
         fit_to_corridor({&r.centreline, r.width / 2 + (sidewalk ? widths.sidewalk : 0), 0}, profile, margin, shoulder, fits);
     }
     for (const PathEdge& p : paths) {
-        if (p.path_class == PathClass::Steps) {
-            ++steps;
-            continue;
-        }
+        if (p.path_class == PathClass::Steps) continue;  // on the DEM (note_steps)
         fit_to_corridor({&p.centreline, p.width / 2, 1}, profile, margin, shoulder, fits);
     }
     int64_t level = 0, blended = 0;
@@ -191,7 +189,18 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
     if (decks.abutment > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderAbutment, decks.abutment);
     if (decks.carved > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderDeck, decks.carved);
     if (bridges > 0) report.note(ReportKind::RoadEdges, ReportReason::BridgeOnItsDeck, bridges);
-    if (steps > 0) report.note(ReportKind::PathEdges, ReportReason::StepsOnTheGround, steps);
+}
+
+void note_steps(const Scene& scene, ParseReport& report) {
+    if (scene.terrain.empty()) return;
+    int64_t stairs = 0, draped = 0;
+    for (const PathEdge& p : scene.paths) {
+        if (p.path_class != PathClass::Steps) continue;
+        StairPlan plan;
+        ++(plan_stair(scene, p, &plan) ? stairs : draped);
+    }
+    if (draped > 0) report.note(ReportKind::PathEdges, ReportReason::StepsOnTheGround, draped);
+    if (stairs > 0) report.note(ReportKind::PathEdges, ReportReason::StepsAsStair, stairs);
 }
 
 void level_still_water(HeightField& field, const std::vector<LandCover>& land_cover, ParseReport& report) {

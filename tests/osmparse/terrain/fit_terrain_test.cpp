@@ -135,7 +135,6 @@ TEST(FitTerrainToWays, ABridgeIsNotFittedAndTheGroundUnderItsDeckIsCarvedBelowIt
     EXPECT_EQ(report.note_count(ReportKind::RoadEdges, ReportReason::BridgeOnItsDeck), 1);
     EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainUnderDeck), 0);
     EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainUnderAbutment), 0);
-    EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::StepsOnTheGround), 1);
 }
 
 TEST(RaisePiers, APierIntoTheSeaIsFlatAtItsDeckAndTheRestIsLeftAsItWas) {
@@ -199,4 +198,29 @@ TEST(DefaultFieldCell, TheFinerOfTheDemAndTheRoadFitCellWithinTheNodeBudget) {
     EXPECT_GT(cell, kRoadFitCell);
     EXPECT_LE((40000 / cell + 7) * (30000 / cell + 7), static_cast<double>(kDefaultFieldNodes));
     EXPECT_LE(cell, 30) << "never coarser than it has to be";
+}
+
+TEST(NoteSteps, StepsUpASlopeAreCountedAsAStairAndStepsAlongItAsDraped) {
+    Scene s;
+    s.terrain = slope_north(0.3);
+    const auto steps = [](Vec2 a, Vec2 b) {
+        PathEdge p;
+        p.path_class = PathClass::Steps;
+        p.centreline = {a, b};
+        p.width = 2;
+        const Vec2 n = perp_left(normalize(b - a));
+        p.quad = {a - n, b - n, b + n, a + n};
+        return p;
+    };
+    s.paths = {steps({0, -20}, {0, -10}), steps({0, 10}, {20, 10}), steps({10, 20}, {10, 30})};
+    s.paths.push_back(steps({20, 20}, {20, 30}));
+    s.paths.back().path_class = PathClass::Footway;  // not steps: not counted
+    ParseReport report;
+    note_steps(s, report);
+    EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::StepsAsStair), 2);
+    EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::StepsOnTheGround), 1);
+    s.terrain = {};
+    ParseReport flat;
+    note_steps(s, flat);
+    EXPECT_EQ(flat.note_count(ReportKind::PathEdges, ReportReason::StepsAsStair), 0);
 }
