@@ -9,7 +9,11 @@
 namespace citygen {
 
 bool plan_stair(const Scene& scene, const PathEdge& path, StairPlan* plan) {
-    if (scene.terrain.empty() || path.path_class != PathClass::Steps) return false;
+    return plan_stair(scene.terrain, path, plan);
+}
+
+bool plan_stair(const HeightField& field, const PathEdge& path, StairPlan* plan) {
+    if (field.empty() || path.path_class != PathClass::Steps) return false;
     if (path.quad.size() != 4 || path.centreline.size() < 2) return false;
     const Vec2 a = path.centreline.front(), u = normalize(path.centreline.back() - a);
     if (!(length(u) > 0)) return false;
@@ -21,7 +25,7 @@ bool plan_stair(const Scene& scene, const PathEdge& path, StairPlan* plan) {
     const auto centre = [&](size_t i, size_t j) { return a + u * (0.5 * (along[i] + along[j])); };
     Vec2 ends[2] = {centre(order[0], order[1]), centre(order[2], order[3])};
     double z[2];
-    for (int e = 0; e < 2; ++e) z[e] = ground_height(scene, ends[e].x, ends[e].y);
+    for (int e = 0; e < 2; ++e) z[e] = field_surface_height(field, ends[e].x, ends[e].y);
     const double run = length(ends[1] - ends[0]), rise = std::fabs(z[1] - z[0]);
     if (!(run > 0.01) || !std::isfinite(rise) || !(rise > kStairMinGrade * run)) return false;
     const int low = z[0] <= z[1] ? 0 : 1;

@@ -34,5 +34,6 @@ struct StairPlan {
 // The stair a path is drawn as: false without a field, for any class but steps, for a
 // degenerate strip and where the grade between its ends is at most kStairMinGrade.
 bool plan_stair(const Scene& scene, const PathEdge& path, StairPlan* plan);
+bool plan_stair(const HeightField& field, const PathEdge& path, StairPlan* plan);  // the same on a field
 
 }  // namespace citygen

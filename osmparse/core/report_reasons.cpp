@@ -264,6 +264,7 @@ constexpr Text<ReportReason> kReasonTexts[] = {
     {R::TerrainUnderDeck, "under a bridge deck, lowered below it"},
     {R::TerrainUnderAbutment, "at a bridge's end, on its deck (abutment)"},
     {R::TerrainUnderPier, "under a pier or quay in the sea, at its deck"},
+    {R::TerrainUnderStair, "beside a steep stair, cut down to its line"},
     {R::BridgeOnItsDeck, "bridge: on its own deck, not fitted to the ground"},
     {R::StepsOnTheGround, "steps: shallow, draped on the ground"},
     {R::StepsAsStair, "steps: steep, drawn as a stair by render"},

@@ -285,6 +285,7 @@ enum class ReportReason {
     TerrainUnderDeck,
     TerrainUnderAbutment,
     TerrainUnderPier,
+    TerrainUnderStair,
     BridgeOnItsDeck,
     StepsOnTheGround,
     StepsAsStair,

@@ -37,7 +37,8 @@ constexpr double kUnderDeckGap = 0.5;
 
 // Lays roads and paths into the field and counts what was fitted in the report. A bridge is not
 // fitted: it keeps its own deck (common/bridge_deck.h) and the field under it is carved below
-// the deck; steps are left on the DEM (render draws the steep ones as a stair: note_steps).
+// the deck; steps are left on the DEM (render draws the steep ones as a stair: note_steps),
+// but the DEM that would bury a steep stair is cut down to the line between its ends.
 void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
                          const std::vector<PathEdge>& paths, const FitWidths& widths, ParseReport& report);
 

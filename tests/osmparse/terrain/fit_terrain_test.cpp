@@ -6,6 +6,7 @@
 
 #include "common/bridge_deck.h"
 #include "common/ground.h"
+#include "common/stairs.h"
 #include "osmparse/terrain/fit_terrain.h"
 #include "osmparse/terrain/read_dem.h"
 
@@ -223,4 +224,29 @@ TEST(NoteSteps, StepsUpASlopeAreCountedAsAStairAndStepsAlongItAsDraped) {
     ParseReport flat;
     note_steps(s, flat);
     EXPECT_EQ(flat.note_count(ReportKind::PathEdges, ReportReason::StepsAsStair), 0);
+}
+
+TEST(FitTerrainToWays, TheGroundThatWouldBuryASteepStairIsCutDownToItsLine) {
+    // A slope of 30% with a bump 2 m high across the middle of steps climbing it: the stair's
+    // treads rise along the line between its ends, which the bump would cover.
+    HeightField f = field_of([](double, double y) { return 50 + 0.3 * y + 2 * std::exp(-(y * y) / 50); });
+    const HeightField raw = f;
+    PathEdge steps;
+    steps.path_class = PathClass::Steps;
+    steps.centreline = {{0, -20}, {0, 20}};
+    steps.width = 2;
+    steps.quad = {{1, -20}, {1, 20}, {-1, 20}, {-1, -20}};
+    ParseReport report;
+    fit_terrain_to_ways(f, {}, {steps}, {}, report);
+    StairPlan plan;
+    ASSERT_TRUE(plan_stair(f, steps, &plan));
+    EXPECT_NEAR(plan.z_low, raw.at(0, -20), 0.05) << "the ends stay where they were";
+    for (double y = -19.5; y < 20; y += 0.5)
+        for (double x : {-1.0, 0.0, 1.0}) {
+            const double line = plan.z_low + (y + 20) / 40 * (plan.z_high - plan.z_low);
+            EXPECT_LE(field_surface_height(f, x, y), line + 1e-3) << x << " " << y;
+        }
+    EXPECT_GT(field_surface_height(raw, 0, 0), plan.z_low + 0.5 * (plan.z_high - plan.z_low) + 1.5) << "the bump was there";
+    EXPECT_FLOAT_EQ(f.at(30, 0), raw.at(30, 0)) << "beyond the shoulder the DEM";
+    EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainUnderStair), 0);
 }
