@@ -441,10 +441,11 @@ std::vector<Stage> parse_stages(ParseState& s) {
                                    way_corridor_nodes(scene.terrain, scene.roads, scene.paths, {p.sidewalks.width}), r);
          },
          !p.terrain.dem_files.empty()},
-        {"water into terrain", {"terrain", "land cover"}, {"terrain"},
+        {"water into terrain", {"terrain", "land cover", "paths"}, {"terrain"},
          [&](ParseReport& r) {
              level_still_water(scene.terrain, scene.land_cover, r);
              raise_piers(scene.terrain, scene.land_cover, r);
+             note_steps(scene, r);  // on the finished field
          },
          !p.terrain.dem_files.empty()},
     };

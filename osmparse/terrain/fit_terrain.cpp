@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -10,6 +11,7 @@
 #include "common/bridge_deck.h"
 #include "common/ground.h"
 #include "common/grid_nodes.h"
+#include "common/stairs.h"
 
 namespace citygen {
 
@@ -172,6 +174,33 @@ UnderDecks fit_under_decks(HeightField& field, const std::vector<DeckReach>& dec
     return count;
 }
 
+// Steps the field leaves on the DEM (they are not fitted) are drawn as a stair where steep
+// (common/stairs.h): its treads rise along the line between its ends, so where the DEM bulges
+// above that line it would bury them. Nodes above the line within the steps' half width and a
+// cell's diagonal are lowered to it (a cut), blending back over the shoulder; nodes a way's
+// corridor levelled, and those beyond the stair's ends (the ways there), are left. The plans are
+// made first, so one stair's cut does not move another's ends.
+int64_t cut_under_stairs(HeightField& field, const std::vector<PathEdge>& paths, const std::vector<NodeFit>& fits,
+                         double margin, double shoulder) {
+    const GridLayout g = layout_of(field);
+    std::vector<std::pair<StairPlan, double>> stairs;
+    for (const PathEdge& p : paths)
+        if (StairPlan plan; plan_stair(field, p, &plan)) stairs.push_back({plan, p.width / 2 + margin});
+    int64_t cut = 0;
+    for (const auto& [plan, reach] : stairs)
+        for_each_node_near(g, plan.low, plan.high, reach + shoulder, [&](uint32_t i, uint32_t j, double d, double t) {
+            const size_t n = g.index(i, j);
+            if (!(t > 0 && t < 1) || fits[n].weight >= 1) return;
+            const double line = plan.z_low + t * (plan.z_high - plan.z_low);
+            const double s = std::clamp((d - reach) / shoulder, 0.0, 1.0);
+            const double w = 1 - s * s * (3 - 2 * s);
+            float& h = field.heights[n];
+            const auto lowered = static_cast<float>(w * line + (1 - w) * h);
+            if (lowered < h) h = lowered, ++cut;
+        });
+    return cut;
+}
+
 }  // namespace
 
 void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
@@ -183,7 +212,7 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
     const double margin = field.cell * std::sqrt(2.0);
     const double shoulder = std::max(kShoulderWidth, 2 * field.cell);
     std::vector<NodeFit> fits(field.heights.size());
-    int64_t bridges = 0, path_bridges = 0, steps = 0;
+    int64_t bridges = 0, path_bridges = 0;
     for (const RoadEdge& r : roads) {
         if (r.bridge) {
             ++bridges;
@@ -196,10 +225,7 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
             ++path_bridges;
             continue;
         }
-        if (p.path_class == PathClass::Steps) {
-            ++steps;
-            continue;
-        }
+        if (p.path_class == PathClass::Steps) continue;  // on the DEM (note_steps)
         fit_to_corridor({&p.centreline, p.width / 2, 1}, profile, margin, shoulder, fits);
     }
     int64_t level = 0, blended = 0;
@@ -215,13 +241,26 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
     }, margin, reaches);
     add_deck_reaches(field, paths, [](const PathEdge& p) { return p.width / 2; }, margin, reaches);
     const UnderDecks decks = fit_under_decks(field, reaches);
+    const int64_t cut = cut_under_stairs(field, paths, fits, margin, shoulder);
     if (level > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderWay, level);
     if (blended > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainWayShoulder, blended);
     if (decks.abutment > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderAbutment, decks.abutment);
     if (decks.carved > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderDeck, decks.carved);
+    if (cut > 0) report.note(ReportKind::TerrainNodes, ReportReason::TerrainUnderStair, cut);
     if (bridges > 0) report.note(ReportKind::RoadEdges, ReportReason::BridgeOnItsDeck, bridges);
     if (path_bridges > 0) report.note(ReportKind::PathEdges, ReportReason::BridgeOnItsDeck, path_bridges);
-    if (steps > 0) report.note(ReportKind::PathEdges, ReportReason::StepsOnTheGround, steps);
+}
+
+void note_steps(const Scene& scene, ParseReport& report) {
+    if (scene.terrain.empty()) return;
+    int64_t stairs = 0, draped = 0;
+    for (const PathEdge& p : scene.paths) {
+        if (p.path_class != PathClass::Steps || p.bridge) continue;  // steps on a deck: counted as bridges
+        StairPlan plan;
+        ++(plan_stair(scene, p, &plan) ? stairs : draped);
+    }
+    if (draped > 0) report.note(ReportKind::PathEdges, ReportReason::StepsOnTheGround, draped);
+    if (stairs > 0) report.note(ReportKind::PathEdges, ReportReason::StepsAsStair, stairs);
 }
 
 std::vector<uint8_t> way_corridor_nodes(const HeightField& field, const std::vector<RoadEdge>& roads,

@@ -38,7 +38,8 @@ constexpr double kUnderDeckGap = 0.5;
 
 // Lays roads and paths into the field and counts what was fitted in the report. A bridge is not
 // fitted: it keeps its own deck (common/bridge_deck.h) and the field under it is carved below
-// the deck; steps are left on the DEM (their stair is not built).
+// the deck; steps are left on the DEM (render draws the steep ones as a stair: note_steps),
+// but the DEM that would bury a steep stair is cut down to the line between its ends.
 void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
                          const std::vector<PathEdge>& paths, const FitWidths& widths, ParseReport& report);
 
@@ -47,6 +48,10 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
 // retaining walls' steps) leaves as they are.
 std::vector<uint8_t> way_corridor_nodes(const HeightField& field, const std::vector<RoadEdge>& roads,
                                         const std::vector<PathEdge>& paths, const FitWidths& widths);
+
+// Counts the steps edges render draws as a stair on the finished field (common/stairs.h's
+// plan_stair: steeper than kStairMinGrade between their ends) and those it drapes.
+void note_steps(const Scene& scene, ParseReport& report);
 
 // Levels still water (land cover class Water) at its shore's lowest height, with the nodes
 // within a cell outside its shore, so the cells it is draped over are flat.

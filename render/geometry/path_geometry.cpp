@@ -4,6 +4,7 @@
 
 #include "render/geometry/bridge_geometry.h"
 #include "render/geometry/road_markings.h"
+#include "render/geometry/stair_geometry.h"
 #include "render/geometry/stored_geometry.h"
 #include "render/geometry/surface_detail.h"
 #include "render/materials/materials.h"
@@ -22,7 +23,8 @@ ProceduralGeometry::SurfaceMaterials walls() {
     return m;
 }
 
-// A path on the ground, draped, or on its deck with its slab and piers (bridge_geometry.h); a
+// A path on the ground, draped or as a stair (stair_geometry.h), or on its deck with its slab and
+// piers (bridge_geometry.h); a
 // path joint the same, on its deck where every path meeting there is a bridge.
 template <class Geometry>
 void add_path(const Scene& scene, const std::vector<DeckLine>& decks, uint32_t i, Geometry& geometry) {
@@ -33,7 +35,7 @@ void add_path(const Scene& scene, const std::vector<DeckLine>& decks, uint32_t i
         add_faces(deck_piers(scene, decks[i], p.width), i, geometry);
         return;
     }
-    add_ground_polygon(scene, p.quad, {}, path_lift(p), i, material, geometry);
+    if (!add_stair(scene, i, path_lift(p), material, geometry)) add_ground_polygon(scene, p.quad, {}, path_lift(p), i, material, geometry);
 }
 
 template <class Geometry>

@@ -6,6 +6,7 @@
 
 #include "common/bridge_deck.h"
 #include "common/ground.h"
+#include "common/stairs.h"
 #include "osmparse/terrain/fit_terrain.h"
 #include "osmparse/terrain/read_dem.h"
 
@@ -135,7 +136,6 @@ TEST(FitTerrainToWays, ABridgeIsNotFittedAndTheGroundUnderItsDeckIsCarvedBelowIt
     EXPECT_EQ(report.note_count(ReportKind::RoadEdges, ReportReason::BridgeOnItsDeck), 1);
     EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainUnderDeck), 0);
     EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainUnderAbutment), 0);
-    EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::StepsOnTheGround), 1);
 }
 
 TEST(FitTerrainToWays, AFootbridgeIsNotFittedAndTheGroundUnderItsDeckIsCarvedBelowIt) {
@@ -226,4 +226,54 @@ TEST(DefaultFieldCell, TheFinerOfTheDemAndTheRoadFitCellWithinTheNodeBudget) {
     EXPECT_GT(cell, kRoadFitCell);
     EXPECT_LE((40000 / cell + 7) * (30000 / cell + 7), static_cast<double>(kDefaultFieldNodes));
     EXPECT_LE(cell, 30) << "never coarser than it has to be";
+}
+
+TEST(NoteSteps, StepsUpASlopeAreCountedAsAStairAndStepsAlongItAsDraped) {
+    Scene s;
+    s.terrain = slope_north(0.3);
+    const auto steps = [](Vec2 a, Vec2 b) {
+        PathEdge p;
+        p.path_class = PathClass::Steps;
+        p.centreline = {a, b};
+        p.width = 2;
+        const Vec2 n = perp_left(normalize(b - a));
+        p.quad = {a - n, b - n, b + n, a + n};
+        return p;
+    };
+    s.paths = {steps({0, -20}, {0, -10}), steps({0, 10}, {20, 10}), steps({10, 20}, {10, 30})};
+    s.paths.push_back(steps({20, 20}, {20, 30}));
+    s.paths.back().path_class = PathClass::Footway;  // not steps: not counted
+    ParseReport report;
+    note_steps(s, report);
+    EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::StepsAsStair), 2);
+    EXPECT_EQ(report.note_count(ReportKind::PathEdges, ReportReason::StepsOnTheGround), 1);
+    s.terrain = {};
+    ParseReport flat;
+    note_steps(s, flat);
+    EXPECT_EQ(flat.note_count(ReportKind::PathEdges, ReportReason::StepsAsStair), 0);
+}
+
+TEST(FitTerrainToWays, TheGroundThatWouldBuryASteepStairIsCutDownToItsLine) {
+    // A slope of 30% with a bump 2 m high across the middle of steps climbing it: the stair's
+    // treads rise along the line between its ends, which the bump would cover.
+    HeightField f = field_of([](double, double y) { return 50 + 0.3 * y + 2 * std::exp(-(y * y) / 50); });
+    const HeightField raw = f;
+    PathEdge steps;
+    steps.path_class = PathClass::Steps;
+    steps.centreline = {{0, -20}, {0, 20}};
+    steps.width = 2;
+    steps.quad = {{1, -20}, {1, 20}, {-1, 20}, {-1, -20}};
+    ParseReport report;
+    fit_terrain_to_ways(f, {}, {steps}, {}, report);
+    StairPlan plan;
+    ASSERT_TRUE(plan_stair(f, steps, &plan));
+    EXPECT_NEAR(plan.z_low, raw.at(0, -20), 0.05) << "the ends stay where they were";
+    for (double y = -19.5; y < 20; y += 0.5)
+        for (double x : {-1.0, 0.0, 1.0}) {
+            const double line = plan.z_low + (y + 20) / 40 * (plan.z_high - plan.z_low);
+            EXPECT_LE(field_surface_height(f, x, y), line + 1e-3) << x << " " << y;
+        }
+    EXPECT_GT(field_surface_height(raw, 0, 0), plan.z_low + 0.5 * (plan.z_high - plan.z_low) + 1.5) << "the bump was there";
+    EXPECT_FLOAT_EQ(f.at(30, 0), raw.at(30, 0)) << "beyond the shoulder the DEM";
+    EXPECT_GT(report.note_count(ReportKind::TerrainNodes, ReportReason::TerrainUnderStair), 0);
 }
