@@ -24,8 +24,8 @@ ProceduralGeometry::SurfaceMaterials walls() {
 }
 
 // A path on the ground, draped or as a stair (stair_geometry.h), or on its deck with its slab and
-// piers (bridge_geometry.h); a
-// path joint the same, on its deck where every path meeting there is a bridge.
+// piers (bridge_geometry.h); a path joint the same, on its deck where every path meeting there is
+// a bridge.
 template <class Geometry>
 void add_path(const Scene& scene, const std::vector<DeckLine>& decks, uint32_t i, Geometry& geometry) {
     const PathEdge& p = scene.paths[i];
@@ -35,7 +35,8 @@ void add_path(const Scene& scene, const std::vector<DeckLine>& decks, uint32_t i
         add_faces(deck_piers(scene, decks[i], p.width), i, geometry);
         return;
     }
-    if (!add_stair(scene, i, path_lift(p), material, geometry)) add_ground_polygon(scene, p.quad, {}, path_lift(p), i, material, geometry);
+    if (!add_stair(scene, i, path_lift(p), material, geometry))
+        add_ground_polygon(scene, p.quad, {}, path_lift(p), i, material, geometry);
 }
 
 template <class Geometry>
