@@ -187,7 +187,9 @@ int64_t cut_under_stairs(HeightField& field, const std::vector<PathEdge>& paths,
     for (const PathEdge& p : paths)
         if (StairPlan plan; plan_stair(field, p, &plan)) stairs.push_back({plan, p.width / 2 + margin});
     int64_t cut = 0;
-    for (const auto& [plan, reach] : stairs)
+    for (const auto& stair : stairs) {
+        const StairPlan& plan = stair.first;  // named, not bound: a lambda cannot capture a structured binding in C++17
+        const double reach = stair.second;
         for_each_node_near(g, plan.low, plan.high, reach + shoulder, [&](uint32_t i, uint32_t j, double d, double t) {
             const size_t n = g.index(i, j);
             if (!(t > 0 && t < 1) || fits[n].weight >= 1) return;
@@ -198,6 +200,7 @@ int64_t cut_under_stairs(HeightField& field, const std::vector<PathEdge>& paths,
             const auto lowered = static_cast<float>(w * line + (1 - w) * h);
             if (lowered < h) h = lowered, ++cut;
         });
+    }
     return cut;
 }
 
