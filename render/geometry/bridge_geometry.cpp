@@ -21,7 +21,7 @@ constexpr double kPierFooting = 1;
 // The vertical face under the edge a->b of a counter-clockwise outline, from z_bottom(p) up to
 // z_top(p), facing out: a trapezoid, planar as both heights are linear along the edge.
 template <class Bottom, class Top>
-BridgeFace side_face(Vec2 a, Vec2 b, Bottom z_bottom, Top z_top) {
+PlanarFace side_face(Vec2 a, Vec2 b, Bottom z_bottom, Top z_top) {
     return {{{a.x, a.y, z_bottom(a)}, {b.x, b.y, z_bottom(b)}, {b.x, b.y, z_top(b)}, {a.x, a.y, z_top(a)}}, kCurb};
 }
 
@@ -37,8 +37,8 @@ std::vector<DeckLine> drawn_path_decks(const Scene& scene) {
     return path_bridge_decks(scene);
 }
 
-std::vector<BridgeFace> deck_piece_faces(const DeckSurface& deck, const Ring& ring, double lift, uint16_t top_material) {
-    std::vector<BridgeFace> faces;
+std::vector<PlanarFace> deck_piece_faces(const DeckSurface& deck, const Ring& ring, double lift, uint16_t top_material) {
+    std::vector<PlanarFace> faces;
     if (ring.size() < 3) return faces;
     Ring outline = ring;
     if (signed_area(outline) < 0) std::reverse(outline.begin(), outline.end());
@@ -57,8 +57,8 @@ std::vector<BridgeFace> deck_piece_faces(const DeckSurface& deck, const Ring& ri
     return faces;
 }
 
-std::vector<BridgeFace> deck_piers(const Scene& scene, const DeckLine& deck, double width) {
-    std::vector<BridgeFace> faces;
+std::vector<PlanarFace> deck_piers(const Scene& scene, const DeckLine& deck, double width) {
+    std::vector<PlanarFace> faces;
     const Vec2 chord = deck.b - deck.a;
     const double span = length(chord);
     const double half_width = 0.5 * width - kPierInset;
@@ -77,18 +77,6 @@ std::vector<BridgeFace> deck_piers(const Scene& scene, const DeckLine& deck, dou
         for (int e = 0; e < 4; ++e) faces.push_back(side_face(corners[e], corners[(e + 1) % 4], foot, underside));
     }
     return faces;
-}
-
-void add_faces(const std::vector<BridgeFace>& faces, uint32_t object, TriangleMesh& mesh) {
-    for (const BridgeFace& f : faces) {
-        const uint32_t first = mesh.add_vertex(f.points[0]);
-        for (size_t k = 1; k < f.points.size(); ++k) mesh.add_vertex(f.points[k]);
-        for (uint32_t k = 1; k + 1 < f.points.size(); ++k) mesh.add_triangle(first, first + k, first + k + 1, object, f.material);
-    }
-}
-
-void add_faces(const std::vector<BridgeFace>& faces, uint32_t object, ProceduralGeometry& geometry) {
-    for (const BridgeFace& f : faces) geometry.add_face(object, f.points, f.material);
 }
 
 }  // namespace citygen

@@ -9,16 +9,9 @@
 
 #include "common/bridge_deck.h"
 #include "common/scene.h"
-#include "render/geometry/procedural_geometry.h"
-#include "render/scene/triangle_mesh.h"
+#include "render/geometry/planar_face.h"
 
 namespace citygen {
-
-// A planar convex polygon, front side counter-clockwise.
-struct BridgeFace {
-    std::vector<Vec3> points;
-    uint16_t material;
-};
 
 // The decks render draws, one per road (common/bridge_deck.h), or per path: none without a height
 // field, where bridges lie on the flat ground as every road does.
@@ -29,11 +22,7 @@ std::vector<DeckLine> drawn_path_decks(const Scene& scene);
 // surface: an underside facing down and a side face on every edge facing out) and, for a road,
 // its piers (across the way's `width` less 1 m each side): the way's own surface, or a sidewalk
 // along it (lift: its curb top).
-std::vector<BridgeFace> deck_piece_faces(const DeckSurface& deck, const Ring& ring, double lift, uint16_t top_material);
-std::vector<BridgeFace> deck_piers(const Scene& scene, const DeckLine& deck, double width);
-
-// The faces as object `object`'s triangles, or its procedural faces.
-void add_faces(const std::vector<BridgeFace>& faces, uint32_t object, TriangleMesh& mesh);
-void add_faces(const std::vector<BridgeFace>& faces, uint32_t object, ProceduralGeometry& geometry);
+std::vector<PlanarFace> deck_piece_faces(const DeckSurface& deck, const Ring& ring, double lift, uint16_t top_material);
+std::vector<PlanarFace> deck_piers(const Scene& scene, const DeckLine& deck, double width);
 
 }  // namespace citygen

@@ -42,15 +42,15 @@ double lowest_ground(const Scene& scene, Vec2 a, Vec2 b) {
 
 // The vertical rectangle under the edge a->b of a counter-clockwise outline, from z0 up to z1,
 // facing out.
-BridgeFace wall(Vec2 a, Vec2 b, double z0, double z1, uint16_t material) {
+PlanarFace wall(Vec2 a, Vec2 b, double z0, double z1, uint16_t material) {
     return {{{a.x, a.y, z0}, {b.x, b.y, z0}, {b.x, b.y, z1}, {a.x, a.y, z1}}, material};
 }
 
 }  // namespace
 
-std::vector<BridgeFace> stair_faces(const Scene& scene, const StairPlan& plan, const Ring& quad, double lift,
+std::vector<PlanarFace> stair_faces(const Scene& scene, const StairPlan& plan, const Ring& quad, double lift,
                                     uint16_t material) {
-    std::vector<BridgeFace> faces;
+    std::vector<PlanarFace> faces;
     if (quad.size() < 3 || plan.steps <= 0) return faces;
     Ring ring = quad;
     if (signed_area(ring) < 0) std::reverse(ring.begin(), ring.end());
@@ -64,7 +64,7 @@ std::vector<BridgeFace> stair_faces(const Scene& scene, const StairPlan& plan, c
         const Ring outline = clip_between(ring, o, u, lo, hi);
         if (outline.size() < 3) continue;
         const double z = plan.z_low + lift + (k + 1) * rise;
-        BridgeFace top{{}, material};
+        PlanarFace top{{}, material};
         for (Vec2 p : outline) top.points.push_back({p.x, p.y, z});
         faces.push_back(std::move(top));
         for (size_t e = 0, n = outline.size(); e < n; ++e) {
@@ -87,19 +87,14 @@ std::vector<BridgeFace> stair_faces(const Scene& scene, const StairPlan& plan, c
 bool add_stair(const Scene& scene, uint32_t index, double lift, uint16_t material, TriangleMesh& mesh) {
     StairPlan plan;
     if (!plan_stair(scene, scene.paths[index], &plan)) return false;
-    for (const BridgeFace& f : stair_faces(scene, plan, scene.paths[index].quad, lift, material)) {
-        const uint32_t first = mesh.add_vertex(f.points[0]);
-        for (size_t k = 1; k < f.points.size(); ++k) mesh.add_vertex(f.points[k]);
-        for (uint32_t k = 1; k + 1 < f.points.size(); ++k) mesh.add_triangle(first, first + k, first + k + 1, index, f.material);
-    }
+    add_faces(stair_faces(scene, plan, scene.paths[index].quad, lift, material), index, mesh);
     return true;
 }
 
 bool add_stair(const Scene& scene, uint32_t index, double lift, uint16_t material, ProceduralGeometry& geometry) {
     StairPlan plan;
     if (!plan_stair(scene, scene.paths[index], &plan)) return false;
-    for (const BridgeFace& f : stair_faces(scene, plan, scene.paths[index].quad, lift, material))
-        geometry.add_face(index, f.points, f.material);
+    add_faces(stair_faces(scene, plan, scene.paths[index].quad, lift, material), index, geometry);
     return true;
 }
 

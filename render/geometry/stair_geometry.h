@@ -9,9 +9,7 @@
 #include <vector>
 
 #include "common/stairs.h"
-#include "render/geometry/bridge_geometry.h"
-#include "render/geometry/procedural_geometry.h"
-#include "render/scene/triangle_mesh.h"
+#include "render/geometry/planar_face.h"
 
 namespace citygen {
 
@@ -22,7 +20,7 @@ constexpr double kStairFooting = 0.5;
 // The stair's faces over the strip `quad`, its treads `lift` above the plan's heights: planar
 // convex polygons, front side counter-clockwise (treads up, risers towards the low end, side
 // faces out).
-std::vector<BridgeFace> stair_faces(const Scene& scene, const StairPlan& plan, const Ring& quad, double lift,
+std::vector<PlanarFace> stair_faces(const Scene& scene, const StairPlan& plan, const Ring& quad, double lift,
                                     uint16_t material);
 
 // Adds path `index` as a stair if plan_stair draws it as one; false (nothing added) otherwise.

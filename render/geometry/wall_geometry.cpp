@@ -14,8 +14,8 @@ uint16_t retaining_wall_material(WallMaterial material) {
     }
 }
 
-std::vector<WallFace> retaining_wall_faces(const Scene& scene, const RetainingWall& wall) {
-    std::vector<WallFace> faces;
+std::vector<PlanarFace> retaining_wall_faces(const Scene& scene, const RetainingWall& wall) {
+    std::vector<PlanarFace> faces;
     const std::vector<WallStation> stations = wall_stations(scene, wall);
     if (stations.size() < 2) return faces;
     const uint16_t m = retaining_wall_material(wall.material);
@@ -41,11 +41,7 @@ TriangleMesh build_stored_retaining_walls(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::RetainingWall;
     for (uint32_t i = 0; i < scene.retaining_walls.size(); ++i)
-        for (const WallFace& f : retaining_wall_faces(scene, scene.retaining_walls[i])) {
-            const uint32_t first = mesh.add_vertex(f.points[0]);
-            for (size_t k = 1; k < f.points.size(); ++k) mesh.add_vertex(f.points[k]);
-            for (uint32_t k = 1; k + 1 < f.points.size(); ++k) mesh.add_triangle(first, first + k, first + k + 1, i, f.material);
-        }
+        add_faces(retaining_wall_faces(scene, scene.retaining_walls[i]), i, mesh);
     return mesh;
 }
 
@@ -54,7 +50,7 @@ std::unique_ptr<ProceduralGeometry> build_procedural_retaining_walls(const Scene
     unused.fill(kRetainingConcrete);
     auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::RetainingWall, unused);
     for (uint32_t i = 0; i < scene.retaining_walls.size(); ++i)
-        for (const WallFace& f : retaining_wall_faces(scene, scene.retaining_walls[i])) geometry->add_face(i, f.points, f.material);
+        add_faces(retaining_wall_faces(scene, scene.retaining_walls[i]), i, *geometry);
     return geometry;
 }
 

@@ -9,16 +9,9 @@
 #include <vector>
 
 #include "common/scene.h"
-#include "render/geometry/procedural_geometry.h"
-#include "render/scene/triangle_mesh.h"
+#include "render/geometry/planar_face.h"
 
 namespace citygen {
-
-// A planar convex polygon, front side counter-clockwise.
-struct WallFace {
-    std::vector<Vec3> points;
-    uint16_t material;
-};
 
 // The material a wall is drawn with, from its material tag: stone, brick, wood, else concrete.
 uint16_t retaining_wall_material(WallMaterial material);
@@ -26,7 +19,7 @@ uint16_t retaining_wall_material(WallMaterial material);
 // A wall's faces: along each pair of consecutive stations its two faces and its top (two
 // triangles: a mitred top is not planar), and a cap at each end of an open line. No underside:
 // the foot is under the ground.
-std::vector<WallFace> retaining_wall_faces(const Scene& scene, const RetainingWall& wall);
+std::vector<PlanarFace> retaining_wall_faces(const Scene& scene, const RetainingWall& wall);
 
 TriangleMesh build_stored_retaining_walls(const Scene& scene);
 std::unique_ptr<ProceduralGeometry> build_procedural_retaining_walls(const Scene& scene);
