@@ -231,14 +231,15 @@ double deck_height(const DeckLine& deck, Vec2 p) {
 
 StandingSurface::StandingSurface(const Scene& scene) : scene_(scene) {
     if (scene.terrain.empty()) return;
+    // Beyond the carriageway's edge a lamp on a road bridge stands on its sidewalk or parapet;
+    // beside a footbridge's or rail bridge's strip, at its railing.
+    constexpr double kBeyondRoadEdge = 2.5, kBeyondPathEdge = 1;
     decks_ = bridge_decks(scene);
-    reach_.assign(decks_.size(), 0);
-    // Beyond the carriageway's edge a lamp on a bridge stands on its sidewalk or parapet.
-    constexpr double kBeyondEdge = 2.5;
+    for (const RoadEdge& r : scene.roads) reach_.push_back(r.width / 2 + kBeyondRoadEdge);
+    for (DeckLine& d : path_bridge_decks(scene)) decks_.push_back(d);
+    for (const PathEdge& p : scene.paths) reach_.push_back(p.width / 2 + kBeyondPathEdge);
     for (uint32_t e = 0; e < decks_.size(); ++e) {
         if (!decks_[e].valid) continue;
-        const RoadEdge& r = scene.roads[e];
-        reach_[e] = r.width / 2 + kBeyondEdge;
         Box2 box;
         box.extend(decks_[e].a);
         box.extend(decks_[e].b);

@@ -75,8 +75,9 @@ double deck_height(const DeckLine& deck, Vec2 p);
 double deck_along(const DeckLine& deck, Vec2 p);
 
 // What stands at a point (a street lamp) stands on the top surface there: a bridge's deck where
-// the point lies on it (within 2.5 m of its carriageway: its sidewalk or parapet), the ground
-// elsewhere. Built once per scene; without a field, or without bridges, it is the ground.
+// the point lies on it (within 2.5 m of a road's carriageway: its sidewalk or parapet; within
+// 1 m of a footbridge's or rail bridge's strip: its railing), the ground elsewhere. Built once
+// per scene; without a field, or without bridges, it is the ground.
 class StandingSurface {
 public:
     explicit StandingSurface(const Scene& scene);

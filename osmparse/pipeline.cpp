@@ -262,7 +262,7 @@ void read(ParseState& s, ParseReport& report) {
 void infer_building_heights(ParseState& s, ParseReport& report) {
     const BuildingParams& params = s.params().buildings;
     infer_heights(s.scene.buildings, land_use_areas(s.osm, *s.projection, report), params, report,
-                  named_buildings(s.osm), homes_by_use(s.osm));
+                  homes_by_use(s.osm));
     // The building areas' rings are in the footprints now; the roofs and colours read only
     // some of their tags: those are kept, the areas freed.
     s.building_tags.emplace(std::move(s.osm.building_areas));

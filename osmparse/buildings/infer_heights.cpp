@@ -75,16 +75,13 @@ constexpr double kTowerLevels = 15;
 // for itself on a tall building. The tagged homes this deep in our extracts are all tall
 // (docs/bench/2026-11-heights.md).
 constexpr double kPointBlockDepth = 13;    // metres
+// One core of lifts and stairs serves a floor of about 2,000 m2 at most (residential towers'
+// floors are 600-1,500 m2): a deep plan larger than kMaxPointBlockArea is a block of several
+// cores, mid-rise (a mansion block, a terrace of flats).
+constexpr double kMaxPointBlockArea = 2000;  // m2
 // In a village fabric (houses, grain under kPointBlockMinGrain) a deep home is a farmstead or a
 // care home, not a tower.
 constexpr double kPointBlockMinGrain = 200;  // m2
-// Landmark homes: mappers name the homes that are landmarks (towers, halls of residence, large
-// estates); an ordinary block of flats carries only an address. A name of fewer than
-// kMinNameLength characters is a block's letter ("A", "B2"), and a named home under
-// kLandmarkMinArea a villa. Chosen on one extract and checked on another
-// (docs/bench/2026-11-heights.md).
-constexpr size_t kMinNameLength = 3;       // characters
-constexpr double kLandmarkMinArea = 500;   // m2
 // Twins: an estate is built in series from one design (rows of identical slabs, pairs of towers,
 // a terrace of one builder's houses): a building of the same type and footprint, within
 // kTwinArea, standing within kTwinDistance has the same storeys. The nearest such tagged one
@@ -442,7 +439,8 @@ double levels_from_surroundings(double area, double grain, bool attached) {
 }
 
 bool is_point_block(const std::string& type, double area, double perimeter, double grain) {
-    return is_home(type) && perimeter > 0 && 2 * area / perimeter >= kPointBlockDepth && grain >= kPointBlockMinGrain;
+    return is_home(type) && perimeter > 0 && 2 * area / perimeter >= kPointBlockDepth && area <= kMaxPointBlockArea &&
+           grain >= kPointBlockMinGrain;
 }
 
 double fabric_factor(double grain) {
@@ -453,22 +451,6 @@ double fabric_factor(double grain) {
 
 double tower_height(double grain, const BuildingParams& params) {
     return kTowerLevels * fabric_factor(grain) * params.level_height;
-}
-
-bool is_landmark_home(const std::string& type, double area, bool named) {
-    return is_home(type) && named && area >= kLandmarkMinArea;
-}
-
-std::set<OsmRef> named_buildings(const OsmData& osm) {
-    std::set<OsmRef> out;
-    for (const OsmArea& area : osm.building_areas) {
-        const char* name = area.tags.get("name");
-        if (!name || !area.tags.get("building")) continue;
-        size_t characters = 0;  // UTF-8: count the bytes that start a character
-        for (const char* c = name; *c; ++c) characters += (static_cast<unsigned char>(*c) & 0xC0) != 0x80;
-        if (characters >= kMinNameLength) out.insert(area.ref);
-    }
-    return out;
 }
 
 std::set<OsmRef> homes_by_use(const OsmData& osm) {
@@ -544,8 +526,8 @@ struct Plan {
 class HeightGuesser {
 public:
     HeightGuesser(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                  const BuildingParams& params, const std::set<OsmRef>& named, const std::set<OsmRef>& homes)
-        : buildings_(buildings), params_(params), named_(named), homes_(homes), uses_(land_use),
+                  const BuildingParams& params, const std::set<OsmRef>& homes)
+        : buildings_(buildings), params_(params), homes_(homes), uses_(land_use),
           surroundings_(buildings) {
         std::vector<Tagged> tagged = tagged_heights();
         median_by_kind(tagged);
@@ -591,13 +573,12 @@ private:
         if (it == kind_median_.end() && !is_untyped(type)) it = kind_median_.find({type_key(type), -1});
         return it == kind_median_.end() ? 0.0 : it->second;
     }
-    TypePrior type_prior(const std::string& type, const Plan& plan, bool is_named);
+    TypePrior type_prior(const std::string& type, const Plan& plan);
     void calibrate();
     Plan plan_of(const std::vector<size_t>& indices);
 
     std::vector<Building>& buildings_;
     const BuildingParams& params_;
-    const std::set<OsmRef>& named_;
     const std::set<OsmRef>& homes_;
     std::map<std::pair<std::string, int>, double> kind_median_;
     std::optional<TaggedGrid> grid_;
@@ -606,7 +587,7 @@ private:
     std::vector<double> calibration_ = std::vector<double>(kPriorGroups + 1, 1.0);
 };
 
-TypePrior HeightGuesser::type_prior(const std::string& type, const Plan& plan, bool is_named) {
+TypePrior HeightGuesser::type_prior(const std::string& type, const Plan& plan) {
     TypePrior p;
     const double area = plan.area;
     const Vec2 at = plan.at;
@@ -622,10 +603,6 @@ TypePrior HeightGuesser::type_prior(const std::string& type, const Plan& plan, b
         p.height = tower_height(surroundings_.grain(at), params_);
         p.tower = true;
         p.note = ReportReason::PointBlock;
-    } else if (is_landmark_home(type, area, is_named)) {
-        p.height = tower_height(surroundings_.grain(at), params_);
-        p.tower = true;
-        p.note = ReportReason::LandmarkHome;
     } else if (hall_by_land_use) {
         p.height = by_type;
         p.group = kOtherTypes;
@@ -635,9 +612,9 @@ TypePrior HeightGuesser::type_prior(const std::string& type, const Plan& plan, b
         p.group = kFabric;
         p.note = ReportReason::FromSurroundings;
     } else if (by_type > 0) {
-        // Flats: the table's storeys are a town of blocks; a denser fabric builds them higher, as
-        // it does its towers (fabric_factor).
-        p.height = is_home(type) ? by_type * fabric_factor(surroundings_.grain(at)) : by_type;
+        // Flats: the table's storeys in any fabric. Dense towns differ: Monaco's flats stand
+        // twice the table, Malta's two thirds of it (docs/bench/2026-12-heights.md).
+        p.height = by_type;
         p.group = is_home(type) ? kFlats : kOtherTypes;
     }
     return p;
@@ -660,7 +637,7 @@ void HeightGuesser::calibrate() {
         }
         plan.at = centroid(b.outer);
         plan.attached = surroundings_.attached(i);
-        const TypePrior p = type_prior(type_of(b, plan.area), plan, named_.count(b.osm) > 0);
+        const TypePrior p = type_prior(type_of(b, plan.area), plan);
         if (p.group != kNotCalibrated && p.height > 0 && b.height > 0)
             ratios[p.group].push_back(std::log(b.height / p.height));
     }
@@ -695,7 +672,7 @@ void HeightGuesser::guess(const std::vector<size_t>& indices, ParseReport& repor
     const Building& b = buildings_[indices[0]];  // the pieces share their tags
     const std::string& type = type_of(b, area);
     HeightRule rule = HeightRule::Random;
-    const TypePrior prior = type_prior(type, plan, named_.count(b.osm) > 0);
+    const TypePrior prior = type_prior(type, plan);
     double height = 0, disagreeing = 0;
     // The tagged buildings within the neighbour radius, nearest first: asked once, by the first
     // rule that needs them.
@@ -750,9 +727,8 @@ void HeightGuesser::guess(const std::vector<size_t>& indices, ParseReport& repor
 }  // namespace
 
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named,
-                   const std::set<OsmRef>& homes) {
-    HeightGuesser guesser(buildings, land_use, params, named, homes);
+                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& homes) {
+    HeightGuesser guesser(buildings, land_use, params, homes);
     // The pieces of one OSM building are guessed together.
     std::map<std::pair<OsmRef, bool>, std::vector<size_t>> pieces;
     for (size_t i = 0; i < buildings.size(); ++i) {

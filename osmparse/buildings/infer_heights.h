@@ -38,8 +38,7 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //     larger one is a block: the rules of `residential`) (both rules first
 //     because a neighbour's height says little about a garage beside a tower);
 //  1b. TypeAndArea for residential towers, of tower_height: a home (apartments, residential,
-//     dormitory) whose plan is deep in every direction in a town of blocks (is_point_block), or
-//     a named one of a block's footprint (is_landmark_home; `named`, from named_buildings);
+//     dormitory) whose plan is deep in every direction in a town of blocks (is_point_block);
 //     before the neighbours: a tower among blocks is not their height;
 //  1c. Neighbours, a twin (ReportReason::Twin): the nearest tagged building within 60 m of the
 //     same type (not `yes`) and a footprint within 10% of its own: an estate built in series from
@@ -60,7 +59,7 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 //     `commercial`, `civic`, `public`, `government`): levels_from_surroundings of its footprint,
 //     the grain of the town around it and whether it shares a wall;
 //  6. TypeAndArea: a height by building type (height_by_type_and_area); for homes (apartments,
-//     residential, dormitory) times fabric_factor of the grain around it;
+//     residential, dormitory) as the table gives them, whatever the fabric;
 //  7. Neighbours that disagree (rule 2's group): their weighted median;
 // The type-and-area rules (1 for houses, 4, 5, 6) are calibrated on the extract's own tagged
 // buildings, in four groups (houses, untyped buildings and workplaces, flats, other types): when
@@ -77,8 +76,7 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 // are recomputed from the new height. Counts go to ReportKind::BuildingHeights in the report. The
 // result does not depend on the order of `buildings` beyond ties in distance.
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& named = {},
-                   const std::set<OsmRef>& homes = {});
+                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& homes = {});
 
 // Rule 5 alone (exposed for tests): storeys of an untyped building or a workplace with a
 // footprint of `area` m2 among buildings whose median footprint within 400 m is `grain` m2;
@@ -89,22 +87,18 @@ double levels_from_surroundings(double area, double grain, bool attached);
 // Rule 1b alone (exposed for tests): whether a building of `type` whose plan (courtyards left
 // out) has `area` m2 and `perimeter` m (holes included) among buildings of median footprint
 // `grain` m2 is a point block: a home whose plan depth 2 * area / perimeter is at least 13 m
-// (26 m across both ways: flats around a core) where the grain is at least 200 m2.
+// (26 m across both ways: flats around a core) and whose plan is at most 2,000 m2 (one core's
+// floor), where the grain is at least 200 m2.
 bool is_point_block(const std::string& type, double area, double perimeter, double grain);
-// Rule 1b alone: whether a building of `type` and `area` m2, `named` or not, is a landmark
-// home: a home with a name (named_buildings) and a footprint of at least 500 m2.
-bool is_landmark_home(const std::string& type, double area, bool named);
 // How much higher than in a town of blocks (a grain of 200 m2 or finer: 1) homes stand among
 // buildings of median footprint `grain` m2: (grain / 200)^0.65, as levels_from_surroundings grows
 // with the grain; 1 again over 500 m2 (an estate of halls, no denser city). Towers (tower_height)
-// and flats of the type table (rule 6) share it.
+// grow with it.
 double fabric_factor(double grain);
 // The height rule 1b gives a residential tower among buildings of median footprint `grain` m2:
 // 15 storeys, more in a fabric of 200-500 m2 (as levels_from_surroundings grows with it; a
 // coarser grain is an estate of halls).
 double tower_height(double grain, const BuildingParams& params);
-// The buildings (not parts) whose name has at least 3 characters: a block's letter is no name.
-std::set<OsmRef> named_buildings(const OsmData& osm);
 // The buildings (not parts) whose use tags say they hold flats while their form
 // (building=yes, commercial, office, retail, civic, public, government) says nothing of homes:
 // building:use=residential|apartments, tourism=apartment (holiday flats). OSM's building=* is the

@@ -132,7 +132,6 @@ constexpr Text<ReportReason> kReasonTexts[] = {
     {R::FromSurroundings, "from type, footprint area and surroundings"},
     {R::PointBlock, "point block: a home with a deep plan in a town of blocks"},
     {R::Twin, "twin: a tagged building of the same type and footprint next door"},
-    {R::LandmarkHome, "landmark home: a named home of a block's footprint"},
     {R::Calibrated, "type-and-area rule calibrated on the extract's tagged buildings"},
     {R::FromTaggedNeighbours, "from tagged neighbours"},
     {R::FromExtractMedian, "from tagged buildings of its type and size in the extract"},

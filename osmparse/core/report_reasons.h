@@ -136,7 +136,6 @@ enum class ReportReason {
     FromSurroundings,
     PointBlock,
     Twin,
-    LandmarkHome,
     Calibrated,
     FromTaggedNeighbours,
     FromExtractMedian,

@@ -258,6 +258,11 @@ TEST(InferHeights, PointBlocksAreHomesWithADeepPlanInATownOfBlocks) {
     EXPECT_FALSE(is_point_block("apartments", 1400, 228, 300));
     // A 40 x 40 m closed block around a 24 x 24 m courtyard: its plan is a ring 8 m deep.
     EXPECT_FALSE(is_point_block("apartments", 1600 - 576, 160 + 96, 300));
+    // A 45 x 45 m plan is one core's floor (2,025 m2 is over it: a block of several cores, as a
+    // 66 x 66 m mansion block of 15 m is).
+    EXPECT_TRUE(is_point_block("apartments", 1936, 176, 300));
+    EXPECT_FALSE(is_point_block("apartments", 2025, 180, 300));
+    EXPECT_FALSE(is_point_block("apartments", 4356, 264, 300));
     // Not a home: offices, halls and untyped buildings are deep without being towers.
     EXPECT_FALSE(is_point_block("yes", 900, 120, 300));
     EXPECT_FALSE(is_point_block("office", 900, 120, 300));
@@ -293,52 +298,6 @@ TEST(InferHeights, PointBlockBeatsItsTaggedNeighbours) {
     EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::PointBlock), 1);
 }
 
-TEST(InferHeights, NamedHomesOfABlocksFootprintAreLandmarkTowers) {
-    BuildingParams params;
-    std::vector<Building> v;
-    // Homes of 25 x 25 m (plan depth 12.5 m: no point block) among tagged 15 m blocks of flats
-    // (70 m away: no twins).
-    for (int i = 0; i < 4; ++i) v.push_back(building(100 + i, 30.0 * i, -40, "apartments", 15, HeightSource::Tagged, 25));
-    v.push_back(building(1, 0, 30, "apartments", 10, HeightSource::Random, 25));  // named
-    v.push_back(building(2, 30, 30, "dormitory", 10, HeightSource::Random, 25));  // named
-    v.push_back(building(3, 60, 30, "apartments", 10, HeightSource::Random, 25));  // no name
-    v.push_back(building(4, 90, 30, "apartments", 10, HeightSource::Random, 20));  // named, 400 m2: a villa
-    v.push_back(building(5, 0, 60, "yes", 10, HeightSource::Random, 25));          // named, not a home
-    const std::set<OsmRef> named{{OsmType::Way, 1}, {OsmType::Way, 2}, {OsmType::Way, 4}, {OsmType::Way, 5}};
-    ParseReport report;
-    infer_heights(v, {}, params, report, named);
-    for (int64_t id : {1, 2}) {
-        EXPECT_EQ(by_id(v, id).height_rule, HeightRule::TypeAndArea) << id;
-        expect_near_guess(by_id(v, id), tower_height(625, params));  // the grain: 25 x 25 m
-    }
-    for (int64_t id : {3, 4}) {
-        EXPECT_EQ(by_id(v, id).height_rule, HeightRule::Neighbours) << id;
-        expect_near_guess(by_id(v, id), 15);
-    }
-    EXPECT_LT(by_id(v, 5).height, 0.6 * tower_height(625, params));
-    EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::LandmarkHome), 2);
-    EXPECT_FALSE(is_landmark_home("office", 5000, true));
-    EXPECT_TRUE(is_landmark_home("residential", 500, true));
-}
-
-TEST(InferHeights, ANameIsThreeCharactersOnABuilding) {
-    OsmData osm;
-    auto add = [&](int64_t id, const char* key, const char* name) {
-        OsmArea a;
-        a.ref = {OsmType::Way, id};
-        a.tags.entries = {{key, "yes"}};
-        if (name) a.tags.entries.push_back({"name", name});
-        osm.building_areas.push_back(a);
-    };
-    add(1, "building", "Le Millefiori");
-    add(2, "building", "B2");                  // a block's letter
-    add(3, "building", "\xc3\x96z");           // "Öz": two characters in three bytes
-    add(4, "building", "\xc3\x96l\xc3\xbc");   // "Ölü": three characters
-    add(5, "building:part", "Tower");          // a part is no building of its own
-    add(6, "building", nullptr);
-    EXPECT_EQ(named_buildings(osm), (std::set<OsmRef>{{OsmType::Way, 1}, {OsmType::Way, 4}}));
-}
-
 TEST(InferHeights, TowersStandHigherInADenserFabric) {
     BuildingParams params;
     // 15 storeys at least, in a suburb too (Kaiserslautern's halls of residence).
@@ -353,7 +312,7 @@ TEST(InferHeights, TowersStandHigherInADenserFabric) {
     EXPECT_DOUBLE_EQ(tower_height(1200, params), 15 * params.level_height);
 }
 
-TEST(InferHeights, FlatsStandHigherInADenserFabric) {
+TEST(InferHeights, FlatsAreTheTablesStoreysInAnyFabric) {
     BuildingParams params;
     // The same 20 x 20 m block of flats (plan depth 10 m: no tower) in a suburb and in a town.
     std::vector<Building> v = suburb_and_town_with("apartments");
@@ -361,8 +320,8 @@ TEST(InferHeights, FlatsStandHigherInADenserFabric) {
     infer_heights(v, {}, params, report);
     bool sure = false;
     const double table = height_by_type_and_area("apartments", 400, &sure);
-    expect_near_guess(by_id(v, 1), table);  // a town of blocks or finer: the table's storeys
-    expect_near_guess(by_id(v, 2), table * fabric_factor(400));
+    expect_near_guess(by_id(v, 1), table);
+    expect_near_guess(by_id(v, 2), table);
     EXPECT_NEAR(fabric_factor(400), std::pow(2.0, 0.65), 1e-9);
     EXPECT_DOUBLE_EQ(fabric_factor(1200), 1) << "an estate of halls";
     // Towers grow with the fabric alike.
@@ -425,7 +384,7 @@ TEST(InferHeights, UseTagsMakeAHome) {
     v.push_back(building(1, 100, 0, "commercial", 10, HeightSource::Random, 30));
     std::vector<Building> untagged_use = v;
     ParseReport report;
-    infer_heights(v, {}, params, report, {}, {{OsmType::Way, 1}});
+    infer_heights(v, {}, params, report, {{OsmType::Way, 1}});
     expect_near_guess(by_id(v, 1), tower_height(225, params));
     EXPECT_EQ(report.note_count(ReportKind::BuildingHeights, ReportReason::PointBlock), 1);
     infer_heights(untagged_use, {}, params, report);
@@ -489,8 +448,9 @@ TEST(InferHeights, ACityOfTaggedBlocksCalibratesTheFabricRule) {
     ParseReport report;
     std::vector<Building> v = city_of_blocks(3);
     infer_heights(v, {}, params, report);
-    for (const Building& b : v)
+    for (const Building& b : v) {
         if (b.osm.id >= 1000) EXPECT_EQ(b.height_rule, HeightRule::TypeAndArea) << b.osm.id;
+    }
     // The prior would stand them 21 m (six storeys of a fabric of 400 m2 with shared walls); the
     // city's own blocks are five storeys of 15 m, so its 700 m2 blocks stand about 15 x
     // (700 / 400)^0.3 = 17.7 m, not 21.

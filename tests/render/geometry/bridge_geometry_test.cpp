@@ -113,9 +113,11 @@ TEST(BridgeGeometry, BothGeometryModesDrawTheSameBridge) {
     EXPECT_LE(mismatches, 4) << "edges hit within float rounding";
 }
 
-TEST(BridgeGeometry, AFootbridgeAndItsJointLieOnTheirDeckInBothModes) {
-    // Footways on the ground to the valley's rims, a footbridge of two edges across meeting at a
-    // joint on the deck (node 2).
+namespace {
+
+// Footways on the ground to the valley's rims, a footbridge of two edges across meeting at a
+// joint on the deck (node 2).
+Scene valley_with_footbridge() {
     Scene s = valley_with_bridge();
     s.roads.clear();
     s.sidewalks.clear();
@@ -136,6 +138,13 @@ TEST(BridgeGeometry, AFootbridgeAndItsJointLieOnTheirDeckInBothModes) {
     j.edges = {1, 2};
     j.polygon = {{-1.5, -1.5}, {1.5, -1.5}, {1.5, 1.5}, {-1.5, 1.5}};
     s.path_joints = {j};
+    return s;
+}
+
+}  // namespace
+
+TEST(BridgeGeometry, AFootbridgeAndItsJointLieOnTheirDeckInBothModes) {
+    const Scene s = valley_with_footbridge();
     GeometryModes procedural;
     procedural[GeometryClass::Paths] = GeometryMode::Procedural;
     const auto stored = build_render_scene(s, GeometryModes{});
@@ -170,6 +179,17 @@ TEST(BridgeGeometry, ALampOnABridgeStandsOnItsDeckAndOneBesideItOnTheGround) {
     Lamp away;
     away.position = {-80, 0, 0};  // on the road to the bridge
     EXPECT_NEAR(lamp_ground(surface, away), ground_height(s, -80, 0), 1e-9);
+}
+
+TEST(BridgeGeometry, ALampOnAFootbridgeStandsOnItsDeck) {
+    const Scene s = valley_with_footbridge();
+    const StandingSurface surface(s);
+    Lamp on, beside;
+    on.position = {-20, 2.2, 0};     // at the railing, 0.7 m beyond the 3 m strip
+    beside.position = {-20, 4, 0};   // 2.5 m beyond it, in the valley
+    EXPECT_NEAR(lamp_ground(surface, on), 30, 1e-6);
+    EXPECT_NEAR(lamp_ground(surface, beside), ground_height(s, -20, 4), 1e-6);
+    EXPECT_LT(lamp_ground(surface, beside), 20);
 }
 
 TEST(BridgeGeometry, ADeckHundredsOfKilometresLongIsFoundWithoutIndexingEveryCellAcrossIt) {
