@@ -90,6 +90,7 @@ constexpr Text<ReportKind> kKindTexts[] = {
     {K::TileLamps, "tile: street lamps"},
     {K::TileLandCover, "tile: land cover"},
     {K::TileTrees, "tile: trees"},
+    {K::TileRetainingWalls, "tile: retaining walls"},
 };
 static_assert(in_declaration_order(kKindTexts), "one text per ReportKind, in declaration order");
 

@@ -88,6 +88,7 @@ enum class ReportKind {
     TileLamps,
     TileLandCover,
     TileTrees,
+    TileRetainingWalls,
     Count  // not a row: the number of rows
 };
 
