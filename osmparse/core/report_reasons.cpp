@@ -199,6 +199,7 @@ constexpr Text<ReportReason> kReasonTexts[] = {
     {R::NotACarriagewayClass, "not a carriageway class"},
     {R::AreaYes, "area=yes"},
     {R::Tunnel, "tunnel"},
+    {R::Covered, "covered: drawn at the ground under what covers it"},
     {R::WidthTagUnusable, "width tag unusable, fell back"},
     {R::LanesTagUnusable, "lanes tag unusable, fell back"},
     {R::ZeroLength, "zero length"},

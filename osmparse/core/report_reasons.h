@@ -208,6 +208,7 @@ enum class ReportReason {
     NotACarriagewayClass,
     AreaYes,
     Tunnel,
+    Covered,
     WidthTagUnusable,
     LanesTagUnusable,
     ZeroLength,
