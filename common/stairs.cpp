@@ -8,6 +8,11 @@
 
 namespace citygen {
 
+double StairPlan::line_height(Vec2 p) const {
+    const double along = dot(p - low, normalize(high - low)) / run();
+    return z_low + std::clamp(along, 0.0, 1.0) * (z_high - z_low);
+}
+
 bool plan_stair(const Scene& scene, const PathEdge& path, StairPlan* plan) {
     return plan_stair(scene.terrain, path, plan);
 }

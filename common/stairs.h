@@ -29,6 +29,9 @@ struct StairPlan {
     int steps = 0;
     double run() const { return length(high - low); }
     double rise() const { return (z_high - z_low) / steps; }
+    // The height at `p` on the straight line from the low end to the high end (held level beyond
+    // them): at most one riser below the top of the tread drawn over `p` (the GeoJSON's stairs).
+    double line_height(Vec2 p) const;
 };
 
 // The stair a path is drawn as: false without a field, for any class but steps, on a deck, for a

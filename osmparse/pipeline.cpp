@@ -284,8 +284,8 @@ void lay_out_sidewalks(ParseState& s, ParseReport& report) {
 }
 
 void lay_out_paths(ParseState& s, ParseReport& report) {
-    const bool with_bridges = !s.params().terrain.dem_files.empty();
-    s.paths = build_paths(s.osm, *s.projection, s.params().roads, with_bridges, report);
+    const bool with_terrain = !s.params().terrain.dem_files.empty();
+    s.paths = build_paths(s.osm, *s.projection, s.params().roads, with_terrain, report);
     s.scene.sidewalks = drop_doubled_sidewalks(std::move(s.scene.sidewalks), s.paths.paths, report);
     s.scene.paths = std::move(s.paths.paths);
     s.scene.path_joints = std::move(s.paths.joints);
@@ -377,7 +377,9 @@ std::vector<Stage> parse_stages(ParseState& s) {
         {"building heights", {"osm", "osm building areas", "projection", "buildings"},
          {"buildings", "building tags", "roof evidence", "osm building areas"}, run(infer_building_heights)},
         {"road graph", {"osm ways", "projection"}, {"road graph"},
-         [&](ParseReport& r) { s.road_graph = build_road_graph(s.osm, *s.projection, p.roads, r); }},
+         [&](ParseReport& r) {
+             s.road_graph = build_road_graph(s.osm, *s.projection, p.roads, r, !p.terrain.dem_files.empty());
+         }},
         {"way layers", {"osm ways"}, {"way layers"}, [&](ParseReport&) { s.way_layers = way_layers(s.osm); },
          !p.terrain.dem_files.empty()},
         {"roads vs buildings", {"road graph", "buildings"}, {"narrowed roads"},

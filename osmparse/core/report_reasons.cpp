@@ -90,6 +90,7 @@ constexpr Text<ReportKind> kKindTexts[] = {
     {K::TileLamps, "tile: street lamps"},
     {K::TileLandCover, "tile: land cover"},
     {K::TileTrees, "tile: trees"},
+    {K::TileRetainingWalls, "tile: retaining walls"},
 };
 static_assert(in_declaration_order(kKindTexts), "one text per ReportKind, in declaration order");
 
@@ -197,6 +198,7 @@ constexpr Text<ReportReason> kReasonTexts[] = {
     {R::NotACarriagewayClass, "not a carriageway class"},
     {R::AreaYes, "area=yes"},
     {R::Tunnel, "tunnel"},
+    {R::Covered, "covered: drawn at the ground under what covers it"},
     {R::WidthTagUnusable, "width tag unusable, fell back"},
     {R::LanesTagUnusable, "lanes tag unusable, fell back"},
     {R::ZeroLength, "zero length"},

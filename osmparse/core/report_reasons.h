@@ -88,6 +88,7 @@ enum class ReportKind {
     TileLamps,
     TileLandCover,
     TileTrees,
+    TileRetainingWalls,
     Count  // not a row: the number of rows
 };
 
@@ -206,6 +207,7 @@ enum class ReportReason {
     NotACarriagewayClass,
     AreaYes,
     Tunnel,
+    Covered,
     WidthTagUnusable,
     LanesTagUnusable,
     ZeroLength,

@@ -69,6 +69,8 @@ std::string path_key(const PathEdge& x) {
     return to_string(x.osm) + ":" + std::to_string(x.from_node) + "-" + std::to_string(x.to_node);
 }
 
+std::string wall_key(const RetainingWall& x) { return to_string(x.osm); }
+
 std::string crossing_key(const Crossing& x) {
     return std::string(x.kind == CrossingKind::Zebra ? "zebra " : "stop line ") + to_string(x.osm);
 }
@@ -175,6 +177,14 @@ std::string tree_change(const Tree& x, const Tree& y, double tol) {
     return "";
 }
 
+std::string wall_change(const RetainingWall& x, const RetainingWall& y, double tol) {
+    const double d = max_point_distance(x.line, y.line);
+    if (d > tol) return "line moved " + metres(d);
+    if (std::fabs(x.height - y.height) > tol) return "height changed by " + metres(std::fabs(x.height - y.height));
+    if (x.material != y.material) return std::string("material ") + to_string(x.material) + " -> " + to_string(y.material);
+    return "";
+}
+
 // The height fields: the same grid, and every node's altitude within the tolerance.
 void diff_terrain(const HeightField& x, const HeightField& y, double tol, std::vector<SceneChange>& out) {
     if (x.empty() != y.empty()) {
@@ -216,6 +226,7 @@ std::vector<SceneChange> diff_scenes(const Scene& a, const Scene& b, double tol)
     diff("land_cover", a.land_cover, b.land_cover, cover_key, land_cover_change);
     diff("tree", a.trees, b.trees, tree_key, tree_change);
     diff_terrain(a.terrain, b.terrain, tol, out);
+    diff("retaining_wall", a.retaining_walls, b.retaining_walls, wall_key, wall_change);
     return out;
 }
 

@@ -8,6 +8,7 @@
 #include "common/retaining_wall.h"
 #include "common/scene_io.h"
 #include "common/projection.h"
+#include "common/stairs.h"
 
 namespace citygen {
 
@@ -24,11 +25,16 @@ public:
 
     // Each vertex at the ground under it, or on the deck when one is given.
     void polygon(const std::vector<const Ring*>& rings, const std::string& properties, const DeckSurface* deck = nullptr) {
-        polygon_at(rings, properties, std::nullopt, deck);
+        polygon_at(rings, properties, [deck](Vec2 p) { return deck ? std::optional(deck->height(p)) : std::nullopt; });
     }
     // Every vertex at `height` (relative to the field's reference altitude, like the field).
     void polygon_at_height(const std::vector<const Ring*>& rings, const std::string& properties, double height) {
-        polygon_at(rings, properties, height, nullptr);
+        polygon_at(rings, properties, [height](Vec2) { return std::optional(height); });
+    }
+    // Each vertex at the stair's height there (StairPlan::line_height), not the ground's: render
+    // draws the strip as the stair's treads, not draped.
+    void polygon_on_stair(const Ring& ring, const std::string& properties, const StairPlan& stair) {
+        polygon_at({&ring}, properties, [&stair](Vec2 p) { return std::optional(stair.line_height(p)); });
     }
     // At the ground under it.
     void point_feature(Vec2 p, const std::string& properties) { point_feature_at(p, std::nullopt, properties); }
@@ -48,8 +54,9 @@ public:
     std::string finish() { return text_ + "\n]}\n"; }
 
 private:
-    void polygon_at(const std::vector<const Ring*>& rings, const std::string& properties,
-                    std::optional<double> height, const DeckSurface* deck) {
+    // `height_at(p)`: a vertex's height, or nullopt for the ground under it.
+    template <typename HeightAt>
+    void polygon_at(const std::vector<const Ring*>& rings, const std::string& properties, HeightAt height_at) {
         begin("Polygon");
         for (size_t r = 0; r < rings.size(); ++r) {
             text_ += r ? ",[" : "[";
@@ -57,7 +64,7 @@ private:
             for (size_t i = 0; i <= ring.size(); ++i) {  // GeoJSON rings repeat the first point
                 if (i) text_ += ",";
                 const Vec2 p = ring[i % ring.size()];
-                text_ += "[" + coordinates(p, deck ? std::optional(deck->height(p)) : height) + "]";
+                text_ += "[" + coordinates(p, height_at(p)) + "]";
             }
             text_ += "]";
         }
@@ -180,11 +187,15 @@ std::string scene_to_geojson(const Scene& scene) {
     for (size_t k = 0; k < scene.paths.size(); ++k) {
         const PathEdge& p = scene.paths[k];
         const DeckSurface deck = edge_deck(path_decks, static_cast<uint32_t>(k));
-        w.polygon({&p.quad}, "\"kind\":\"path\",\"class\":\"" + std::string(to_string(p.path_class)) +
-                                 "\",\"osm\":" + str(to_string(p.osm)) + ",\"width\":" + num(p.width) +
-                                 ",\"sidewalk\":" + (p.sidewalk ? "true" : "false") +
-                                 (p.bridge ? ",\"bridge\":true" : ""),  // only with a field: the same bytes without
-                  deck.valid() ? &deck : nullptr);
+        const std::string properties = "\"kind\":\"path\",\"class\":\"" + std::string(to_string(p.path_class)) +
+                                       "\",\"osm\":" + str(to_string(p.osm)) + ",\"width\":" + num(p.width) +
+                                       ",\"sidewalk\":" + (p.sidewalk ? "true" : "false") +
+                                       (p.bridge ? ",\"bridge\":true" : "");  // only with a field: the same bytes without
+        StairPlan stair;
+        if (plan_stair(scene, p, &stair))
+            w.polygon_on_stair(p.quad, properties, stair);
+        else
+            w.polygon({&p.quad}, properties, deck.valid() ? &deck : nullptr);
     }
     for (const Joint& j : scene.path_joints) {
         const DeckSurface deck = path_joint_deck(scene, path_decks, j);

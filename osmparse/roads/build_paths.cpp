@@ -134,7 +134,8 @@ double path_width(const OsmTags& tags, PathClass c, ParseReport* report) {
 }
 
 // The tags build_paths reads (path_class_of, take, path_width).
-constexpr const char* kPathTagsRead[] = {"highway", "railway", "tunnel", "area", "indoor", "width", "footway", "bridge"};
+constexpr const char* kPathTagsRead[] = {"highway", "railway", "tunnel", "area",   "indoor",
+                                         "width",   "footway", "bridge", "covered"};
 
 void keep_path_ways(std::vector<OsmWay>& highways) {
     std::vector<OsmWay> kept;
@@ -156,7 +157,7 @@ void keep_path_ways(std::vector<OsmWay>& highways) {
 }
 
 PathSurface build_paths(const OsmData& osm, const Projection& projection, const RoadParams& roads,
-                        bool with_bridges, ParseReport& report) {
+                        bool with_terrain, ParseReport& report) {
     std::vector<OsmWay> paths, rails;
     std::unordered_map<int64_t, std::pair<PathClass, double>> info;
     std::unordered_map<int64_t, PathWayFlags> flags;
@@ -170,8 +171,9 @@ PathSurface build_paths(const OsmData& osm, const Projection& projection, const 
             return;
         }
         report.read(ReportKind::PathWays);
+        if (with_terrain && is_covered(way.tags)) report.note(ReportKind::PathWays, ReportReason::Covered);
         if (!info.count(way.id)) info[way.id] = {*c, path_width(way.tags, *c, &report)};
-        flags[way.id] = {way.tags.has("footway", "sidewalk"), with_bridges && is_bridge(way.tags)};
+        flags[way.id] = {way.tags.has("footway", "sidewalk"), with_terrain && is_bridge(way.tags)};
         OsmWay copy = way;
         copy.tags.entries = {{"highway", graph_key(*c)}};
         into.push_back(std::move(copy));

@@ -32,14 +32,15 @@ struct PathSurface {
 };
 
 // Keeps of `highways` only what build_paths reads: the ways with a path class, with the tags
-// it reads (highway, railway, tunnel, area, indoor, width, footway, bridge), in their order. The
+// it reads (highway, railway, tunnel, area, indoor, width, footway, bridge, covered), in their order. The
 // road stages read every highway first; the paths run after them (see pipeline.cpp).
 void keep_path_ways(std::vector<OsmWay>& highways);
 
-// `with_bridges`: paths tagged bridge=* are marked to keep their own deck, which only a height
-// field gives them (without one the scene stays as it was before decks).
+// `with_terrain` (osmparse --dem): paths tagged bridge=* are marked to keep their own deck, which
+// only a height field gives them (without one the scene stays as it was before decks), and the
+// covered ones (is_covered) are counted, a note under "path ways".
 PathSurface build_paths(const OsmData& osm, const Projection& projection, const RoadParams& roads,
-                        bool with_bridges, ParseReport& report);
+                        bool with_terrain, ParseReport& report);
 
 // Mapped sidewalks (footway=sidewalk) replace ours: a generated sidewalk piece that a mapped
 // one, widened by 2.5 m to each side (mapped sidewalks lie a little off where ours are),

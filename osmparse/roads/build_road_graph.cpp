@@ -38,7 +38,7 @@ struct WayPieces {
 
 // Step 1: included ways, as node-to-node pieces; duplicate pieces (overlapping ways) dropped.
 std::vector<WayPieces> cut_into_pieces(const OsmData& osm, const Projection& projection, const RoadParams& params,
-                                       ParseReport& report) {
+                                       bool with_terrain, ParseReport& report) {
     std::vector<WayPieces> ways;
     std::set<std::pair<int64_t, int64_t>> seen_pairs;
     for (const OsmWay& way : osm.highways) {
@@ -80,6 +80,7 @@ std::vector<WayPieces> cut_into_pieces(const OsmData& osm, const Projection& pro
             report.dropped(ReportKind::RoadWays, ReportReason::NoPieceLeft);
             continue;
         }
+        if (with_terrain && is_covered(way.tags)) report.note(ReportKind::RoadWays, ReportReason::Covered);
         ways.push_back(std::move(wp));
     }
     report.kept(ReportKind::RoadWays, static_cast<int64_t>(ways.size()));
@@ -207,6 +208,8 @@ double default_road_width(const std::string& highway, bool oneway) {
 
 bool is_bridge(const OsmTags& tags) { return tags.get("bridge") && !tags.has("bridge", "no"); }
 
+bool is_covered(const OsmTags& tags) { return tags.get("covered") && !tags.has("covered", "no"); }
+
 bool is_oneway(const OsmTags& tags) {
     const char* v = tags.get("oneway");
     if (v) return is_yes(v) || !std::strcmp(v, "-1");
@@ -272,8 +275,8 @@ SidewalkSides sidewalk_sides(const OsmTags& tags) {
 }
 
 RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
-                           const RoadParams& params, ParseReport& report) {
-    const std::vector<WayPieces> ways = cut_into_pieces(osm, projection, params, report);
+                           const RoadParams& params, ParseReport& report, bool with_terrain) {
+    const std::vector<WayPieces> ways = cut_into_pieces(osm, projection, params, with_terrain, report);
     const std::unordered_map<int64_t, int> degree = node_degrees(ways);
     RoadGraph graph = merge_collinear_runs(ways, degree, params, report);
     report.read(ReportKind::RoadEdges, static_cast<int64_t>(graph.edges.size()));

@@ -51,6 +51,11 @@ bool is_oneway(const OsmTags& tags);
 // bridge=* but bridge=no: the way keeps its own deck on a height field (common/bridge_deck.h).
 bool is_bridge(const OsmTags& tags);
 
+// covered=* but covered=no: the way runs under an arcade, a building's passage or a roof. It is
+// drawn at the ground where it is (dropping it would cut the network); with a height field it is
+// counted (ReportReason::Covered), as what covers it is not fitted to the terrain.
+bool is_covered(const OsmTags& tags);
+
 // Width of a carriageway: `width` (any unit parse_osm_length knows), else `lanes` x
 // params.lane_width, else default_road_width() for the way's class and is_oneway(). Unparseable or absurd values (width
 // outside [1, params.max_width], lanes outside [1, 12]) fall back to the next rule and
@@ -68,7 +73,8 @@ SidewalkSides sidewalk_sides(const OsmTags& tags);
 // Splits included highway ways at every node shared with another included way (and at
 // every node), then merges consecutive pieces of the same way at
 // degree-2 nodes where the direction changes by less than params.merge_angle_deg.
+// `with_terrain` (osmparse --dem): the covered ways kept are counted, a note under "road ways".
 RoadGraph build_road_graph(const OsmData& osm, const Projection& projection,
-                           const RoadParams& params, ParseReport& report);
+                           const RoadParams& params, ParseReport& report, bool with_terrain = false);
 
 }  // namespace citygen

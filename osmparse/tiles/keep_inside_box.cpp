@@ -48,7 +48,7 @@ void count(ParseReport& report, ReportKind kind, const Kept& k) {
 
 // The decisions for every list of the scene, before anything is renumbered.
 struct TileChoice {
-    Kept buildings, roads, joints, sidewalks, lamps, land_cover, trees, paths, path_joints, crossings;
+    Kept buildings, roads, joints, sidewalks, lamps, land_cover, trees, paths, path_joints, crossings, walls;
 };
 
 template <typename Inside>
@@ -73,6 +73,7 @@ TileChoice choose_all(const Scene& s, Inside inside) {
     });
     c.crossings =
         choose(s.crossings, [&](const Crossing& x) { return x.road >= 0 ? c.roads.has(x.road) : inside(x.position); });
+    c.walls = choose(s.retaining_walls, [&](const RetainingWall& w) { return inside(edge_anchor(w.line)); });
     return c;
 }
 
@@ -143,6 +144,7 @@ size_t keep_inside_box(Scene& scene, const Projection& projection, const LatLonB
     compact(scene.paths, c.paths);
     compact(scene.path_joints, c.path_joints);
     compact(scene.crossings, c.crossings);
+    compact(scene.retaining_walls, c.walls);
     using K = ReportKind;
     count(report, K::TileBuildings, c.buildings);
     count(report, K::TileRoadEdges, c.roads);
@@ -154,6 +156,8 @@ size_t keep_inside_box(Scene& scene, const Projection& projection, const LatLonB
     count(report, K::TileLamps, c.lamps);
     count(report, K::TileLandCover, c.land_cover);
     count(report, K::TileTrees, c.trees);
+    // Walls come only with --dem: without them the report is what it was.
+    if (!c.walls.index.empty()) count(report, K::TileRetainingWalls, c.walls);
     return leading_kept;
 }
 

@@ -70,6 +70,7 @@ void append_scene(Scene& into, Scene& s) {
     append(into.paths, s.paths);
     append(into.path_joints, s.path_joints);
     append(into.crossings, s.crossings);
+    append(into.retaining_walls, s.retaining_walls);
 }
 
 // An edge end without a joint, at a node that has one: a tile kept the edge and its neighbour

@@ -12,7 +12,7 @@ namespace citygen {
 // One path: load_scene's scene, untouched. Several: merge_scenes of them in the order given.
 Scene load_scenes(const std::vector<std::string>& paths);
 
-// The scenes' lists one after another, every index between lists (an edge's joints, a joint's
+// The scenes' lists (retaining walls too) one after another, every index between lists (an edge's joints, a joint's
 // edges, a sidewalk's road and joint, a crossing's road) moved with them; an edge end a tile cut
 // from its joint (osmparse --keep-inside) is linked again to the joint at its node. Bounds and
 // ground cover them all. Throws Error, naming the file by `names`, when the scenes do not share

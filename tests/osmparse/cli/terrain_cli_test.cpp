@@ -149,3 +149,41 @@ TEST_F(TerrainCli, WithoutGdalsModuleOnlyTheDemFails) {
     EXPECT_NE(r.err.find("--dem needs GDAL's module beside the program"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir_.file("hilly.scene")));
 }
+
+// covered=* roads and paths stay drawn at the ground: with --dem each covered way is counted in
+// the report, without it the scene is byte for byte what it is without the tags.
+TEST_F(TerrainCli, CoveredWaysAreCountedWithADemOnly) {
+    std::string plain = kTown;
+    plain.replace(plain.find("</osm>"), 6, R"(  <node id="7" lat="49.4995" lon="8.4980"/>
+  <node id="8" lat="49.4995" lon="8.5030"/>
+  <way id="12"><nd ref="7"/><nd ref="8"/><tag k="highway" v="footway"/></way>
+</osm>
+)");
+    std::string covered = plain;
+    covered.replace(covered.find(R"(v="residential"/>)"), 17, R"(v="residential"/><tag k="covered" v="yes"/>)");
+    covered.replace(covered.find(R"(v="footway"/>)"), 13, R"(v="footway"/><tag k="covered" v="arcade"/>)");
+    // One file name in two folders: the header names the input.
+    fs::create_directories(dir_.file("plain"));
+    fs::create_directories(dir_.file("covered"));
+    write_text(dir_.file("plain/town.osm"), plain);
+    write_text(dir_.file("covered/town.osm"), covered);
+    auto run = [&](const std::string& folder, const std::string& args) {
+        return run_command(quoted(osmparse_binary()) + " " + quoted(dir_.file(folder + "/town.osm")) + " " + args);
+    };
+    const std::string dem = "--dem " + quoted(dir_.file("N49E008.hgt"));
+    const std::string note = "covered: drawn at the ground under what covers it";
+    const CommandResult r = run("covered", dem + " -o " + quoted(dir_.file("covered.scene")));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    size_t notes = 0;
+    for (size_t at = r.err.find(note); at != std::string::npos; at = r.err.find(note, at + 1)) ++notes;
+    EXPECT_EQ(notes, 2u) << "one under road ways, one under path ways: " << r.err;
+    const CommandResult p = run("plain", dem + " -o " + quoted(dir_.file("plain.scene")));
+    ASSERT_EQ(p.exit_code, 0) << p.err;
+    EXPECT_EQ(p.err.find(note), std::string::npos) << p.err;
+
+    const CommandResult flat = run("covered", "-o " + quoted(dir_.file("covered_flat.scene")));
+    ASSERT_EQ(flat.exit_code, 0) << flat.err;
+    EXPECT_EQ(flat.err.find(note), std::string::npos) << "no note without a field: " << flat.err;
+    ASSERT_EQ(run("plain", "-q -o " + quoted(dir_.file("plain_flat.scene"))).exit_code, 0);
+    EXPECT_EQ(read_text(dir_.file("covered_flat.scene")), read_text(dir_.file("plain_flat.scene")));
+}

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "common/projection.h"
+#include "common/stairs.h"
 #include "osmparse/output/write_geojson.h"
 #include "osmparse/pipeline.h"
 #include "tests/osmparse/parse_quietly.h"
@@ -154,4 +155,43 @@ TEST(TerrainGeoJson, WithoutAFieldCoordinatesStayTwoDimensional) {
     char after = 0;
     ASSERT_EQ(std::sscanf(text.c_str() + tree + point.size(), "%lf,%lf%c", &lon, &lat, &after), 3);
     EXPECT_EQ(after, ']') << "two numbers";
+}
+
+// Steep steps are drawn by render as a stair (common/stairs.h): their polygon's vertices take the
+// stair's line between its ends, within a riser of the tread drawn there, not the ground beside
+// it. Here the ground also rises across the strip (0.5 per metre both ways), so the draped
+// corners lie half a metre off the stair's line.
+TEST(TerrainGeoJson, SteepStepsAtTheirStairsHeights) {
+    Scene s = sloping_scene();
+    HeightField& f = s.terrain;
+    for (uint32_t j = 0; j < f.ny; ++j)
+        for (uint32_t i = 0; i < f.nx; ++i)
+            f.heights[j * f.nx + i] = static_cast<float>(0.5 * (-50 + 10.0 * i) + 0.5 * (-50 + 10.0 * j));
+    s.buildings.clear();
+    s.roads.clear();
+    s.trees.clear();
+    PathEdge p;
+    p.path_class = PathClass::Steps;
+    p.centreline = {{-10, 1}, {10, 1}};
+    p.quad = {{-10, 0}, {10, 0}, {10, 2}, {-10, 2}};
+    p.width = 2;
+    s.paths = {p};
+    StairPlan stair;
+    ASSERT_TRUE(plan_stair(s, p, &stair));
+    const std::vector<Vec3> points = feature_points(scene_to_geojson(s), s, "path");
+    ASSERT_EQ(points.size(), 5u);
+    for (const Vec3& q : points) {
+        const double line = 100 + 0.5 * q.x + 0.5;  // the ground along the centreline, y = 1
+        EXPECT_NEAR(q.z, line, 2e-3) << q.x << "," << q.y;
+        // The tread over the vertex (the first or the last at these corners).
+        const int k = q.x < 0 ? 0 : stair.steps - 1;
+        const double tread = 100 + stair.z_low + (k + 1) * stair.rise();
+        EXPECT_LE(q.z, tread + 2e-3);
+        EXPECT_GE(q.z, tread - stair.rise() - 2e-3);
+    }
+    EXPECT_NEAR(points[2].z - points[1].z, 0, 2e-3) << "level across the strip, as the treads are";
+
+    s.paths[0].path_class = PathClass::Footway;  // any other path stays draped
+    for (const Vec3& q : feature_points(scene_to_geojson(s), s, "path"))
+        EXPECT_NEAR(q.z, 100 + 0.5 * q.x + 0.5 * q.y, 2e-3) << q.x << "," << q.y;
 }

@@ -80,3 +80,18 @@ TEST(BuildRoadGraph, LeavesOutNonCarriagewaysTunnelsAndDuplicates) {
     EXPECT_EQ(report.dropped_count(ReportKind::RoadWays, ReportReason::AreaYes), 1);
     EXPECT_EQ(report.dropped_count(ReportKind::RoadEdges, ReportReason::DuplicatePiece), 1);
 }
+
+// covered=* (not no) roads stay in the graph; with a height field each kept one is noted.
+TEST(BuildRoadGraph, NotesCoveredWaysOnlyWithTerrain) {
+    OsmData osm;
+    osm.highways.push_back(way(1, {{1, {0, 0}}, {2, {50, 0}}}, OsmTags{{{"highway", "residential"}, {"covered", "yes"}}}));
+    osm.highways.push_back(way(2, {{3, {0, 10}}, {4, {50, 10}}}, OsmTags{{{"highway", "service"}, {"covered", "arcade"}}}));
+    osm.highways.push_back(way(3, {{5, {0, 20}}, {6, {50, 20}}}, OsmTags{{{"highway", "service"}, {"covered", "no"}}}));
+    osm.highways.push_back(way(4, {{7, {0, 30}}, {8, {50, 30}}},
+                               OsmTags{{{"highway", "primary"}, {"covered", "yes"}, {"tunnel", "yes"}}}));
+    ParseReport flat, hilly;
+    EXPECT_EQ(build_road_graph(osm, kProjection, RoadParams{}, flat).edges.size(), 3u);
+    EXPECT_EQ(build_road_graph(osm, kProjection, RoadParams{}, hilly, true).edges.size(), 3u);
+    EXPECT_EQ(flat.note_count(ReportKind::RoadWays, ReportReason::Covered), 0);
+    EXPECT_EQ(hilly.note_count(ReportKind::RoadWays, ReportReason::Covered), 2) << "the tunnel is dropped";
+}

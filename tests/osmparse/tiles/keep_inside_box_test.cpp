@@ -93,6 +93,32 @@ TEST(KeepInsideBox, EachTileKeepsItsSideAndRenumbers) {
     EXPECT_EQ(report.kept_count(ReportKind::TileRoadEdges), 2);
 }
 
+// A wall goes with the middle of its ends (edge_anchor), as a path does: wall 21 reaches into the
+// east tile but its anchor is west.
+TEST(KeepInsideBox, RetainingWallsGoWithTheirLinesAnchor) {
+    auto wall = [](int64_t way, std::vector<Vec2> line) {
+        RetainingWall w;
+        w.osm = {OsmType::Way, way};
+        w.line = std::move(line);
+        return w;
+    };
+    Scene west;
+    west.retaining_walls = {wall(20, {{10, 0}, {20, 0}}), wall(21, {{-40, 5}, {0, 5}, {20, 5}}),
+                            wall(22, {{-10, 9}, {-5, 9}})};
+    Scene east = west;
+    ParseReport report;
+    keep_inside_box(west, kProjection, kWest, report);
+    keep_inside_box(east, kProjection, kEast, report);
+    ASSERT_EQ(west.retaining_walls.size(), 2u);
+    EXPECT_EQ(west.retaining_walls[0].osm.id, 21);
+    EXPECT_EQ(west.retaining_walls[0].line.size(), 3u);
+    EXPECT_EQ(west.retaining_walls[1].osm.id, 22);
+    ASSERT_EQ(east.retaining_walls.size(), 1u);
+    EXPECT_EQ(east.retaining_walls[0].osm.id, 20);
+    EXPECT_EQ(report.kept_count(ReportKind::TileRetainingWalls), 3);
+    EXPECT_EQ(report.dropped_count(ReportKind::TileRetainingWalls, ReportReason::AnchorInAnotherTile), 3);
+}
+
 // A point exactly on the corner of four boxes belongs to one of them: the half-open edges.
 TEST(KeepInsideBox, AnAnchorOnTheEdgeBelongsToOneTile) {
     const LatLonBox boxes[4] = {{{-90, -180}, {50, 8}}, {{-90, 8}, {50, 180}}, {{50, -180}, {90, 8}},

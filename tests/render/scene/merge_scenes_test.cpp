@@ -71,6 +71,24 @@ TEST(MergeScenes, LinksCutEdgeEndsToTheJointAtTheirNode) {
     EXPECT_EQ(m.roads[1].to_joint, -1);  // a node without a joint stays without
 }
 
+// Tiles parsed with one --dem share the terrain; each one's retaining walls come along, in order.
+TEST(MergeScenes, AppendsTheRetainingWalls) {
+    Scene a = tile(1, {0, 0}, {10, 10}), b = tile(50, {10, 0}, {20, 10});
+    for (Scene* s : {&a, &b}) s->terrain.nx = s->terrain.ny = 2, s->terrain.cell = 20, s->terrain.heights = {0, 1, 2, 3};
+    RetainingWall w;
+    w.osm = {OsmType::Way, 7}, w.line = {{1, 1}, {5, 1}};
+    a.retaining_walls = {w};
+    w.osm.id = 8, w.line = {{11, 1}, {15, 1}, {15, 5}};
+    b.retaining_walls = {w, w};
+    b.retaining_walls[1].osm.id = 9;
+    const Scene m = merge_scenes({std::move(a), std::move(b)}, {"a", "b"});
+    ASSERT_EQ(m.retaining_walls.size(), 3u);
+    EXPECT_EQ(m.retaining_walls[0].osm.id, 7);
+    EXPECT_EQ(m.retaining_walls[1].osm.id, 8);
+    EXPECT_EQ(m.retaining_walls[1].line.size(), 3u);
+    EXPECT_EQ(m.retaining_walls[2].osm.id, 9);
+}
+
 TEST(MergeScenes, OneSceneIsUntouched) {
     const Scene m = merge_scenes({tile(1, {0, 0}, {10, 10})}, {"a"});
     EXPECT_EQ(m.roads[1].from_joint, -1);
