@@ -86,13 +86,13 @@ def footprint(geometry):
     return abs(a), (2 * abs(a) / per if per else 0)
 def group(p, area, depth):
     """The group of osmparse's type-and-area rules (PriorGroup) as the bench can tell it from
-    the type and the footprint (the point blocks by their depth; a named landmark home is
-    missed, a tower's name is not in the GeoJSON)."""
+    the type and the footprint (the point blocks by their depth and plan area, holes
+    ignored)."""
     t = p['type']
     if area > 1000 and t in HOUSES: t = 'residential'
     if area < 30 or t in SHEDS: return 'shed'
     if t in HOUSES: return 'houses'
-    if t in HOMES: return 'tower' if depth >= 13 else 'flats'
+    if t in HOMES: return 'tower' if depth >= 13 and area <= 2000 else 'flats'
     if t in FABRIC: return 'fabric'
     return 'other types'
 
