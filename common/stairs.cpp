@@ -14,10 +14,21 @@ double StairPlan::line_height(Vec2 p) const {
 }
 
 bool plan_stair(const Scene& scene, const PathEdge& path, StairPlan* plan) {
-    return plan_stair(scene.terrain, path, plan);
+    if (!stair_between_ends(scene.terrain, path, plan)) return false;
+    // The ground along the centreline, every half cell between the ends, against the treads'
+    // tops (at most a riser above the line): a riser of ground over a tread hides it. A stair
+    // hidden in part still reads as one; hidden over most of its run it does not.
+    const HeightField& field = scene.terrain;
+    const int samples = static_cast<int>(std::ceil(plan->run() / (0.5 * field.cell)));
+    int hidden = 0;
+    for (int k = 1; k < samples; ++k) {
+        const Vec2 p = plan->low + (plan->high - plan->low) * (static_cast<double>(k) / samples);
+        hidden += field_surface_height(field, p.x, p.y) > plan->line_height(p) + 2 * kStairMaxRiser;
+    }
+    return 2 * hidden <= samples - 1;
 }
 
-bool plan_stair(const HeightField& field, const PathEdge& path, StairPlan* plan) {
+bool stair_between_ends(const HeightField& field, const PathEdge& path, StairPlan* plan) {
     if (field.empty() || path.path_class != PathClass::Steps || path.bridge) return false;  // a deck's steps: the deck
     if (path.quad.size() != 4 || path.centreline.size() < 2) return false;
     const Vec2 a = path.centreline.front(), u = normalize(path.centreline.back() - a);

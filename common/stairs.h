@@ -34,9 +34,15 @@ struct StairPlan {
     double line_height(Vec2 p) const;
 };
 
-// The stair a path is drawn as: false without a field, for any class but steps, on a deck, for a
-// degenerate strip and where the grade between its ends is at most kStairMinGrade.
+// The stair between a path's ends on `field`, what osmparse cuts the ground down to: false
+// without a field, for any class but steps, on a deck, for a degenerate strip and where the grade
+// between its ends is at most kStairMinGrade.
+bool stair_between_ends(const HeightField& field, const PathEdge& path, StairPlan* plan);
+// The stair a path is drawn as on the scene's finished field: stair_between_ends, but false where
+// the ground along the strip still covers the treads by more than a riser (stands more than two
+// risers above the stair's line) over more than half its run: a stair the cut could not free,
+// beside or under another way's level corridor, is draped, a slope of steps on the ground rather
+// than a stair inside the hill.
 bool plan_stair(const Scene& scene, const PathEdge& path, StairPlan* plan);
-bool plan_stair(const HeightField& field, const PathEdge& path, StairPlan* plan);  // the same on a field
 
 }  // namespace citygen

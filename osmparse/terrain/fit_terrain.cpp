@@ -185,7 +185,7 @@ int64_t cut_under_stairs(HeightField& field, const std::vector<PathEdge>& paths,
     const GridLayout g = layout_of(field);
     std::vector<std::pair<StairPlan, double>> stairs;
     for (const PathEdge& p : paths)
-        if (StairPlan plan; plan_stair(field, p, &plan)) stairs.push_back({plan, p.width / 2 + margin});
+        if (StairPlan plan; stair_between_ends(field, p, &plan)) stairs.push_back({plan, p.width / 2 + margin});
     int64_t cut = 0;
     for (const auto& stair : stairs) {
         const StairPlan& plan = stair.first;  // named, not bound: a lambda cannot capture a structured binding in C++17
