@@ -300,7 +300,7 @@ TEST(InferHeights, PointBlockBeatsItsTaggedNeighbours) {
 
 TEST(InferHeights, TowersStandHigherInADenserFabric) {
     BuildingParams params;
-    // 15 storeys at least, in a suburb too (Kaiserslautern's halls of residence).
+    // 15 storeys at least, in a suburb too.
     EXPECT_DOUBLE_EQ(tower_height(120, params), 15 * params.level_height);
     EXPECT_DOUBLE_EQ(tower_height(200, params), 15 * params.level_height);
     // Higher in a city of blocks, as its other buildings are: the same growth as rule 5's.
