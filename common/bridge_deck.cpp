@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 #include <unordered_map>
 
 #include "common/ground.h"
@@ -183,14 +184,17 @@ std::vector<DeckLine> path_bridge_decks(const Scene& scene) {
 
 double DeckSurface::height(Vec2 p) const {
     if (edges.size() == 1) return deck_height((*decks)[edges[0]], p);
+    // A corner of an edge's quad is that edge's (where quads overlap at a skewed junction, the
+    // joint's vertex there meets the quad whose corner it is); else the nearest quad, then chord.
     const DeckLine* nearest = nullptr;
-    std::pair<double, double> best{std::numeric_limits<double>::infinity(), 0};
+    std::tuple<bool, double, double> best{true, std::numeric_limits<double>::infinity(), 0};
     for (size_t k = 0; k < edges.size(); ++k) {
         const DeckLine& d = (*decks)[edges[k]];
         const Ring& quad = *quads[k];
+        const bool corner = std::any_of(quad.begin(), quad.end(), [&](Vec2 c) { return length(c - p) < 1e-4; });
         const double to_quad = quad.size() >= 3 && !point_in_ring(p, quad) ? distance_to_boundary(p, quad) : 0;
         const Vec2 q = d.a + (d.b - d.a) * std::clamp(deck_parameter(d, p), 0.0, 1.0);
-        const std::pair<double, double> distance{std::round(to_quad * 1e4), length(p - q)};  // 0.1 mm
+        const std::tuple<bool, double, double> distance{!corner, std::round(to_quad * 1e4), length(p - q)};  // 0.1 mm
         if (distance < best) best = distance, nearest = &d;
     }
     return nearest ? deck_height(*nearest, p) : 0.0;

@@ -104,3 +104,27 @@ TEST(BridgeDecks, WithoutAFieldADeckLiesOnTheFlatGround) {
     EXPECT_EQ(decks[0].za, 0.5);
     EXPECT_EQ(decks[0].zb, 0.5);
 }
+
+TEST(DeckSurface, AJointsVertexAtAQuadsCornerLiesOnThatQuadsDeck) {
+    // Two bridges leave a junction on a viaduct at (0, 0): A to the west, rising, and B to the
+    // south, falling. A's quad ends skewed: its corner (-1, -3) lies inside B's quad, nearer B's
+    // chord than A's.
+    DeckLine a, b;
+    a.valid = b.valid = true;
+    a.a = b.a = {0, 0};
+    a.b = {-40, 0};
+    b.b = {0, -40};
+    a.za = b.za = 10;
+    a.zb = 20;
+    b.zb = 0;
+    const std::vector<DeckLine> decks = {a, b};
+    const Ring quad_a = {{-1, -3}, {-3, 3}, {-40, 3}, {-40, -3}};
+    const Ring quad_b = {{-3, -1}, {-3, -40}, {3, -40}, {3, -1}};
+    DeckSurface joint;
+    joint.decks = &decks;
+    joint.edges = {0, 1};
+    joint.quads = {&quad_a, &quad_b};
+    EXPECT_NEAR(joint.height({-1, -3}), deck_height(a, {-1, -3}), 1e-9) << "A's corner: A's deck, no step";
+    EXPECT_NEAR(deck_height(a, {-1, -3}), 10.25, 1e-9);
+    EXPECT_NEAR(joint.height({1, -3}), deck_height(b, {1, -3}), 1e-9) << "inside B only: B's deck";
+}
