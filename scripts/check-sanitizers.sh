@@ -40,9 +40,9 @@ export LSAN_OPTIONS=suppressions=$PWD/tests/fuzz/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # ASan reserves terabytes of address space for its shadow: no ulimit -v in the hostile set.
 export HOSTILE_MEMORY_KB=unlimited
-# ASan and UBSan at -O1 run 4-10x slower than the Release build: the hostile set's time limits
-# stretch by this factor.
-export HOSTILE_SLOWDOWN=5
+# ASan and UBSan at -O1 run 4-10x slower than the Release build: the tests' time limits (the
+# hostile set's, the viewer's stop) stretch by this factor.
+export TEST_SLOWDOWN=5
 run_tests() {
     local select=(-LE 'slow|extract')
     [ "${SANITIZE_ALL:-0}" = 1 ] && select=()

@@ -12,7 +12,7 @@ mkdir -p "$work"
 trap '[ -n "${3:-}" ] || rm -rf "$work"' EXIT
 # Sanitized builds run several times slower (scripts/check-sanitizers.sh sets the factor):
 # every time limit is stretched by it, so a limit still catches a runaway, not a slow build.
-slowdown=${HOSTILE_SLOWDOWN:-1}
+slowdown=${TEST_SLOWDOWN:-1}
 seconds=$((${HOSTILE_SECONDS:-30} * slowdown))
 memory_kb=${HOSTILE_MEMORY_KB:-4000000}
 
