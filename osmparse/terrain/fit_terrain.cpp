@@ -85,8 +85,7 @@ void fit_to_corridor(const Corridor& c, const HeightField& profile, double margi
     for (size_t k = 0; k + 1 < line.size(); ++k) {
         const Vec2 a = line[k], b = line[k + 1];
         for_each_node_near(g, a, b, level_reach + shoulder, [&](uint32_t i, uint32_t j, double d, double t) {
-            const double s = std::max(0.0, d - level_reach) / shoulder;
-            const auto weight = static_cast<float>(1 - s * s * (3 - 2 * s));  // smoothstep down to 0
+            const auto weight = static_cast<float>(shoulder_weight(d - level_reach, shoulder));
             NodeFit& f = fits[g.index(i, j)];
             if (weight < f.weight) return;
             if (weight == f.weight && (c.rank > f.rank || (c.rank == f.rank && !(d < f.distance)))) return;
@@ -194,8 +193,7 @@ int64_t cut_under_stairs(HeightField& field, const std::vector<PathEdge>& paths,
             const size_t n = g.index(i, j);
             if (!(t > 0 && t < 1) || fits[n].weight >= 1) return;
             const double line = plan.z_low + t * (plan.z_high - plan.z_low);
-            const double s = std::clamp((d - reach) / shoulder, 0.0, 1.0);
-            const double w = 1 - s * s * (3 - 2 * s);
+            const double w = shoulder_weight(d - reach, shoulder);
             float& h = field.heights[n];
             const auto lowered = static_cast<float>(w * line + (1 - w) * h);
             if (lowered < h) h = lowered, ++cut;
@@ -213,7 +211,7 @@ void fit_terrain_to_ways(HeightField& field, const std::vector<RoadEdge>& roads,
     // Every cell a way's surface touches has all four nodes within its corridor: the drawn
     // surface is level across the way, not tilted by a node beyond it.
     const double margin = field.cell * std::sqrt(2.0);
-    const double shoulder = std::max(kShoulderWidth, 2 * field.cell);
+    const double shoulder = shoulder_width(field);
     std::vector<NodeFit> fits(field.heights.size());
     int64_t bridges = 0, path_bridges = 0;
     for (const RoadEdge& r : roads) {

@@ -9,6 +9,8 @@
 // one floating. docs/terrain.md, "Fitted to roads and water".
 #pragma once
 
+#include <algorithm>
+
 #include <cstdint>
 #include <vector>
 
@@ -24,6 +26,14 @@ constexpr double kProfileSmoothing = 10;
 // Width (metres) of the shoulder that blends a road's level back into the DEM. At 10 m a cut or
 // fill of 2 m slopes 1:5, a gentle bank.
 constexpr double kShoulderWidth = 10;
+// The shoulder on `field`: kShoulderWidth, at least two cells.
+inline double shoulder_width(const HeightField& field) { return std::max(kShoulderWidth, 2 * field.cell); }
+// How closely a node `beyond` metres past what the ground is fitted to (a road's level, a
+// stair's line, a wall's foot) follows it: 1 there, easing to 0 at the shoulder's end.
+inline double shoulder_weight(double beyond, double shoulder) {
+    const double s = std::clamp(beyond / shoulder, 0.0, 1.0);
+    return 1 - s * s * (3 - 2 * s);
+}
 // A water polygon whose shore falls by more than this (metres) is a river down a valley, not
 // still water: levelling it at its lowest shore would dig a canyon, so it is left draped.
 constexpr double kMaxStillWaterFall = 5;

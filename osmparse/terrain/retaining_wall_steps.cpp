@@ -16,7 +16,7 @@ void step_terrain_at_walls(HeightField& field, const std::vector<RetainingWall>&
     // Every cell the wall's line crosses has its low-side nodes within this of it: the drawn
     // ground there falls by the wall's height within that cell.
     const double foot = field.cell * std::sqrt(2.0);
-    const double shoulder = std::max(kShoulderWidth, 2 * field.cell);
+    const double shoulder = shoulder_width(field);
     const HeightField before = field;  // the high sides' ground, whatever order the walls come in
     enum : uint8_t { kLeft = 0, kFoot = 1, kShoulder = 2 };
     std::vector<uint8_t> by(field.heights.size(), kLeft);
@@ -44,8 +44,7 @@ void step_terrain_at_walls(HeightField& field, const std::vector<RetainingWall>&
                 }
                 const Vec2 q = a + d * t;
                 const double low = field_surface_height(before, q.x, q.y) - wall.height;
-                const double s = std::max(0.0, distance - foot) / shoulder;
-                const double weight = 1 - s * s * (3 - 2 * s);  // smoothstep down to 0, as a road's shoulder
+                const double weight = shoulder_weight(distance - foot, shoulder);
                 const auto h = static_cast<float>(weight * low + (1 - weight) * before.heights[n]);
                 if (h < field.heights[n]) {
                     field.heights[n] = h;

@@ -84,18 +84,24 @@ std::vector<PlanarFace> stair_faces(const Scene& scene, const StairPlan& plan, c
     return faces;
 }
 
-bool add_stair(const Scene& scene, uint32_t index, double lift, uint16_t material, TriangleMesh& mesh) {
-    StairPlan plan;
-    if (!plan_stair(scene, scene.paths[index], &plan)) return false;
-    add_faces(stair_faces(scene, plan, scene.paths[index].quad, lift, material), index, mesh);
-    return true;
-}
+namespace {
 
-bool add_stair(const Scene& scene, uint32_t index, double lift, uint16_t material, ProceduralGeometry& geometry) {
+template <class Geometry>
+bool add_stair_to(const Scene& scene, uint32_t index, double lift, uint16_t material, Geometry& geometry) {
     StairPlan plan;
     if (!plan_stair(scene, scene.paths[index], &plan)) return false;
     add_faces(stair_faces(scene, plan, scene.paths[index].quad, lift, material), index, geometry);
     return true;
+}
+
+}  // namespace
+
+bool add_stair(const Scene& scene, uint32_t index, double lift, uint16_t material, TriangleMesh& mesh) {
+    return add_stair_to(scene, index, lift, material, mesh);
+}
+
+bool add_stair(const Scene& scene, uint32_t index, double lift, uint16_t material, ProceduralGeometry& geometry) {
+    return add_stair_to(scene, index, lift, material, geometry);
 }
 
 }  // namespace citygen
