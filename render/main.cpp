@@ -143,11 +143,16 @@ int run(const Options& o) {
     const Clock::time_point build_start = Clock::now();
     check_memory_fits(estimate_render_memory(scene, job.modes, facades, settings));
     const std::unique_ptr<RenderScene> render_scene =
-        build_render_scene(scene, job.modes, facades, ProgressSettings{settings.quiet});
-    phases.build = seconds_since(build_start);
-    if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
+        build_render_geometry(scene, job.modes, facades, ProgressSettings{settings.quiet});
+    // The lights and the automatic view read roads and paths (lamps on decks, a town without
+    // buildings); then only the glTF export still needs them, and the BVH build comes on top.
     const Sky sky = make_sky(o, job);
     const SceneLights lights(scene, facades, lights_under(sky, job.lights));
+    const Camera camera = view_camera(o, job, scene);
+    if (o.export_gltf_path.empty()) release_geometry_only_classes(scene);
+    render_scene->commit(ProgressSettings{settings.quiet});
+    phases.build = seconds_since(build_start);
+    if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
     if (o.print_geometry_info) print_lights_info(lights, job.lights.sampler);
     const MaterialTable materials = default_materials();
     if (!o.export_ply_path.empty()) export_ply(*render_scene, materials, o.export_ply_path);
@@ -157,7 +162,6 @@ int run(const Options& o) {
         return 0;
     }
 
-    const Camera camera = view_camera(o, job, scene);
     if (job.want_camera) note_camera_below_ground(scene, parse_point(o.camera, "--camera"));
     set_atmosphere(o, scene, settings.integrator);
     BuildingLooks building_looks(scene);

@@ -1,6 +1,9 @@
 #include "render/geometry/build_render_scene.h"
 
 #include <functional>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <string>
 #include <vector>
 
@@ -68,7 +71,7 @@ std::vector<std::function<Geometry()>> class_builders(const Scene& scene, const 
             });
     }
     if (!scene.trees.empty())
-        builders.push_back([&, stored, procedural]() -> Geometry {
+        builders.push_back([&, procedural]() -> Geometry {
             if (procedural(GeometryClass::Trees)) return build_procedural_trees(scene);
             return build_stored_trees(scene);
         });
@@ -87,8 +90,8 @@ std::vector<std::function<Geometry()>> class_builders(const Scene& scene, const 
 
 }  // namespace
 
-std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes,
-                                                const FacadeOptions& facades, const ProgressSettings& progress) {
+std::unique_ptr<RenderScene> build_render_geometry(const Scene& scene, const GeometryModes& modes,
+                                                   const FacadeOptions& facades, const ProgressSettings& progress) {
     // Buildings are nearly all of the work (every facade triangle), so they measure it.
     Progress geometry_progress("geometry", scene.buildings.size(), progress);
     // Each builder reads only the scene, so they run side by side and are added in their order
@@ -99,8 +102,30 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     geometry_progress.finish();
     auto render_scene = std::make_unique<RenderScene>();
     for (Geometry& geometry : geometries) render_scene->add(std::move(geometry));
+    return render_scene;
+}
+
+std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const GeometryModes& modes,
+                                                const FacadeOptions& facades, const ProgressSettings& progress) {
+    auto render_scene = build_render_geometry(scene, modes, facades, progress);
     render_scene->commit(progress);
     return render_scene;
+}
+
+void release_geometry_only_classes(Scene& scene) {
+    auto release = [](auto& objects) { std::decay_t<decltype(objects)>().swap(objects); };
+    release(scene.roads);
+    release(scene.joints);
+    release(scene.sidewalks);
+    release(scene.land_cover);
+    release(scene.trees);
+    release(scene.paths);
+    release(scene.path_joints);
+    release(scene.crossings);
+    release(scene.retaining_walls);
+#ifdef __GLIBC__
+    malloc_trim(0);  // millions of small blocks: give the pages back, Embree allocates its own
+#endif
 }
 
 }  // namespace citygen

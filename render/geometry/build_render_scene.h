@@ -18,4 +18,17 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
                                                 const FacadeOptions& facades = FacadeOptions{},
                                                 const ProgressSettings& progress = ProgressSettings{});
 
+// build_render_scene in two steps, for a caller that frees what only the geometry reads
+// (release_geometry_only_classes) before the BVH build adds its own memory: the geometry of every
+// class, then RenderScene::commit.
+std::unique_ptr<RenderScene> build_render_geometry(const Scene& scene, const GeometryModes& modes,
+                                                   const FacadeOptions& facades = FacadeOptions{},
+                                                   const ProgressSettings& progress = ProgressSettings{});
+
+// Frees the classes that nothing but their geometry reads (roads, joints, sidewalks, land cover,
+// trees, paths, crossings, retaining walls): the geometry keeps its own copy of what it needs, and
+// what renders after it (lights, looks, the ground) reads only the buildings, the lamps, the
+// ground, the field and the header. A whole city's scene is a third of a render's memory.
+void release_geometry_only_classes(Scene& scene);
+
 }  // namespace citygen

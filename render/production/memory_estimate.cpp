@@ -16,10 +16,10 @@ namespace citygen {
 
 namespace {
 
-// Bytes of Embree and our buffers per stored triangle at the peak of the BVH build (more than
-// the built scene holds) and per procedural primitive: what a render of one of our extracts
-// held, rounded up (docs/bench/2026-11-render.md).
-constexpr double kBytesPerTriangle = 160;
+// Bytes of Embree and our buffers per stored triangle at the peak of the BVH build and per
+// procedural primitive: what renders of our extracts held, rounded up (stored, with the compact
+// BVH: Monaco 87, Kaiserslautern 74; docs/bench/2026-12-scale.md).
+constexpr double kBytesPerTriangle = 96;
 constexpr double kBytesPerPrimitive = 256;
 // Headroom for the program, its libraries and the scene itself.
 constexpr double kBaseBytes = 64.0 * 1024 * 1024;
