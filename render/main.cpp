@@ -144,12 +144,15 @@ int run(const Options& o) {
     check_memory_fits(estimate_render_memory(scene, job.modes, facades, settings));
     const std::unique_ptr<RenderScene> render_scene =
         build_render_geometry(scene, job.modes, facades, ProgressSettings{settings.quiet});
-    // The lights and the automatic view read roads and paths (lamps on decks, a town without
-    // buildings); then only the glTF export still needs them, and the BVH build comes on top.
+    // The lights, the looks and the automatic view read the scene's objects (lamps on decks, a
+    // town without buildings); then only the glTF export and lit windows still need them, and
+    // the BVH build comes on top.
     const Sky sky = make_sky(o, job);
     const SceneLights lights(scene, facades, lights_under(sky, job.lights));
+    BuildingLooks building_looks(scene);
+    building_looks.use_textures(textures.get());
     const Camera camera = view_camera(o, job, scene);
-    if (o.export_gltf_path.empty()) release_geometry_only_classes(scene);
+    if (o.export_gltf_path.empty()) release_geometry_only_classes(scene, lights.reads_buildings());
     render_scene->commit(ProgressSettings{settings.quiet});
     phases.build = seconds_since(build_start);
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);
@@ -164,8 +167,6 @@ int run(const Options& o) {
 
     if (job.want_camera) note_camera_below_ground(scene, parse_point(o.camera, "--camera"));
     set_atmosphere(o, scene, settings.integrator);
-    BuildingLooks building_looks(scene);
-    building_looks.use_textures(textures.get());
     const PathContext context{*render_scene, materials, sky, settings.integrator, &building_looks, &lights};
     // Automatic exposure is metered on the whole frame before rendering (exposure.h), so a
     // region or tile gets its frame's exposure, and each frame of an animation its own.

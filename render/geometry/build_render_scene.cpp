@@ -112,7 +112,7 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     return render_scene;
 }
 
-void release_geometry_only_classes(Scene& scene) {
+void release_geometry_only_classes(Scene& scene, bool keep_buildings) {
     auto release = [](auto& objects) { std::decay_t<decltype(objects)>().swap(objects); };
     release(scene.roads);
     release(scene.joints);
@@ -123,6 +123,7 @@ void release_geometry_only_classes(Scene& scene) {
     release(scene.path_joints);
     release(scene.crossings);
     release(scene.retaining_walls);
+    if (!keep_buildings) release(scene.buildings);
 #ifdef __GLIBC__
     malloc_trim(0);  // millions of small blocks: give the pages back, Embree allocates its own
 #endif

@@ -25,10 +25,11 @@ std::unique_ptr<RenderScene> build_render_geometry(const Scene& scene, const Geo
                                                    const FacadeOptions& facades = FacadeOptions{},
                                                    const ProgressSettings& progress = ProgressSettings{});
 
-// Frees the classes that nothing but their geometry reads (roads, joints, sidewalks, land cover,
-// trees, paths, crossings, retaining walls): the geometry keeps its own copy of what it needs, and
-// what renders after it (lights, looks, the ground) reads only the buildings, the lamps, the
-// ground, the field and the header. A whole city's scene is a third of a render's memory.
-void release_geometry_only_classes(Scene& scene);
+// Frees the classes that nothing but their geometry reads once the lights, the looks and the
+// view are made: roads, joints, sidewalks, land cover, trees, paths, crossings, retaining walls,
+// and the buildings unless `keep_buildings` (lit windows are re-derived from them at night). The
+// geometry keeps its own copy of what it needs; the ground, the field, the lamps and the header
+// stay. A whole city's scene is a quarter of a render's memory.
+void release_geometry_only_classes(Scene& scene, bool keep_buildings);
 
 }  // namespace citygen

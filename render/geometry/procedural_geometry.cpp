@@ -11,10 +11,7 @@ namespace citygen {
 void ProceduralGeometry::add_wall(uint32_t object, const WallLayout& layout, Vec2 a, Vec2 b, double bottom,
                                   uint32_t wall_index) {
     uint32_t layout_index = kPlainLayout;
-    if (!layout.plain()) {
-        layout_index = static_cast<uint32_t>(layouts_.size());
-        layouts_.push_back(layout);
-    }
+    if (!layout.plain()) layout_index = layouts_.push_back(layout);
     walls_.push_back({{a.x, a.y, bottom}, normalize(b - a), layout.length, layout.height, object, wall_index,
                       layout_index});
 }
@@ -113,7 +110,7 @@ void ProceduralGeometry::add_face(uint32_t object, const std::vector<Vec3>& poin
 }
 
 size_t ProceduralGeometry::buffer_bytes() const {
-    return walls_.capacity() * sizeof(Wall) + layouts_.capacity() * sizeof(WallLayout) +
+    return walls_.capacity() * sizeof(Wall) + layouts_.bytes() +
            faces_.capacity() * sizeof(Face) + face_points_.capacity() * sizeof(Vec2) +
            polygons_.capacity() * sizeof(Polygon) +
            points_.capacity() * sizeof(Vec2) + ring_ends_.capacity() * sizeof(uint32_t) +
@@ -285,7 +282,6 @@ void ProceduralGeometry::bounds(unsigned prim_id, RTCBounds* out) const {
 RTCGeometry ProceduralGeometry::create_embree_geometry(RTCDevice device) {
     // Building is over: give back what the vectors grew into (up to half their bytes).
     walls_.shrink_to_fit();
-    layouts_.shrink_to_fit();
     polygons_.shrink_to_fit();
     faces_.shrink_to_fit();
     face_points_.shrink_to_fit();

@@ -91,6 +91,23 @@ private:
         uint32_t layout;  // into layouts_, or kPlainLayout
     };
     static constexpr uint32_t kPlainLayout = 0xffffffffu;
+    // The layouts in blocks of fixed size: a metropolis holds millions of them, and a vector's
+    // regrowth and final shrink would hold them twice for a moment, at the render's peak.
+    class LayoutBlocks {
+    public:
+        uint32_t push_back(const WallLayout& layout) {
+            if ((size_ & kMask) == 0) blocks_.push_back(std::make_unique<WallLayout[]>(kBlock));
+            blocks_.back()[size_ & kMask] = layout;
+            return size_++;
+        }
+        const WallLayout& operator[](uint32_t i) const { return blocks_[i >> kShift][i & kMask]; }
+        size_t bytes() const { return blocks_.size() * kBlock * sizeof(WallLayout); }
+
+    private:
+        static constexpr uint32_t kShift = 8, kBlock = 1u << kShift, kMask = kBlock - 1;  // 39 KB
+        std::vector<std::unique_ptr<WallLayout[]>> blocks_;
+        uint32_t size_ = 0;
+    };
     struct Polygon {
         uint32_t first_ring, ring_count;  // into ring_ends_; the first ring is the outer one
         uint32_t hole_root;               // into hole_nodes_, or kNoHoleTree: the holes one by one
@@ -142,7 +159,7 @@ private:
     ObjectKind kind_;
     SurfaceMaterials wall_materials_;
     std::vector<Wall> walls_;
-    std::vector<WallLayout> layouts_;  // of the walls with windows
+    LayoutBlocks layouts_;  // of the walls with windows
     std::vector<Polygon> polygons_;
     std::vector<Face> faces_;
     std::vector<Vec2> face_points_;    // all faces' projected points, back to back

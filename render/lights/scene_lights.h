@@ -94,6 +94,9 @@ public:
     SceneLights(const Scene& scene, const FacadeOptions& facades, const LightOptions& options);
 
     bool empty() const { return light_count() == 0; }
+    // Whether sampling reads the scene's buildings after construction (lit windows are derived
+    // from them when sampled); otherwise the scene may go.
+    bool reads_buildings() const { return options_.lit_windows > 0; }
     size_t light_count() const { return lamps_.size() + strips_.size(); }
     size_t lamp_count() const { return lamps_.size(); }
     size_t strip_count() const { return strips_.size(); }
