@@ -197,10 +197,24 @@ LightBounds union_of(const LightBounds& a, const LightBounds& b) {
         u.cos_theta_o = std::min(a.cos_theta_o, b.cos_theta_o);
         return u;
     }
-    // A single direction (a pane's) is the common cone: acos(1) is exactly 0, without the call.
+    // A single direction (a pane's) within the other cone, the usual case while a cluster
+    // gathers panes: the branches below without an angle (acos is decreasing, so these are
+    // exactly their tests).
+    const double cos_d = dot(a.axis(), b.axis());
+    if (b.cos_theta_o >= 1 && cos_d >= a.cos_theta_o) {
+        u.set_axis(a.axis());
+        u.cos_theta_o = a.cos_theta_o;
+        return u;
+    }
+    if (a.cos_theta_o >= 1 && cos_d >= b.cos_theta_o) {
+        u.set_axis(b.axis());
+        u.cos_theta_o = b.cos_theta_o;
+        return u;
+    }
+    // A single direction is the common cone: acos(1) is exactly 0, without the call.
     auto theta = [](float cos_theta) { return cos_theta >= 1 ? 0.0 : safe_acos(cos_theta); };
     const double theta_a = theta(a.cos_theta_o), theta_b = theta(b.cos_theta_o);
-    const double theta_d = safe_acos(dot(a.axis(), b.axis()));
+    const double theta_d = safe_acos(cos_d);
     if (std::min(theta_d + theta_b, kPi) <= theta_a) {
         u.set_axis(a.axis());
         u.cos_theta_o = a.cos_theta_o;

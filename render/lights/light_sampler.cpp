@@ -201,22 +201,33 @@ void BVHLightSampler::cheapest_split(const std::vector<Item>& items, size_t begi
             b = std::clamp(b, 0, kBuckets - 1);
             buckets[b] = union_of(buckets[b], items[i].bounds);
         }
-        // Costs of all splits from a sweep each way: below[s] holds buckets 0..s, above[s] s+1..end.
+        // Costs of the splits from a sweep each way over the buckets that hold light (a split
+        // next to an empty bucket divides the lights as the one before it, and the first of equal
+        // costs wins: small nodes, most of the tree, have few such buckets). below[j] holds the
+        // lights of filled[0..j], above[j] those of filled[j+1..].
+        int filled[kBuckets];
+        int count = 0;
+        for (int b = 0; b < kBuckets; ++b)
+            if (buckets[b].phi > 0) filled[count++] = b;
+        if (count == 0) return;
         LightBounds below[kBuckets], above[kBuckets];
-        below[0] = buckets[0];
-        for (int b = 1; b < kBuckets; ++b) below[b] = union_of(below[b - 1], buckets[b]);
-        above[kBuckets - 2] = buckets[kBuckets - 1];
-        for (int b = kBuckets - 3; b >= 0; --b) above[b] = union_of(above[b + 1], buckets[b + 1]);
+        below[0] = buckets[filled[0]];
+        for (int j = 1; j < count; ++j) below[j] = union_of(below[j - 1], buckets[filled[j]]);
+        above[count - 1] = LightBounds{};
+        if (count > 1) above[count - 2] = buckets[filled[count - 1]];
+        for (int j = count - 3; j >= 0; --j) above[j] = union_of(above[j + 1], buckets[filled[j + 1]]);
         OrientationMeasure orientation;
-        for (int split = 0; split < kBuckets - 1; ++split) {
-            if (below[split].phi <= 0 && above[split].phi <= 0) continue;
-            const double cost =
-                cluster_cost(below[split], axis, orientation) + cluster_cost(above[split], axis, orientation);
+        auto try_split = [&](int split, const LightBounds& low, const LightBounds& high) {
+            const double cost = cluster_cost(low, axis, orientation) + cluster_cost(high, axis, orientation);
             if (cost < axis_cost[axis]) {
                 axis_cost[axis] = cost;
                 axis_bucket[axis] = split;
             }
-        }
+        };
+        if (filled[0] > 0)  // nothing below: all of them above, joined in the same order
+            try_split(0, LightBounds{}, count > 1 ? union_of(above[0], buckets[filled[0]]) : buckets[filled[0]]);
+        for (int j = 0; j < count; ++j)
+            if (filled[j] < kBuckets - 1) try_split(filled[j], below[j], above[j]);
     };
     if (parallel) tbb::parallel_for(0, 3, cost_axis);
     else for (int axis = 0; axis < 3; ++axis) cost_axis(axis);
