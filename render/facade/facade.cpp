@@ -295,7 +295,7 @@ size_t building_wall_count(const Building& building) {
 }
 
 BuildingWalls::BuildingWalls(const Building& building)
-    : building_(building), count_(building_wall_count(building)) {
+    : building_(building), count_(building_wall_count(building)), style_(facade_style(building)) {
     const size_t rings = 1 + building.holes.size();
     auto ring = [&](size_t r) -> const Ring& { return r == 0 ? building.outer : building.holes[r - 1]; };
     if (rings <= kInlineRings) {
@@ -391,7 +391,7 @@ WallInput BuildingWalls::input(size_t index) const {
     result.levels = building.levels;
     if (a != before) result.start_angle = interior_angle(before, a, b);
     if (b != after) result.end_angle = interior_angle(a, b, after);
-    result.style = facade_style(building);
+    result.style = style_;
     return result;
 }
 

@@ -199,6 +199,7 @@ public:
 private:
     const Building& building_;
     size_t count_;
+    FacadeStyle style_;  // one per building: its type's string compared once, not per wall
     // Orientation of ring r (0: the outer ring, h + 1: hole h), bit r, when there are at most
     // kInlineRings rings; else ring_ccw_[r].
     uint64_t counter_clockwise_ = 0;
