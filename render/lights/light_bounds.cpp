@@ -174,64 +174,71 @@ void LightBounds4::importance(const LightQuery& q, float most[4], float least[4]
     (factor / max(far * far, near2)).store(least);
 }
 
-LightBounds union_of(const LightBounds& a, const LightBounds& b) {
-    if (a.phi <= 0) return b;
-    if (b.phi <= 0) return a;
-    LightBounds u;
-    for (int i = 0; i < 3; ++i) {
-        u.lo[i] = std::min(a.lo[i], b.lo[i]);
-        u.hi[i] = std::max(a.hi[i], b.hi[i]);
+void LightBounds::join(const LightBounds& b) {
+    if (phi <= 0) {
+        *this = b;
+        return;
     }
-    u.phi = a.phi + b.phi;
-    u.cos_theta_e = std::min(a.cos_theta_e, b.cos_theta_e);
-    u.two_sided = a.two_sided || b.two_sided;
+    if (b.phi <= 0) return;
+    for (int i = 0; i < 3; ++i) {
+        lo[i] = std::min(lo[i], b.lo[i]);
+        hi[i] = std::max(hi[i], b.hi[i]);
+    }
+    phi = phi + b.phi;
+    cos_theta_e = std::min(cos_theta_e, b.cos_theta_e);
+    two_sided = two_sided || b.two_sided;
     // Join the normal cones (the common cases first: a whole sphere such as a lamp's globe, or
     // two parallel walls).
-    if (a.cos_theta_o <= -1 || b.cos_theta_o <= -1) {
-        u.set_axis({0, 0, 1});
-        u.cos_theta_o = -1;
-        return u;
+    if (cos_theta_o <= -1 || b.cos_theta_o <= -1) {
+        set_axis({0, 0, 1});
+        cos_theta_o = -1;
+        return;
     }
-    if (a.w[0] == b.w[0] && a.w[1] == b.w[1] && a.w[2] == b.w[2]) {
-        u.set_axis(a.axis());
-        u.cos_theta_o = std::min(a.cos_theta_o, b.cos_theta_o);
-        return u;
+    if (w[0] == b.w[0] && w[1] == b.w[1] && w[2] == b.w[2]) {
+        set_axis(axis());
+        cos_theta_o = std::min(cos_theta_o, b.cos_theta_o);
+        return;
     }
     // A single direction (a pane's) within the other cone, the usual case while a cluster
     // gathers panes: the branches below without an angle (acos is decreasing, so these are
     // exactly their tests).
-    const double cos_d = dot(a.axis(), b.axis());
-    if (b.cos_theta_o >= 1 && cos_d >= a.cos_theta_o) {
-        u.set_axis(a.axis());
-        u.cos_theta_o = a.cos_theta_o;
-        return u;
+    const Vec3 a_axis = axis();
+    const float a_cos = cos_theta_o;
+    const double cos_d = dot(a_axis, b.axis());
+    if (b.cos_theta_o >= 1 && cos_d >= a_cos) {
+        set_axis(a_axis);
+        return;
     }
-    if (a.cos_theta_o >= 1 && cos_d >= b.cos_theta_o) {
-        u.set_axis(b.axis());
-        u.cos_theta_o = b.cos_theta_o;
-        return u;
+    if (a_cos >= 1 && cos_d >= b.cos_theta_o) {
+        set_axis(b.axis());
+        cos_theta_o = b.cos_theta_o;
+        return;
     }
     // A single direction is the common cone: acos(1) is exactly 0, without the call.
     auto theta = [](float cos_theta) { return cos_theta >= 1 ? 0.0 : safe_acos(cos_theta); };
-    const double theta_a = theta(a.cos_theta_o), theta_b = theta(b.cos_theta_o);
+    const double theta_a = theta(a_cos), theta_b = theta(b.cos_theta_o);
     const double theta_d = safe_acos(cos_d);
     if (std::min(theta_d + theta_b, kPi) <= theta_a) {
-        u.set_axis(a.axis());
-        u.cos_theta_o = a.cos_theta_o;
+        set_axis(a_axis);
     } else if (std::min(theta_d + theta_a, kPi) <= theta_b) {
-        u.set_axis(b.axis());
-        u.cos_theta_o = b.cos_theta_o;
+        set_axis(b.axis());
+        cos_theta_o = b.cos_theta_o;
     } else {
         const double theta_o = (theta_a + theta_d + theta_b) / 2;
-        const Vec3 wr = cross(a.axis(), b.axis());
+        const Vec3 wr = cross(a_axis, b.axis());
         if (theta_o >= kPi || dot(wr, wr) == 0) {
-            u.set_axis({0, 0, 1});
-            u.cos_theta_o = -1;
+            set_axis({0, 0, 1});
+            cos_theta_o = -1;
         } else {
-            u.set_axis(rotate(a.axis(), normalize(wr), theta_o - theta_a));
-            u.cos_theta_o = static_cast<float>(std::max(-1.0, std::cos(theta_o) - 1e-5));  // float rounding: never narrower
+            set_axis(rotate(a_axis, normalize(wr), theta_o - theta_a));
+            cos_theta_o = static_cast<float>(std::max(-1.0, std::cos(theta_o) - 1e-5));  // float rounding: never narrower
         }
     }
+}
+
+LightBounds union_of(const LightBounds& a, const LightBounds& b) {
+    LightBounds u = a;
+    u.join(b);
     return u;
 }
 

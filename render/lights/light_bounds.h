@@ -23,6 +23,8 @@ struct LightBounds {
     Vec3 axis() const { return {w[0], w[1], w[2]}; }
     void set_box(Vec3 a, Vec3 b);
     void set_axis(Vec3 v);
+    // *this = union_of(*this, b), without a copy (the split search joins millions of lights).
+    void join(const LightBounds& b);
 
 };
 

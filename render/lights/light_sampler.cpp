@@ -199,7 +199,7 @@ void BVHLightSampler::cheapest_split(const std::vector<Item>& items, size_t begi
         for (size_t i = begin; i < end; ++i) {
             int b = static_cast<int>(kBuckets * (items[i].bounds.centroid()[axis] - cmin[axis]) / extent);
             b = std::clamp(b, 0, kBuckets - 1);
-            buckets[b] = union_of(buckets[b], items[i].bounds);
+            buckets[b].join(items[i].bounds);
         }
         // Costs of the splits from a sweep each way over the buckets that hold light (a split
         // next to an empty bucket divides the lights as the one before it, and the first of equal
