@@ -29,7 +29,7 @@ std::unique_ptr<RenderScene> build_render_geometry(const Scene& scene, const Geo
 // view are made: roads, joints, sidewalks, land cover, trees, paths, crossings, retaining walls,
 // and the buildings unless `keep_buildings` (lit windows are re-derived from them at night). The
 // geometry keeps its own copy of what it needs; the ground, the field, the lamps and the header
-// stay. A whole city's scene is a quarter of a render's memory.
+// stay.
 void release_geometry_only_classes(Scene& scene, bool keep_buildings);
 
 }  // namespace citygen

@@ -80,7 +80,7 @@ RenderScene::RenderScene() {
     rtcSetDeviceMemoryMonitorFunction(device_, &RenderScene::memory_monitor, this);
     scene_ = rtcNewScene(device_);
     // The compact BVH keeps triangles as indices into our vertex buffer instead of copying them
-    // out: a stored city's BVH about half the size and its build's peak gone, the trace as fast.
+    // out: stored cities are mostly triangles, and memory is what limits their size.
     rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_COMPACT);
 }
 
