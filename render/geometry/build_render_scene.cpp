@@ -123,7 +123,11 @@ void release_geometry_only_classes(Scene& scene, bool keep_buildings) {
     release(scene.path_joints);
     release(scene.crossings);
     release(scene.retaining_walls);
-    if (!keep_buildings) release(scene.buildings);
+    if (keep_buildings) {
+        for (Building& building : scene.buildings) release(building.roof_faces);
+    } else {
+        release(scene.buildings);
+    }
 #ifdef __GLIBC__
     malloc_trim(0);  // millions of small blocks: give the pages back, Embree allocates its own
 #endif

@@ -27,9 +27,9 @@ std::unique_ptr<RenderScene> build_render_geometry(const Scene& scene, const Geo
 
 // Frees the classes that nothing but their geometry reads once the lights, the looks and the
 // view are made: roads, joints, sidewalks, land cover, trees, paths, crossings, retaining walls,
-// and the buildings unless `keep_buildings` (lit windows are re-derived from them at night). The
-// geometry keeps its own copy of what it needs; the ground, the field, the lamps and the header
-// stay.
+// and the buildings unless `keep_buildings` (lit windows are re-derived from their walls at
+// night; their roof faces go). The geometry keeps its own copy of what it needs; the ground, the
+// field, the lamps and the header stay.
 void release_geometry_only_classes(Scene& scene, bool keep_buildings);
 
 }  // namespace citygen
