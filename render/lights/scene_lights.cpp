@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <optional>
 #include <cmath>
 #include <utility>
 #include <tuple>
@@ -270,25 +271,47 @@ bool SceneLights::lit_window_at(const Hit& hit) const {
     return window_lit(facades_, g.building_key, g.wall, g.layout, floor, slot, options_.lit_windows);
 }
 
-void SceneLights::for_each_lit_pane(Vec3 eye, const std::function<void(const SeenPane&)>& visit) const {
-    for (const Strip& strip : strips_) {
+void SceneLights::for_each_lit_pane(Vec3 eye, const std::function<bool(const SeenPane&)>& wanted,
+                                    const std::function<void(const SeenPane&)>& visit) const {
+    // Runs of strips side by side, each wall's geometry derived once from its building's walls
+    // (strips are ordered by building and wall); the wanted panes joined in order.
+    constexpr size_t kStripsPerRun = 4096;
+    std::vector<std::vector<SeenPane>> kept((strips_.size() + kStripsPerRun - 1) / kStripsPerRun);
+    tbb::parallel_for(size_t{0}, kept.size(), [&](size_t run) {
+        std::optional<BuildingWalls> walls;
+        uint32_t building = ~0u, wall = ~0u;
         WallGeometry g;
-        if (!wall_geometry(strip.building, strip.wall, &g)) continue;
-        const Vec3 local = g.frame.point_to_local(eye);
-        if (!(local.z < 0)) continue;  // not in front of the facade: it sees no pane's front
-        for (int bit = 0; bit < strip.floor_count * strip.slot_count; ++bit) {
-            if (!(strip.lit >> bit & 1)) continue;
-            const int floor = strip.first_floor + bit / strip.slot_count;
-            const int slot = strip.first_slot + bit % strip.slot_count;
-            const Pane pane = visible_pane(window_pane(g.layout, floor, slot), local);
-            if (!(pane.area() > 0)) continue;
-            const double u0 = pane.u0 - kSeenPaneMargin, u1 = pane.u1 + kSeenPaneMargin;
-            const double v0 = pane.v0 - kSeenPaneMargin, v1 = pane.v1 + kSeenPaneMargin;
-            visit({strip.building, strip.wall, static_cast<uint32_t>(floor) * 65536u + static_cast<uint32_t>(slot) + 1,
-                   {g.frame.to_world(u0, v0, pane.at), g.frame.to_world(u1, v0, pane.at),
-                    g.frame.to_world(u1, v1, pane.at), g.frame.to_world(u0, v1, pane.at)}});
+        Vec3 local;
+        bool facing = false;  // the strip's wall is derived and its front faces the eye
+        for (size_t i = run * kStripsPerRun, end = std::min(strips_.size(), i + kStripsPerRun); i < end; ++i) {
+            const Strip& strip = strips_[i];
+            if (strip.building != building || strip.wall != wall) {
+                if (strip.building != building) walls.emplace(scene_->buildings[strip.building]);
+                building = strip.building;
+                wall = strip.wall;
+                facing = derive_wall_geometry(*walls, building, wall, &g);
+                if (facing) local = g.frame.point_to_local(eye);
+                facing = facing && local.z < 0;  // else it sees no pane's front
+            }
+            if (!facing) continue;
+            for (int bit = 0; bit < strip.floor_count * strip.slot_count; ++bit) {
+                if (!(strip.lit >> bit & 1)) continue;
+                const int floor = strip.first_floor + bit / strip.slot_count;
+                const int slot = strip.first_slot + bit % strip.slot_count;
+                const Pane pane = visible_pane(window_pane(g.layout, floor, slot), local);
+                if (!(pane.area() > 0)) continue;
+                const double u0 = pane.u0 - kSeenPaneMargin, u1 = pane.u1 + kSeenPaneMargin;
+                const double v0 = pane.v0 - kSeenPaneMargin, v1 = pane.v1 + kSeenPaneMargin;
+                const SeenPane seen{strip.building, strip.wall,
+                                    static_cast<uint32_t>(floor) * 65536u + static_cast<uint32_t>(slot) + 1,
+                                    {g.frame.to_world(u0, v0, pane.at), g.frame.to_world(u1, v0, pane.at),
+                                     g.frame.to_world(u1, v1, pane.at), g.frame.to_world(u0, v1, pane.at)}};
+                if (wanted(seen)) kept[run].push_back(seen);
+            }
         }
-    }
+    });
+    for (const std::vector<SeenPane>& run : kept)
+        for (const SeenPane& pane : run) visit(pane);
 }
 
 int64_t SceneLights::strip_light(const Hit& hit) const {

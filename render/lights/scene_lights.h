@@ -127,8 +127,11 @@ public:
         uint32_t building, wall, cell;
         Vec3 corner[4];
     };
-    // Calls visit(pane) for every lit window whose pane's front `eye` sees some of.
-    void for_each_lit_pane(Vec3 eye, const std::function<void(const SeenPane&)>& visit) const;
+    // Calls visit(pane), in the strips' order, for every lit window whose pane's front `eye`
+    // sees some of and that wanted(pane) keeps. The strips are walked on all threads (each wall
+    // derives its layout: millions in a metropolis), so wanted is called from several at once.
+    void for_each_lit_pane(Vec3 eye, const std::function<bool(const SeenPane&)>& wanted,
+                           const std::function<void(const SeenPane&)>& visit) const;
     static constexpr double kSeenPaneMargin = 0.01;  // metres: stored panes are float triangles
 
     // A window strip's size: at most this many floors by slots of one wall.

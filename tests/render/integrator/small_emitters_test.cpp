@@ -84,12 +84,12 @@ LightOptions windows_alone() {
     return options;
 }
 
-// For every pixel: what a 32x32 grid of camera rays through it sees of the emitters the film
-// gathers, against the mean of 64 samples of the light it gathers. Returns the number of pixels
-// that see some.
+// For every pixel: what a kGrid x kGrid grid of camera rays through it sees of the emitters the
+// film gathers, against the mean of kSamples samples of the light it gathers. Returns the number
+// of pixels that see some.
+template <int kGrid = 32, int kSamples = 64>
 int expect_gathered_light_is_what_camera_rays_see(const Scene& scene, const SceneLights& lights,
                                                   const Camera& camera, const SmallEmitters& emitters) {
-    constexpr int kGrid = 32, kSamples = 64;
     const MaterialTable materials = default_materials();
     const Sky sky = Sky::daylight(TimeOfDay::Night);
     int pixels_seen = 0;
@@ -158,6 +158,34 @@ TEST(SmallPanes, PixelLightIsWhatCameraRaysSeeOfThePanes) {
     EXPECT_EQ(0u, SmallEmitters(lights, close).pane_count());
     EXPECT_EQ(0u, SmallEmitters(lights, camera, false).size());
     EXPECT_GT(expect_gathered_light_is_what_camera_rays_see(scene, lights, camera, panes), 100);
+}
+
+// From farther (a small image of the same flats) a pixel holds more panes than a sample aims
+// rays at: it picks some in proportion to the area they cover, and the light stays the same.
+TEST(SmallPanes, APixelOfManyPanesAimsAFewRaysAndKeepsTheirLight) {
+    const Scene scene = flats_from_above();
+    const SceneLights lights(scene, FacadeOptions{scene.header.seed}, windows_alone());
+    const Camera camera = above_the_flats(12, 8);
+    const SmallEmitters panes(lights, camera);
+    const auto render_scene = build_render_scene(scene, GeometryModes{}, FacadeOptions{scene.header.seed});
+    const MaterialTable materials = default_materials();
+    const Sky sky = Sky::daylight(TimeOfDay::Night);
+    IntegratorSettings settings;
+    const PathContext context{*render_scene, materials, sky, settings, nullptr, &lights};
+    size_t crowded = 0, most = 0;
+    for (int y = 0; y < camera.height(); ++y) {
+        for (int x = 0; x < camera.width(); ++x) {
+            const SmallEmitters::InPixel here = panes.in_pixel(x, y);
+            most = std::max(most, here.last - here.first);
+            if (here.last - here.first <= SmallEmitters::kMaxRaysPerSample) continue;
+            ++crowded;
+            uint64_t rays = 0;
+            panes.light_in_pixel(here, context, camera, x, y, 77, 0, rays);
+            EXPECT_EQ(rays, uint64_t{SmallEmitters::kMaxRaysPerSample});
+        }
+    }
+    ASSERT_GT(crowded, 3u) << "the most panes in a pixel: " << most;
+    EXPECT_GT((expect_gathered_light_is_what_camera_rays_see<128, 1024>(scene, lights, camera, panes)), 10);
 }
 
 namespace {
