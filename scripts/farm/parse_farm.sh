@@ -59,12 +59,18 @@ command -v sbatch > /dev/null || die "sbatch not found: this script submits to S
 columns=${BASH_REMATCH[1]} rows=${BASH_REMATCH[2]}
 [[ "$overlap" =~ ^[0-9]+([.][0-9]+)?$ ]] || die "--overlap: a number of metres"
 [[ "$cpus" =~ ^[1-9][0-9]*$ ]] || die "--cpus-per-task: a positive integer"
+dem=0 dem_resolution=0
 for option in "${parse_options[@]}"; do
   case "$option" in
     -o|--output|--origin|--keep-inside|--geojson) die "osmparse option $option is the farm's own" ;;
-    --dem) die "--dem: tiles with terrain cannot be merged by render yet (docs/farm.md)" ;;
+    --dem|--dem=*) dem=1 ;;
+    --dem-resolution|--dem-resolution=*) dem_resolution=1 ;;
   esac
 done
+# Each tile's default cell follows its own extract's size: render joins the tiles' terrain only
+# on one grid.
+[ $dem = 0 ] || [ $dem_resolution = 1 ] || die "--dem on the farm needs --dem-resolution M: every tile's terrain on one grid"
+
 
 # The region's bounds: the file header's box (an extract's), or the nodes' (osmium reads them all).
 bounds=$(osmium fileinfo -g header.boxes "$region" 2> /dev/null | head -n 1)

@@ -187,3 +187,49 @@ TEST_F(TerrainCli, CoveredWaysAreCountedWithADemOnly) {
     ASSERT_EQ(run("plain", "-q -o " + quoted(dir_.file("plain_flat.scene"))).exit_code, 0);
     EXPECT_EQ(read_text(dir_.file("covered_flat.scene")), read_text(dir_.file("plain_flat.scene")));
 }
+
+// The farm's tiles (docs/farm.md): parsed in one frame with one --dem-resolution, each over its own
+// extract, render joins their terrain into one field over both, at the tiles' own altitudes.
+TEST_F(TerrainCli, TilesParsedWithOneResolutionAreJoinedByRender) {
+    // A second extract east of the town: its field starts further east, and higher on the slope.
+    write_text(dir_.file("east.osm"), R"(<?xml version="1.0" encoding="UTF-8"?>
+<osm version="0.6">
+  <node id="21" lat="49.5000" lon="8.5200"/>
+  <node id="22" lat="49.5000" lon="8.5203"/>
+  <node id="23" lat="49.5002" lon="8.5203"/>
+  <node id="24" lat="49.5002" lon="8.5200"/>
+  <way id="30"><nd ref="21"/><nd ref="22"/><nd ref="23"/><nd ref="24"/><nd ref="21"/><tag k="building" v="yes"/></way>
+</osm>
+)");
+    const std::string dem = " --dem " + quoted(dir_.file("N49E008.hgt")) + " --origin 49.5,8.5 -q";
+    auto tile = [&](const std::string& osm, const std::string& resolution, const std::string& scene) {
+        const CommandResult r = run_command(quoted(osmparse_binary()) + " " + quoted(dir_.file(osm)) + dem +
+                                            " --dem-resolution " + resolution + " -o " + quoted(dir_.file(scene)));
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+    };
+    tile("town.osm", "30", "west.scene");
+    tile("east.osm", "30", "east.scene");
+    tile("east.osm", "20", "east20.scene");
+    auto heights = [](const std::string& info, double* lowest, double* highest) {
+        const size_t at = info.find("terrain_heights: ");
+        ASSERT_NE(at, std::string::npos) << info;
+        ASSERT_EQ(std::sscanf(info.c_str() + at, "terrain_heights: %lf - %lf", lowest, highest), 2) << info;
+    };
+    double west_low, west_high, east_low, east_high, low, high;
+    heights(render("--print-scene-info " + quoted(dir_.file("west.scene"))).out, &west_low, &west_high);
+    heights(render("--print-scene-info " + quoted(dir_.file("east.scene"))).out, &east_low, &east_high);
+    ASSERT_GT(east_high, west_high + 20);  // the slope rises east: the extracts' fields differ
+    const CommandResult joined =
+        render("--print-scene-info " + quoted(dir_.file("west.scene")) + " " + quoted(dir_.file("east.scene")));
+    ASSERT_EQ(joined.exit_code, 0) << joined.err;
+    heights(joined.out, &low, &high);
+    EXPECT_NEAR(low, west_low, 0.01);
+    EXPECT_NEAR(high, east_high, 0.01);
+    // Another node spacing is another grid: one line, nothing written.
+    const CommandResult refused = render(quoted(dir_.file("west.scene")) + " " + quoted(dir_.file("east20.scene")) +
+                                         " -q -o " + quoted(dir_.file("joined.png")));
+    EXPECT_NE(refused.exit_code, 0);
+    EXPECT_EQ(count_lines(refused.err), 1) << refused.err;
+    EXPECT_NE(refused.err.find("--dem-resolution"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(dir_.file("joined.png")));
+}

@@ -1,5 +1,8 @@
 // Tile scenes merged into one: indices between lists moved with them, edge ends a tile cut from
-// their joint linked again, and scenes that do not share a frame, seed or terrain refused.
+// their joint linked again, the tiles' terrain joined, and scenes that do not share a frame, seed
+// or terrain grid refused.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "common/error.h"
@@ -117,7 +120,92 @@ TEST(MergeScenes, RefusesScenesOfAnotherFrameSeedOrTerrain) {
     EXPECT_EQ(refusal(b), "b.scene: seed 2 is not a.scene's 1; parse the tiles with one --seed");
     b = tile(50, {10, 0}, {20, 10});
     b.terrain.nx = b.terrain.ny = 2, b.terrain.cell = 1, b.terrain.heights = {0, 0, 0, 0};
-    EXPECT_NE(refusal(b).find("different terrain (--dem) cannot be merged"), std::string::npos);
+    EXPECT_EQ(refusal(b), "a.scene has no terrain and b.scene has; parse every tile with the same --dem");
+}
+
+// A field of nx x ny nodes from lattice node (i0, j0), 10 m apart, heights `reference` + base + i + 100 j.
+HeightField field(int64_t i0, int64_t j0, uint32_t nx, uint32_t ny, double reference, float base) {
+    HeightField f;
+    f.origin = {i0 * 10.0, j0 * 10.0};
+    f.cell = 10;
+    f.nx = nx, f.ny = ny;
+    f.reference_altitude = reference;
+    f.vertical_datum = "EGM96 geoid";
+    for (uint32_t j = 0; j < ny; ++j)
+        for (uint32_t i = 0; i < nx; ++i) f.heights.push_back(base + float(i0 + i) + 100.0f * float(j0 + j));
+    return f;
+}
+
+Scene tile_on(HeightField terrain) {
+    Scene s = tile(1, {0, 0}, {10, 10});
+    s.terrain = std::move(terrain);
+    return s;
+}
+
+// The altitude of node (i, j) of the merged field.
+double altitude(const HeightField& f, int64_t i, int64_t j) {
+    const int64_t i0 = std::llround(f.origin.x / f.cell), j0 = std::llround(f.origin.y / f.cell);
+    return f.reference_altitude + f.heights[static_cast<size_t>((j - j0) * f.nx + (i - i0))];
+}
+
+// Tiles parsed with one --dem-resolution: one field over both, each node from the tile it lies
+// deepest inside (the one whose core holds it), altitudes kept whatever each tile's reference.
+TEST(MergeScenes, JoinsTheTilesTerrainEachNodeFromTheTileItLiesDeepestIn) {
+    // a: nodes 0..10 x 0..6 at 1,000 m + i + 100 j; b: nodes 6..16 x 0..6 at 5,000 m + ..., a lower reference.
+    const Scene merged = merge_scenes({tile_on(field(0, 0, 11, 7, 300, 700)), tile_on(field(6, 0, 11, 7, 200, 4800))},
+                                      {"a.scene", "b.scene"});
+    const HeightField& f = merged.terrain;
+    EXPECT_EQ(f.origin.x, 0);
+    EXPECT_EQ(f.origin.y, 0);
+    EXPECT_EQ(f.nx, 17u);
+    EXPECT_EQ(f.ny, 7u);
+    EXPECT_EQ(f.reference_altitude, 200);
+    EXPECT_EQ(f.vertical_datum, "EGM96 geoid");
+    for (int64_t j = 0; j < 7; ++j) {
+        for (int64_t i = 0; i <= 16; ++i) {
+            const double from_a = 1000 + i + 100 * j, from_b = 5000 + i + 100 * j;
+            if (i <= 5) {
+                EXPECT_EQ(altitude(f, i, j), from_a) << i << "," << j;  // a alone
+            } else if (i >= 11) {
+                EXPECT_EQ(altitude(f, i, j), from_b) << i << "," << j;  // b alone
+            }
+        }
+    }
+    // The overlap, on the middle row: a is deeper up to node 8 (a tie: the first tile), b beyond.
+    for (int64_t i = 6; i <= 10; ++i) EXPECT_EQ(altitude(f, i, 3), (i <= 8 ? 1000 : 5000) + i + 300) << i;
+}
+
+TEST(MergeScenes, AGapBetweenTilesTakesTheNearestTilesEdge) {
+    // a: rows 0..3, b: rows 6..9, both over columns 0..3: rows 4 and 5 are nobody's.
+    const Scene merged = merge_scenes({tile_on(field(0, 0, 4, 4, 0, 0)), tile_on(field(0, 6, 4, 4, 0, 0))},
+                                      {"a.scene", "b.scene"});
+    const HeightField& f = merged.terrain;
+    ASSERT_EQ(f.ny, 10u);
+    for (int64_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(altitude(f, i, 4), i + 300);  // a's top row
+        EXPECT_EQ(altitude(f, i, 5), i + 600);  // b's bottom row
+    }
+}
+
+TEST(MergeScenes, RefusesTerrainOnAnotherGrid) {
+    auto refused = [](HeightField b) {
+        try {
+            merge_scenes({tile_on(field(0, 0, 4, 4, 0, 0)), tile_on(std::move(b))}, {"a.scene", "b.scene"});
+        } catch (const Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    HeightField b = field(2, 0, 4, 4, 0, 0);
+    b.cell = 20;
+    EXPECT_NE(refused(b).find("parse the tiles with one --dem-resolution"), std::string::npos) << refused(b);
+    b = field(2, 0, 4, 4, 0, 0);
+    b.vertical_datum = "WGS84 ellipsoid";
+    EXPECT_NE(refused(b).find("b.scene: terrain heights above WGS84 ellipsoid"), std::string::npos) << refused(b);
+    b = field(2, 0, 4, 4, 0, 0);
+    b.origin.x = 25;
+    EXPECT_NE(refused(b).find("not on multiples of the cell"), std::string::npos) << refused(b);
+    EXPECT_EQ(refused(HeightField{}), "b.scene has no terrain and a.scene has; parse every tile with the same --dem");
 }
 
 }  // namespace
