@@ -56,15 +56,16 @@ void print_memory(const RenderScene& render_scene, const SceneLights& lights) {
     std::printf("light_bytes: %zu\n", lights.bytes());
 }
 
-// Seconds of the phases besides the tracing: loading the file, building geometry and BVH, writing.
+// Seconds of the phases besides the tracing: loading the file, building geometry and BVH,
+// metering the exposure (a small render of the frame), writing.
 struct PhaseSeconds {
-    double load = 0, build = 0, write = 0, render_cpu = 0;
+    double load = 0, build = 0, exposure = 0, write = 0, render_cpu = 0;
 };
 
 void print_stats(const RenderStats& stats, const PhaseSeconds& phases, const Camera& camera, const Sky& sky,
                  double exposure, const SceneLights& lights, const Options& o) {
-    std::printf("load_seconds: %.3f\nbuild_seconds: %.3f\nwrite_seconds: %.3f\n", phases.load, phases.build,
-                phases.write);
+    std::printf("load_seconds: %.3f\nbuild_seconds: %.3f\nexposure_seconds: %.3f\nwrite_seconds: %.3f\n", phases.load,
+                phases.build, phases.exposure, phases.write);
     std::printf("spp: %d\n", stats.spp);
     if (o.denoise) std::printf("denoise_seconds: %.3f\n", stats.denoise_seconds);
     std::printf("render_cpu_seconds: %.3f\n", phases.render_cpu);
@@ -175,7 +176,9 @@ int run(const Options& o) {
         render_animation(context, make_animation(o, job, camera, scene), settings, o.denoise, exposure_for);
         return 0;
     }
+    const Clock::time_point exposure_start = Clock::now();
     const double exposure = exposure_for(camera);
+    phases.exposure = seconds_since(exposure_start);
     // CPU time of all threads while tracing: on a shared machine a steadier measure of cost than
     // the wall clock.
     RenderStats stats;

@@ -4,7 +4,7 @@
 # from the same view (the 1x1 city's automatic view: what the city shows, now with more city
 # around it; the 1x1 city is the south-west tile), at WIDTHxHEIGHT and SPP. Prints, per size: buildings; the parse's wall and CPU
 # seconds, peak memory and microseconds per building, and its slowest stages; each render's wall
-# seconds (load, BVH build, tracing) and peak memory; at night the lamps, window strips and the
+# seconds (load, BVH build, exposure meter, tracing) and peak memory; at night the lamps, window strips and the
 # lights' memory. One run per size (the 8x8 takes minutes); RUNS=3 for medians of the small ones.
 #
 #   tests/bench/scale_bench.sh [OSM]   (SIZES="1 2 4 8", WIDTH=1920, HEIGHT=1080, SPP=16; OSMPARSE=, RENDER=)
@@ -68,9 +68,10 @@ for n in $sizes; do
         /usr/bin/time -f "%e %M" -o "$work/rtime" "$render" "$work/metro.scene" --procedural --time "$time" \
             --width "$width" --height "$height" --spp "$spp" $view -q --stats --print-memory-info \
             --print-scene-geometry-info -o "$work/$time-$n.png" > "$work/stats"
-        rows+=("$(printf '%-4s %-6s %8.1f %7.1f %7.1f %8.1f %8.0f %8s %9s %8.1f' "$n" "$time" \
+        rows+=("$(printf '%-4s %-6s %8.1f %7.1f %7.1f %7.1f %8.1f %8.0f %8s %9s %8.1f' "$n" "$time" \
             "$(awk '{print $1}' "$work/rtime")" "$(value load_seconds "$work/stats")" \
-            "$(value build_seconds "$work/stats")" "$(value render_seconds "$work/stats")" \
+            "$(value build_seconds "$work/stats")" "$(value exposure_seconds "$work/stats")" \
+            "$(value render_seconds "$work/stats")" \
             "$(awk '{print $2 / 1024}' "$work/rtime")" "$(value light_lamps "$work/stats")" \
             "$(value light_window_strips "$work/stats")" \
             "$(awk -v b="$(value light_bytes "$work/stats")" 'BEGIN { print b / 1e6 }')")")
@@ -78,5 +79,5 @@ for n in $sizes; do
     done
 done
 echo
-printf '%-4s %-6s %8s %7s %7s %8s %8s %8s %9s %8s\n' N time wall_s load_s bvh_s trace_s peak_MB lamps strips light_MB
+printf '%-4s %-6s %8s %7s %7s %7s %8s %8s %8s %9s %8s\n' N time wall_s load_s bvh_s meter_s trace_s peak_MB lamps strips light_MB
 printf '%s\n' "${rows[@]}"

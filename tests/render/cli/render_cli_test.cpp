@@ -89,7 +89,7 @@ TEST_F(RenderCli, PngJpegAndInfoLines) {
         EXPECT_EQ(in->spec().width, 32);
         EXPECT_EQ(in->spec().nchannels, 3);
         for (const char* key : {"\ngeometry_bytes: ", "\npeak_rss_bytes: ", "\ntriangles: ", "\nrender_seconds: ",
-                                "\nrays_per_second: ", "\nbuildings: ", "\ntriangles_building: "})
+                                "\nexposure_seconds: ", "\nrays_per_second: ", "\nbuildings: ", "\ntriangles_building: "})
             EXPECT_NE(("\n" + r.out).find(key), std::string::npos) << key;
     }
     for (const auto& entry : std::filesystem::directory_iterator(dir_->path()))
