@@ -69,6 +69,9 @@ std::string identity(const Scene& s, int kind, size_t i) {
             return "t" + to_string(s.trees[i].osm) + at_cm(s.trees[i].position);
         case ObjectKind::Path: check(s.paths.size()); return "p" + edge_name(s.paths[i]);
         case ObjectKind::PathJoint: check(s.path_joints.size()); return "q" + to_string(s.path_joints[i].osm);
+        case ObjectKind::RetainingWall:
+            check(s.retaining_walls.size());
+            return "w" + to_string(s.retaining_walls[i].osm) + at_cm(middle(s.retaining_walls[i].line));
     }
     throw Error("an id AOV has the unknown kind " + std::to_string(kind));
 }

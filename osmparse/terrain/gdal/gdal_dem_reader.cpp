@@ -59,7 +59,7 @@ struct CloseDataset {
 using Dataset = std::unique_ptr<void, CloseDataset>;
 
 struct DestroyTransformer {
-    void operator()(void* t) const { GDALDestroyApproxTransformer(t); }
+    void operator()(void* t) const { GDALDestroyGenImgProjTransformer(t); }
 };
 using Transformer = std::unique_ptr<void, DestroyTransformer>;
 
@@ -196,10 +196,10 @@ Transformer make_transformer(const DemSource& s, GDALDatasetH target, const std:
     const char* options[] = {dst_srs.c_str(), nullptr};
     void* exact = GDALCreateGenImgProjTransformer2(s.ds.get(), target, target ? nullptr : const_cast<char**>(options));
     if (!exact) throw Error("DEM " + s.path + ": cannot be placed in the scene's projection (" + gdal_message("no transform") + ")");
-    // A hundredth of a pixel: on a 1 m grid 1 cm, below what bilinear resampling changes.
-    void* approx = GDALCreateApproxTransformer(GDALGenImgProjTransform, exact, 0.01);
-    GDALApproxTransformerOwnsSubtransformer(approx, TRUE);
-    return Transformer(approx);
+    // Exact, not GDAL's approximating transformer: its interpolation spans follow the grid's
+    // extent, so a node's height would depend on the extract around it, and the farm's tiles
+    // would not give one parse's terrain (docs/farm.md).
+    return Transformer(exact);
 }
 
 // The DEM's own resolution in the scene's metres (GDAL's suggested output cell).
@@ -207,7 +207,7 @@ double native_cell(const DemSource& s, const std::string& wkt) {
     Transformer t = make_transformer(s, nullptr, wkt);
     double gt[6];
     int pixels = 0, lines = 0;
-    if (GDALSuggestedWarpOutput(s.ds.get(), GDALApproxTransform, t.get(), gt, &pixels, &lines) != CE_None)
+    if (GDALSuggestedWarpOutput(s.ds.get(), GDALGenImgProjTransform, t.get(), gt, &pixels, &lines) != CE_None)
         throw Error("DEM " + s.path + ": cannot be placed in the scene's projection (" + gdal_message("no extent") + ")");
     return std::fabs(gt[1]);
 }
@@ -256,7 +256,7 @@ size_t mark_coverage(const DemSource& s, void* transformer, const DemGrid& g, st
     size_t count = 0;
     for (uint32_t line = 0; line < g.ny; ++line) {
         for (uint32_t i = 0; i < g.nx; ++i) x[i] = i + 0.5, y[i] = line + 0.5, z[i] = 0;
-        GDALApproxTransform(transformer, TRUE, static_cast<int>(g.nx), x.data(), y.data(), z.data(), ok.data());
+        GDALGenImgProjTransform(transformer, TRUE, static_cast<int>(g.nx), x.data(), y.data(), z.data(), ok.data());
         for (uint32_t i = 0; i < g.nx; ++i)
             if (ok[i] && x[i] >= 0.5 && x[i] <= w - 0.5 && y[i] >= 0.5 && y[i] <= h - 0.5) {
                 inside[g.index(i, g.ny - 1 - line)] = 1;
@@ -284,7 +284,7 @@ void warp_into(const DemSource& s, void* transformer, GDALDatasetH target) {
     wo->padfDstNoDataReal = static_cast<double*>(CPLMalloc(sizeof(double)));
     wo->padfDstNoDataReal[0] = NAN;
     wo->papszWarpOptions = CSLSetNameValue(wo->papszWarpOptions, "INIT_DEST", "NO_DATA");
-    wo->pfnTransformer = GDALApproxTransform;
+    wo->pfnTransformer = GDALGenImgProjTransform;
     wo->pTransformerArg = transformer;
     CPLErrorReset();
     GDALWarpOperationH op = GDALCreateWarpOperation(wo);
