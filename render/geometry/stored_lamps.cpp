@@ -1,5 +1,5 @@
-// Stored mode for street lamps: the lamp shape (lamp_shape.h) as triangles, fine enough that
-// the facets stay within about a millimetre of the analytic surfaces the procedural mode hits.
+// Stored mode for street lamps: the lamp shape (lamp_shape.h) as triangles whose facets stay
+// within kFacetError of the analytic surfaces the procedural mode hits.
 #include <cmath>
 
 #include "render/geometry/lamp_shape.h"
@@ -10,12 +10,24 @@ namespace citygen {
 
 namespace {
 
-constexpr int kPoleSides = 20, kCapSides = 40, kGlobeSides = 40, kGlobeRings = 20;
+// Both modes agree within 1 cm in depth, as the trees do (tests/render/cli/procedural_render_test.cpp);
+// half a millimetre took 1,720 triangles a lamp, half of a city's stored triangles (docs/rendering.md).
+constexpr double kFacetError = 0.002;
 
 // Radius for the vertices of an n-sided polygon around a circle of radius r such that the
 // facets straddle the circle (vertices outside by as much as edge midpoints are inside):
 // halves the depth error against the analytic surface.
 double straddling_radius(double r, double cos_half_step) { return 2 * r / (1 + cos_half_step); }
+
+// The fewest sides that keep facets straddling a circle of radius r within kFacetError of it;
+// with `sphere`, an even number for a sphere of that many sides and half as many rings, whose
+// facet centres lie deepest (half a step both ways).
+int sides_within_error(double r, bool sphere) {
+    for (int n = 3;; ++n) {
+        const double c = sphere ? std::cos(kPi / n) * std::cos(kPi / n) : std::cos(kPi / n);
+        if (r * (1 - c) / (1 + c) <= kFacetError && (!sphere || n % 2 == 0)) return n;
+    }
+}
 
 Vec3 on_circle(Vec3 center, double r, int i, int n, double z) {
     const double a = 2 * kPi * i / n;
@@ -44,24 +56,25 @@ void add_disk(Vec3 axis, double r, double z, int sides, bool up, uint32_t object
     }
 }
 
-void add_sphere(Vec3 center, double r, uint32_t object, uint16_t material, TriangleMesh& mesh) {
+void add_sphere(Vec3 center, double r, int sides, uint32_t object, uint16_t material, TriangleMesh& mesh) {
+    const int rings = sides / 2;
     // A facet's centre lies deepest: half a step in both directions.
-    r = straddling_radius(r, std::cos(kPi / kGlobeSides) * std::cos(kPi / (2 * kGlobeRings)));
+    r = straddling_radius(r, std::cos(kPi / sides) * std::cos(kPi / (2 * rings)));
     auto point = [&](int ring, int side) {
-        const double polar = kPi * ring / kGlobeRings, a = 2 * kPi * side / kGlobeSides;
+        const double polar = kPi * ring / rings, a = 2 * kPi * side / sides;
         return center + Vec3{std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a), std::cos(polar)} * r;
     };
     const uint32_t first = static_cast<uint32_t>(mesh.vertex_count());
-    for (int ring = 0; ring <= kGlobeRings; ++ring)
-        for (int side = 0; side < kGlobeSides; ++side) mesh.add_vertex(point(ring, side));
-    auto index = [&](int ring, int side) { return first + ring * kGlobeSides + side % kGlobeSides; };
-    for (int ring = 0; ring < kGlobeRings; ++ring) {
-        for (int side = 0; side < kGlobeSides; ++side) {
+    for (int ring = 0; ring <= rings; ++ring)
+        for (int side = 0; side < sides; ++side) mesh.add_vertex(point(ring, side));
+    auto index = [&](int ring, int side) { return first + ring * sides + side % sides; };
+    for (int ring = 0; ring < rings; ++ring) {
+        for (int side = 0; side < sides; ++side) {
             // Rings go from the top down, sides counter-clockwise: (ring+1, side) is below.
             const uint32_t a = index(ring, side), b = index(ring + 1, side), c = index(ring + 1, side + 1),
                            d = index(ring, side + 1);
             if (ring > 0) mesh.add_triangle(a, b, d, object, material);
-            if (ring + 1 < kGlobeRings) mesh.add_triangle(b, c, d, object, material);
+            if (ring + 1 < rings) mesh.add_triangle(b, c, d, object, material);
         }
     }
 }
@@ -74,11 +87,13 @@ TriangleMesh build_stored_lamps(const Scene& scene) {
     const StandingSurface surface(scene);
     for (uint32_t i = 0; i < scene.lamps.size(); ++i) {
         const LampShape s = lamp_shape(scene.lamps[i], lamp_ground(surface, scene.lamps[i]));
-        add_cylinder(s.base, s.pole_radius, s.base.z, s.pole_top, kPoleSides, i, kLampPole, mesh);
-        add_sphere(s.globe_center, s.globe_radius, i, kLampGlobe, mesh);
-        add_cylinder(s.base, s.cap_radius, s.cap_bottom, s.cap_top, kCapSides, i, kLampCap, mesh);
-        add_disk(s.base, s.cap_radius, s.cap_top, kCapSides, true, i, kLampCap, mesh);
-        add_disk(s.base, s.cap_radius, s.cap_bottom, kCapSides, false, i, kLampCap, mesh);
+        const int pole_sides = sides_within_error(s.pole_radius, false);
+        const int cap_sides = sides_within_error(s.cap_radius, false);
+        add_cylinder(s.base, s.pole_radius, s.base.z, s.pole_top, pole_sides, i, kLampPole, mesh);
+        add_sphere(s.globe_center, s.globe_radius, sides_within_error(s.globe_radius, true), i, kLampGlobe, mesh);
+        add_cylinder(s.base, s.cap_radius, s.cap_bottom, s.cap_top, cap_sides, i, kLampCap, mesh);
+        add_disk(s.base, s.cap_radius, s.cap_top, cap_sides, true, i, kLampCap, mesh);
+        add_disk(s.base, s.cap_radius, s.cap_bottom, cap_sides, false, i, kLampCap, mesh);
     }
     return mesh;
 }

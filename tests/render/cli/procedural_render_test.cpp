@@ -51,6 +51,10 @@ struct Comparison {
     double psnr = 0;
 };
 
+// Same depth: within 1 mm, or 1e-5 of the distance far away (float depth); lamps within 1 cm
+// (their stored facets stay within 2 mm of the analytic surfaces, stored_lamps.cpp), as trees.
+constexpr float kLampDepthTolerance = 0.01f;
+
 Comparison compare(const Exr& stored, const Exr& procedural) {
     Comparison r;
     EXPECT_GT(stored.width, 0);
@@ -69,8 +73,8 @@ Comparison compare(const Exr& stored, const Exr& procedural) {
         r.lamp_pixels += stored.at(p, kind) == 6.0f;      // ObjectKind::Lamp
         if (stored.at(p, kind) != procedural.at(p, kind) || stored.at(p, index) != procedural.at(p, index)) continue;
         ++r.same_id;
-        // 1 mm, or 1e-5 of the distance far away (float depth)
-        const float tolerance = std::max(1e-3f, 1e-5f * stored.at(p, depth));
+        const float tolerance =
+            stored.at(p, kind) == 6.0f ? kLampDepthTolerance : std::max(1e-3f, 1e-5f * stored.at(p, depth));
         r.same_id_and_depth += std::abs(stored.at(p, depth) - procedural.at(p, depth)) <= tolerance;
     }
     // Beauty: PSNR over RGB of the displayed image (tone-mapped sRGB as in the PNG output, peak 1).
@@ -93,7 +97,7 @@ Comparison compare(const Exr& stored, const Exr& procedural) {
 void expect_same_picture(const Comparison& c) {
     EXPECT_GE(c.same_id, std::ceil(0.999 * c.pixels)) << c.pixels - c.same_id << " pixels differ in id";
     EXPECT_GE(c.same_id_and_depth, std::ceil(0.999 * c.pixels))
-        << c.same_id - c.same_id_and_depth << " pixels with the same id differ in depth by more than 1 mm";
+        << c.same_id - c.same_id_and_depth << " pixels with the same id differ in depth by more than 1 mm (lamps 1 cm)";
     EXPECT_GE(c.psnr, 40.0);
 }
 
@@ -229,7 +233,7 @@ TEST(ProceduralRender, UserTexturesReplacePatternsInBothModes) {
 
 TEST(ProceduralRender, SameLampsAsStored) {
     // Lamps are triangles in stored mode and analytic cylinders, sphere and disks in procedural
-    // mode: the same objects, at the same depths (the facets stay within a millimetre).
+    // mode: the same objects, at the same depths (the facets stay within 2 mm).
     const std::string osm = tiny_roundabout_osm();
     if (!std::filesystem::exists(osm)) GTEST_SKIP() << osm << " not available";
     TempDir dir;
