@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <optional>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <tuple>
 
