@@ -8,7 +8,8 @@
 #   scripts/farm/parse_farm.sh REGION.osm.pbf OUTDIR --tiles CxR [farm options] [-- osmparse options]
 #
 # Writes OUTDIR/tile_R_C.scene (row R from the south, column C from the west) and, when every
-# tile is parsed, OUTDIR/tiles.txt (the scenes, one a line). Farm options:
+# tile is parsed, OUTDIR/tiles.txt (the scenes, one a line). With terrain, give osmparse both
+# --dem and --dem-resolution (render joins the tiles' fields only on one grid). Farm options:
 #   --tiles CxR             C columns (west to east) and R rows (south to north); required
 #   --overlap M             metres of data beyond each core box (default 500): what lies near a
 #                           core edge must be parsed from the same data as in one whole parse
@@ -70,7 +71,6 @@ done
 # Each tile's default cell follows its own extract's size: render joins the tiles' terrain only
 # on one grid.
 [ $dem = 0 ] || [ $dem_resolution = 1 ] || die "--dem on the farm needs --dem-resolution M: every tile's terrain on one grid"
-
 
 # The region's bounds: the file header's box (an extract's), or the nodes' (osmium reads them all).
 bounds=$(osmium fileinfo -g header.boxes "$region" 2> /dev/null | head -n 1)
