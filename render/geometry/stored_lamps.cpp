@@ -85,12 +85,21 @@ TriangleMesh build_stored_lamps(const Scene& scene) {
     TriangleMesh mesh;
     mesh.kind = ObjectKind::Lamp;
     const StandingSurface surface(scene);
+    // The parts' sides follow their radii, which lamp_shape gives every lamp alike: worked out
+    // again only when they change, not for each of a metropolis's lamps.
+    LampShape sized;
+    int pole_sides = 0, cap_sides = 0, globe_sides = 0;
     for (uint32_t i = 0; i < scene.lamps.size(); ++i) {
         const LampShape s = lamp_shape(scene.lamps[i], lamp_ground(surface, scene.lamps[i]));
-        const int pole_sides = sides_within_error(s.pole_radius, false);
-        const int cap_sides = sides_within_error(s.cap_radius, false);
+        if (i == 0 || s.pole_radius != sized.pole_radius || s.cap_radius != sized.cap_radius ||
+            s.globe_radius != sized.globe_radius) {
+            sized = s;
+            pole_sides = sides_within_error(s.pole_radius, false);
+            cap_sides = sides_within_error(s.cap_radius, false);
+            globe_sides = sides_within_error(s.globe_radius, true);
+        }
         add_cylinder(s.base, s.pole_radius, s.base.z, s.pole_top, pole_sides, i, kLampPole, mesh);
-        add_sphere(s.globe_center, s.globe_radius, sides_within_error(s.globe_radius, true), i, kLampGlobe, mesh);
+        add_sphere(s.globe_center, s.globe_radius, globe_sides, i, kLampGlobe, mesh);
         add_cylinder(s.base, s.cap_radius, s.cap_bottom, s.cap_top, cap_sides, i, kLampCap, mesh);
         add_disk(s.base, s.cap_radius, s.cap_top, cap_sides, true, i, kLampCap, mesh);
         add_disk(s.base, s.cap_radius, s.cap_bottom, cap_sides, false, i, kLampCap, mesh);
