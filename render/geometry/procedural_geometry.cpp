@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "render/facade/wall_intersect.h"
 #include "render/geometry/face_plane.h"
@@ -110,7 +111,7 @@ void ProceduralGeometry::add_face(uint32_t object, const std::vector<Vec3>& poin
 }
 
 size_t ProceduralGeometry::buffer_bytes() const {
-    return walls_.capacity() * sizeof(Wall) + layouts_.bytes() +
+    return walls_.capacity() * sizeof(Wall) + wall_runs_.capacity() * sizeof(uint32_t) + layouts_.bytes() +
            faces_.capacity() * sizeof(Face) + face_points_.capacity() * sizeof(Vec2) +
            polygons_.capacity() * sizeof(Polygon) +
            points_.capacity() * sizeof(Vec2) + ring_ends_.capacity() * sizeof(uint32_t) +
@@ -170,8 +171,8 @@ bool ProceduralGeometry::intersect_face(const Face& face, Vec3 origin, Vec3 dire
     return true;
 }
 
-bool ProceduralGeometry::intersect(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax,
-                                   PrimitiveHit* hit) const {
+bool ProceduralGeometry::intersect_surface(uint32_t prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax,
+                                           PrimitiveHit* hit) const {
     if (prim_id < walls_.size()) {
         WallHit wall_hit;
         const bool hit_wall = with_wall(walls_[prim_id], [&](const WallLayout& layout, const WallFrame& frame) {
@@ -243,18 +244,20 @@ bool ProceduralGeometry::intersect_curbs(const Polygon& polygon, Vec3 origin, Ve
     return found;
 }
 
-bool ProceduralGeometry::occluded(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax) const {
+bool ProceduralGeometry::surface_occluded(uint32_t prim_id, Vec3 origin, Vec3 direction, double tmin,
+                                          double tmax) const {
     if (prim_id < walls_.size()) {
         return with_wall(walls_[prim_id], [&](const WallLayout& layout, const WallFrame& frame) {
             return wall_occluded(layout, frame, origin, direction, tmin, tmax);
         });
     }
     PrimitiveHit hit;
-    return intersect(prim_id, origin, direction, tmin, tmax, &hit);
+    return intersect_surface(prim_id, origin, direction, tmin, tmax, &hit);
 }
 
-void ProceduralGeometry::bounds(unsigned prim_id, RTCBounds* out) const {
-    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+void ProceduralGeometry::surface_bounds(uint32_t prim_id, Vec3* lo_out, Vec3* hi_out) const {
+    Vec3& lo = *lo_out;
+    Vec3& hi = *hi_out;
     auto extend = [&](Vec3 p) {
         lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
@@ -274,12 +277,66 @@ void ProceduralGeometry::bounds(unsigned prim_id, RTCBounds* out) const {
         extend({polygon.bounds.min.x, polygon.bounds.min.y, polygon.curbed ? polygon.curb_bottom : polygon.z});
         extend({polygon.bounds.max.x, polygon.bounds.max.y, polygon.z});
     }
+}
+
+uint32_t ProceduralGeometry::first_surface(unsigned prim_id, uint32_t* count) const {
+    const size_t runs = wall_runs_.size() - 1;
+    if (prim_id < runs) {
+        *count = wall_runs_[prim_id + 1] - wall_runs_[prim_id];
+        return wall_runs_[prim_id];
+    }
+    *count = 1;
+    return static_cast<uint32_t>(prim_id - runs + walls_.size());
+}
+
+void ProceduralGeometry::bounds(unsigned prim_id, RTCBounds* out) const {
+    Vec3 lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+    uint32_t count;
+    const uint32_t first = first_surface(prim_id, &count);
+    for (uint32_t s = first; s < first + count; ++s) surface_bounds(s, &lo, &hi);
     // Pad so that float rounding of the bounds never cuts off a surface on their faces.
     const double pad = 1e-3;
     set_bounds(out, {lo.x - pad, lo.y - pad, lo.z - pad}, {hi.x + pad, hi.y + pad, hi.z + pad});
 }
 
+bool ProceduralGeometry::intersect(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax,
+                                   PrimitiveHit* hit) const {
+    uint32_t count;
+    const uint32_t first = first_surface(prim_id, &count);
+    // The nearest as Embree would keep it with each surface alone: in float, a tie to the lower id.
+    bool found = false;
+    float nearest = 0;
+    for (uint32_t s = first; s < first + count; ++s) {
+        PrimitiveHit h;
+        if (!intersect_surface(s, origin, direction, tmin, tmax, &h)) continue;
+        const float t = static_cast<float>(h.t);
+        if (found && !(t < nearest)) continue;
+        *hit = h;
+        hit->primitive = s;
+        nearest = t;
+        tmax = std::nextafter(t, std::numeric_limits<float>::infinity());
+        found = true;
+    }
+    return found;
+}
+
+bool ProceduralGeometry::occluded(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax) const {
+    uint32_t count;
+    const uint32_t first = first_surface(prim_id, &count);
+    for (uint32_t s = first; s < first + count; ++s)
+        if (surface_occluded(s, origin, direction, tmin, tmax)) return true;
+    return false;
+}
+
 RTCGeometry ProceduralGeometry::create_embree_geometry(RTCDevice device) {
+    // Runs of up to kWallsPerRun walls of one object, in order.
+    wall_runs_.clear();
+    for (uint32_t w = 0; w < walls_.size(); ++w)
+        if (wall_runs_.empty() || w - wall_runs_.back() == kWallsPerRun ||
+            walls_[w].object != walls_[wall_runs_.back()].object)
+            wall_runs_.push_back(w);
+    wall_runs_.push_back(static_cast<uint32_t>(walls_.size()));
+    wall_runs_.shrink_to_fit();
     // Building is over: give back what the vectors grew into (up to half their bytes).
     walls_.shrink_to_fit();
     polygons_.shrink_to_fit();
@@ -287,7 +344,7 @@ RTCGeometry ProceduralGeometry::create_embree_geometry(RTCDevice device) {
     face_points_.shrink_to_fit();
     points_.shrink_to_fit();
     ring_ends_.shrink_to_fit();
-    return new_user_geometry(device, this, primitive_count());
+    return new_user_geometry(device, this, wall_runs_.size() - 1 + polygons_.size() + faces_.size());
 }
 
 void ProceduralGeometry::complete_hit(const RTCHit& embree_hit, Hit& hit) const {

@@ -66,7 +66,7 @@ public:
     size_t wall_count() const { return walls_.size(); }
     size_t polygon_count() const { return polygons_.size(); }
     size_t face_count() const { return faces_.size(); }
-    // Primitive ids: walls, then polygons, then faces.
+    // Surface ids (the primitive ids hits report): walls, then polygons, then faces.
     uint32_t object(unsigned prim_id) const {
         if (prim_id < walls_.size()) return walls_[prim_id].object;
         prim_id -= static_cast<unsigned>(walls_.size());
@@ -74,11 +74,18 @@ public:
         return faces_[prim_id - polygons_.size()].object;
     }
 
-    // What the Embree callbacks (user_geometry.h) compute, in double precision.
+    // What the Embree callbacks (user_geometry.h) compute, in double precision, for Embree's
+    // primitives: runs of walls (wall_runs_), then polygons, then faces.
     using PrimitiveHit = UserHit;
     void bounds(unsigned prim_id, RTCBounds* out) const;
     bool intersect(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax, PrimitiveHit* hit) const;
     bool occluded(unsigned prim_id, Vec3 origin, Vec3 direction, double tmin, double tmax) const;
+
+    // Up to this many walls of one object, side by side along its outline, are one Embree
+    // primitive: the BVH over millions of walls then holds fewer primitives (its memory, and
+    // its build's more so), and a ray entering a run's box tests its walls one after another.
+    // Two keeps that extra work small; longer runs save less memory for more time.
+    static constexpr uint32_t kWallsPerRun = 2;
 
 private:
     // A wall keeps its frame as the numbers it is made of and its layout by index: a city holds
@@ -138,6 +145,13 @@ private:
     };
     static constexpr uint32_t kNoHoleTree = 0xffffffffu;
     static constexpr size_t kHoleTreeMin = 16, kHoleLeafSize = 4;
+    // The same, one surface at a time (ids as object() takes them).
+    void surface_bounds(uint32_t surface, Vec3* lo, Vec3* hi) const;
+    bool intersect_surface(uint32_t surface, Vec3 origin, Vec3 direction, double tmin, double tmax,
+                           PrimitiveHit* hit) const;
+    bool surface_occluded(uint32_t surface, Vec3 origin, Vec3 direction, double tmin, double tmax) const;
+    // Embree primitive -> its first surface, and the number of surfaces it holds.
+    uint32_t first_surface(unsigned prim_id, uint32_t* count) const;
     bool in_ring(uint32_t ring, Vec2 p) const;
     bool in_some_hole(uint32_t root, Vec2 p) const;
     bool intersect_face(const Face& face, Vec3 origin, Vec3 direction, double tmin, double tmax, double* t) const;
@@ -159,6 +173,8 @@ private:
     ObjectKind kind_;
     SurfaceMaterials wall_materials_;
     std::vector<Wall> walls_;
+    // Where each run of walls starts, and walls_.size() at the end (made by create_embree_geometry).
+    std::vector<uint32_t> wall_runs_;
     LayoutBlocks layouts_;  // of the walls with windows
     std::vector<Polygon> polygons_;
     std::vector<Face> faces_;

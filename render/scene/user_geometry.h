@@ -25,6 +25,10 @@ struct UserHit {
     Vec3 normal;
     uint16_t material = 0;
     uint32_t cell = 0;
+    // The primitive id the hit reports, when not Embree's own: a primitive that gathers several
+    // surfaces (a run of walls) names the one hit, so ties and hits read as if each were alone.
+    static constexpr uint32_t kEmbreePrimitive = 0xffffffffu;
+    uint32_t primitive = kEmbreePrimitive;
 };
 
 // A primitive's box, from double-precision corners (callers pad them for float rounding).
@@ -66,9 +70,10 @@ void intersect(const RTCIntersectFunctionNArguments* args) {
             continue;
         const float t = static_cast<float>(found.t);
         if (t > tfar) continue;
+        const unsigned prim = found.primitive == UserHit::kEmbreePrimitive ? args->primID : found.primitive;
         const unsigned held = RTCHitN_geomID(hit, N, i);
         if (t == tfar && held != RTC_INVALID_GEOMETRY_ID &&
-            (held < args->geomID || (held == args->geomID && RTCHitN_primID(hit, N, i) < args->primID)))
+            (held < args->geomID || (held == args->geomID && RTCHitN_primID(hit, N, i) < prim)))
             continue;
         RTCRayN_tfar(ray, N, i) = t;
         RTCHitN_Ng_x(hit, N, i) = static_cast<float>(found.normal.x);
@@ -76,7 +81,7 @@ void intersect(const RTCIntersectFunctionNArguments* args) {
         RTCHitN_Ng_z(hit, N, i) = static_cast<float>(found.normal.z);
         RTCHitN_u(hit, N, i) = static_cast<float>(found.material);
         RTCHitN_v(hit, N, i) = static_cast<float>(found.cell);
-        RTCHitN_primID(hit, N, i) = args->primID;
+        RTCHitN_primID(hit, N, i) = prim;
         RTCHitN_geomID(hit, N, i) = args->geomID;
         RTCHitN_instID(hit, N, i, 0) = args->context->instID[0];
     }
