@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <functional>
 #include <memory>
 #include <string>
 #include <unistd.h>
@@ -143,17 +144,20 @@ int run(const Options& o) {
     const FacadeOptions facades = facade_options(o, scene);
     const Clock::time_point build_start = Clock::now();
     check_memory_fits(estimate_render_memory(scene, job.modes, facades, settings));
-    const std::unique_ptr<RenderScene> render_scene =
-        build_render_geometry(scene, job.modes, facades, ProgressSettings{settings.quiet});
     // The lights, the looks and the automatic view read the scene's objects (lamps on decks, a
-    // town without buildings); then only the glTF export and lit windows still need them, and
-    // the BVH build comes on top.
+    // town without buildings), so they come first, while nothing else is held. Then only the
+    // glTF export and lit windows need the objects: each class goes once its geometry is built,
+    // before the buildings' geometry (the largest) and the BVH build come on top.
     const Sky sky = make_sky(o, job);
     const SceneLights lights(scene, facades, lights_under(sky, job.lights));
     BuildingLooks building_looks(scene);
     building_looks.use_textures(textures.get());
     const Camera camera = view_camera(o, job, scene);
-    if (o.export_gltf_path.empty()) release_geometry_only_classes(scene, lights.reads_buildings());
+    const bool release = o.export_gltf_path.empty();
+    const std::unique_ptr<RenderScene> render_scene =
+        build_render_geometry(scene, job.modes, facades, ProgressSettings{settings.quiet},
+                              release ? std::function<void()>([&] { release_geometry_only_classes(scene); }) : nullptr);
+    if (release) release_buildings(scene, lights.reads_buildings());
     render_scene->commit(ProgressSettings{settings.quiet});
     phases.build = seconds_since(build_start);
     if (o.print_geometry_info) print_geometry_info(*render_scene, stdout);

@@ -1,5 +1,7 @@
 #include "render/facade/building_looks.h"
 
+#include <array>
+
 #include <cmath>
 
 #include "common/rng.h"
@@ -123,8 +125,12 @@ double roof_pattern(RoofMaterial material, double u, double v, CellUnits& cells)
 }  // namespace
 
 Color albedo_from_srgb(uint32_t rgb) {
-    const double r = ((rgb >> 16) & 0xff) / 255.0, g = ((rgb >> 8) & 0xff) / 255.0, b = (rgb & 0xff) / 255.0;
-    return Color{srgb_to_linear(r), srgb_to_linear(g), srgb_to_linear(b)} * 0.8;
+    static const std::array<double, 256> linear = [] {
+        std::array<double, 256> table;
+        for (int i = 0; i < 256; ++i) table[i] = srgb_to_linear(i / 255.0);
+        return table;
+    }();
+    return Color{linear[(rgb >> 16) & 0xff], linear[(rgb >> 8) & 0xff], linear[rgb & 0xff]} * 0.8;
 }
 
 double wall_pattern(WallMaterial material, double u, double v) {
@@ -140,14 +146,7 @@ double roof_pattern(RoofMaterial material, double u, double v) {
 BuildingLooks::BuildingLooks(const Scene& scene) {
     looks_.reserve(scene.buildings.size());
     for (const Building& b : scene.buildings) {
-        Look look;
-        look.has_wall = b.wall_colour != 0;
-        look.has_roof = b.roof_colour != 0;
-        look.wall = albedo_from_srgb(b.wall_colour);
-        look.roof = albedo_from_srgb(b.roof_colour);
-        look.wall_material = b.wall_material;
-        look.roof_material = b.roof_material;
-        looks_.push_back(look);
+        looks_.push_back({b.wall_colour, b.roof_colour, b.wall_material, b.roof_material});
     }
 }
 
@@ -192,9 +191,9 @@ Material BuildingLooks::bumped_material(const MaterialTable& table, Hit& hit) co
 void BuildingLooks::bump(Hit& hit, CellUnits& cells) const {
     if (hit.kind != ObjectKind::Building || hit.object >= looks_.size()) return;
     const Look& look = looks_[hit.object];
-    const bool wall = hit.material == kFacade && look.has_wall && look.wall_material != WallMaterial::Glass &&
+    const bool wall = hit.material == kFacade && look.has_wall() && look.wall_material != WallMaterial::Glass &&
                       !(textures_ && textures_->has(look.wall_material));
-    const bool roof = hit.material == kRoof && look.has_roof && !(textures_ && textures_->has(look.roof_material));
+    const bool roof = hit.material == kRoof && look.has_roof() && !(textures_ && textures_->has(look.roof_material));
     if (!wall && !roof) return;
     const SurfaceFrame f = surface_frame(hit, wall);
     // Height field h = relief x pattern; its slope by central differences over 3 mm.
@@ -212,21 +211,21 @@ Material BuildingLooks::material_for(const MaterialTable& table, const Hit& hit,
     Material m = table[hit.material];
     if (hit.kind != ObjectKind::Building || hit.object >= looks_.size()) return m;
     const Look& look = looks_[hit.object];
-    if (hit.material == kFacade && look.has_wall) {
+    if (hit.material == kFacade && look.has_wall()) {
         const SurfaceFrame f = surface_frame(hit, true);
         m.albedo = textures_ && textures_->has(look.wall_material)
-                       ? look.wall * textures_->factor(look.wall_material, f.u, f.v, hit.t)
-                       : look.wall * wall_pattern(look.wall_material, f.u, f.v, cells);
+                       ? albedo_from_srgb(look.wall_colour) * textures_->factor(look.wall_material, f.u, f.v, hit.t)
+                       : albedo_from_srgb(look.wall_colour) * wall_pattern(look.wall_material, f.u, f.v, cells);
         if (look.wall_material == WallMaterial::Glass) {
             m.type = MaterialType::Glossy;
             m.specular = {0.25, 0.25, 0.25};
             m.exponent = 400;
         }
-    } else if (hit.material == kRoof && look.has_roof) {
+    } else if (hit.material == kRoof && look.has_roof()) {
         const SurfaceFrame f = surface_frame(hit, false);
         m.albedo = textures_ && textures_->has(look.roof_material)
-                       ? look.roof * textures_->factor(look.roof_material, f.u, f.v, hit.t)
-                       : look.roof * roof_pattern(look.roof_material, f.u, f.v, cells);
+                       ? albedo_from_srgb(look.roof_colour) * textures_->factor(look.roof_material, f.u, f.v, hit.t)
+                       : albedo_from_srgb(look.roof_colour) * roof_pattern(look.roof_material, f.u, f.v, cells);
         if (look.roof_material == RoofMaterial::Metal || look.roof_material == RoofMaterial::Copper ||
             look.roof_material == RoofMaterial::Glass)
             m.specular = {0.08, 0.08, 0.08};

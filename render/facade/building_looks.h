@@ -31,11 +31,13 @@ public:
 private:
     void bump(Hit& hit, CellUnits& cells) const;
     Material material_for(const MaterialTable& table, const Hit& hit, CellUnits& cells) const;
+    // Colours as the scene keeps them (a metropolis has a million buildings), made linear when shaded.
     struct Look {
-        Color wall, roof;  // linear albedo
+        uint32_t wall_colour, roof_colour;  // sRGB 0xFFRRGGBB, 0: none
         WallMaterial wall_material;
         RoofMaterial roof_material;
-        bool has_wall, has_roof;
+        bool has_wall() const { return wall_colour != 0; }
+        bool has_roof() const { return roof_colour != 0; }
     };
     std::vector<Look> looks_;
     const BuildingTextures* textures_ = nullptr;

@@ -41,127 +41,125 @@ constexpr double kMinRoomDepth = 0.2;  // even at the sharpest corner a window s
 
 }  // namespace
 
-namespace {
-
-// The seeded choices of a facade: per building (every wall of a building shares its style, so
-// floors line up at corners) and per wall (choices that may differ between its sides).
-struct FacadeDice {
-    const FacadeOptions& options;
-    const WallInput& wall;
-    double building(Salt salt) const { return hash_to_unit(hash_keys(options.seed, wall.building_key, salt)); }
-    double of_wall(Salt salt) const {
-        return hash_to_unit(hash_keys(options.seed, wall.building_key, wall.wall_index, salt));
-    }
-};
-
-// The grid of floors and window slots, with its margins, recess and room boxes; false when the
-// wall is too short or too narrow for one cell (a plain wall).
-bool lay_out_grid(const WallInput& wall, const FacadeDice& dice, WallLayout& layout) {
-    const double bottom_margin = 0.3 + 0.3 * dice.building(kBottomMargin);
-    const double top_margin = 0.4 + 0.6 * dice.building(kTopMargin);
-    const double edge_margin = 0.4 + 0.6 * dice.building(kEdgeMargin);
-
+FacadeChoices facade_choices(const FacadeOptions& options, uint64_t building_key, FacadeStyle style) {
+    auto dice = [&](Salt salt) { return hash_to_unit(hash_keys(options.seed, building_key, salt)); };
+    FacadeChoices c;
+    c.style = style;
+    c.bottom_margin = 0.3 + 0.3 * dice(kBottomMargin);
+    c.top_margin = 0.4 + 0.6 * dice(kTopMargin);
+    c.edge_margin = 0.4 + 0.6 * dice(kEdgeMargin);
     // Storeys: houses low, offices and shops tall, the rest in between (tagged levels win).
-    const bool offices = wall.style == FacadeStyle::Office || wall.style == FacadeStyle::CurtainWall;
-    double floor_target = wall.style == FacadeStyle::House ? 2.7 + 0.3 * dice.building(kFloorHeight)
-                          : offices                        ? 3.4 + 0.5 * dice.building(kFloorHeight)
-                                                           : 2.9 + 0.5 * dice.building(kFloorHeight);
+    const bool offices = style == FacadeStyle::Office || style == FacadeStyle::CurtainWall;
+    c.floor_target = style == FacadeStyle::House ? 2.7 + 0.3 * dice(kFloorHeight)
+                     : offices                   ? 3.4 + 0.5 * dice(kFloorHeight)
+                                                 : 2.9 + 0.5 * dice(kFloorHeight);
+    // Window rhythm: offices in narrow, even bays (ribbon windows), houses in wide ones.
+    c.slot_target = style == FacadeStyle::Office  ? 1.8 + 0.4 * dice(kSlotWidth)
+                    : style == FacadeStyle::House ? 2.8 + 1.2 * dice(kSlotWidth)
+                                                  : 2.4 + 1.4 * dice(kSlotWidth);
+    c.recess = 0.12 + 0.13 * dice(kRecess);
+    c.room_depth = 1.8 + 0.8 * dice(kRoomDepth);
+    c.window_width = 1.0 + 0.6 * dice(kWindowWidth);
+    c.sill = 0.8 + 0.2 * dice(kSill);
+    c.window_height = 1.3 + 0.4 * dice(kWindowHeight);
+    c.ribbon = 1.6 + 0.3 * dice(kWindowHeight);
+    // Balconies: per building (then only on some of its walls), never on curtain walls or offices.
+    const bool no_balconies = style == FacadeStyle::CurtainWall || style == FacadeStyle::Office;
+    c.balconies = !no_balconies && dice(kHasBalconies) < 0.4;
+    c.balcony_every = dice(kBalconyEvery) < 0.5 ? 1 : 2;
+    c.balcony_depth = 1.0 + 0.4 * dice(kBalconyDepth);
+    c.door_width = 0.9 + 0.3 * dice(kDoorWidth);
+    // Shop front: a row of large panes on the ground floor, where a wall allows one.
+    const double shop_probability = style == FacadeStyle::Shops   ? 1.0
+                                    : style == FacadeStyle::House ? 0.0
+                                                                  : options.shop_probability;
+    c.shop = dice(kShop) < shop_probability;
+    return c;
+}
+
+WallGrid wall_grid(const FacadeOptions& options, const FacadeChoices& c, const WallInput& wall) {
+    WallGrid grid;
+    if (!(wall.length > 0) || !(wall.height > 0) || c.style == FacadeStyle::Plain) return grid;
+    double floor_target = c.floor_target;
     if (wall.levels > 0) {
         double tagged = wall.height / wall.levels;
         if (tagged >= kMinFloorHeight && tagged <= 5.0) floor_target = tagged;
     }
-    const double usable_height = wall.height - bottom_margin - top_margin;
-    const double usable_length = wall.length - 2 * edge_margin;
+    const double usable_height = wall.height - c.bottom_margin - c.top_margin;
+    const double usable_length = wall.length - 2 * c.edge_margin;
     // Clamped before the conversion: a float beyond int's range does not convert (scenes bound
     // walls far below this anyway, see scene_limits.h).
     constexpr double kMaxCells = 1e6;
     const int floors = static_cast<int>(std::clamp(std::floor(usable_height / floor_target), 0.0, kMaxCells));
-    // Window rhythm: offices in narrow, even bays (ribbon windows), houses in wide ones.
-    const double slot_target = wall.style == FacadeStyle::Office  ? 1.8 + 0.4 * dice.building(kSlotWidth)
-                               : wall.style == FacadeStyle::House ? 2.8 + 1.2 * dice.building(kSlotWidth)
-                                                                  : 2.4 + 1.4 * dice.building(kSlotWidth);
-    const int slots = static_cast<int>(std::clamp(std::floor(usable_length / slot_target), 0.0, kMaxCells));
-    if (floors < 1 || slots < 1) return false;
+    const int slots = static_cast<int>(std::clamp(std::floor(usable_length / c.slot_target), 0.0, kMaxCells));
+    if (floors < 1 || slots < 1) return grid;
     const double floor_height = usable_height / floors;
     const double slot_width = usable_length / slots;
-    if (floor_height < kMinFloorHeight || slot_width < kMinSlotWidth) return false;
-
-    layout.floors = floors;
-    layout.slots = slots;
-    layout.grid_u0 = edge_margin;
-    layout.grid_v0 = bottom_margin;
-    layout.slot_width = slot_width;
-    layout.floor_height = floor_height;
-    layout.recess = 0.12 + 0.13 * dice.building(kRecess);
-    layout.room_depth = 1.8 + 0.8 * dice.building(kRoomDepth);
+    if (floor_height < kMinFloorHeight || slot_width < kMinSlotWidth) return grid;
+    grid.floors = floors;
+    grid.slots = slots;
+    grid.slot_width = slot_width;
+    grid.floor_height = floor_height;
+    grid.room_depth = c.room_depth;
     // At an acute corner the neighbouring wall runs in behind the end cells at w = u * tan(angle):
     // keep the room boxes (which start edge_margin + inset from the corner) in front of it.
     const double corner = std::min(wall.start_angle, wall.end_angle);
     if (corner < 0.5 * kPi) {
-        const double deepest = 0.9 * (edge_margin + WallLayout::kRoomInset) * std::tan(corner);  // 10% to spare
-        layout.room_depth = std::clamp(deepest - layout.recess, kMinRoomDepth, layout.room_depth);
+        const double deepest = 0.9 * (c.edge_margin + WallLayout::kRoomInset) * std::tan(corner);  // 10% to spare
+        grid.room_depth = std::clamp(deepest - c.recess, kMinRoomDepth, grid.room_depth);
     }
-    return true;
+    // Never on one-floor walls.
+    grid.balconies = c.balconies && floors >= 2 &&
+                     hash_to_unit(hash_keys(options.seed, wall.building_key, wall.wall_index, kWallBalconies)) < 0.7;
+    // Only on buildings that stand on the ground, behind a tall enough ground floor.
+    grid.shop = c.shop && wall.bottom_z < 0.5 && floor_height >= 2.8;
+    return grid;
 }
 
-// The window of a slot: centred, at least 0.25 m of wall either side and 0.35 m above; ribbon
-// windows on offices, glass from floor to floor on curtain walls.
-void place_window(const WallInput& wall, const FacadeDice& dice, WallLayout& layout) {
-    const double slot_width = layout.slot_width, floor_height = layout.floor_height;
-    const double window_width = std::min(1.0 + 0.6 * dice.building(kWindowWidth), slot_width - 0.5);
-    const double sill = std::min(0.8 + 0.2 * dice.building(kSill), floor_height - 1.2);
-    const double window_height = std::min(1.3 + 0.4 * dice.building(kWindowHeight), floor_height - 0.35 - sill);
+WallLayout wall_layout(const FacadeChoices& c, const WallGrid& grid, double length, double height) {
+    WallLayout layout;
+    layout.length = length;
+    layout.height = height;
+    if (grid.plain()) return layout;
+    const double slot_width = grid.slot_width, floor_height = grid.floor_height;
+    layout.floors = grid.floors;
+    layout.slots = grid.slots;
+    layout.grid_u0 = c.edge_margin;
+    layout.grid_v0 = c.bottom_margin;
+    layout.slot_width = slot_width;
+    layout.floor_height = floor_height;
+    layout.recess = c.recess;
+    layout.room_depth = grid.room_depth;
+    // The window of a slot: centred, at least 0.25 m of wall either side and 0.35 m above; ribbon
+    // windows on offices, glass from floor to floor on curtain walls.
+    const double window_width = std::min(c.window_width, slot_width - 0.5);
+    const double sill = std::min(c.sill, floor_height - 1.2);
+    const double window_height = std::min(c.window_height, floor_height - 0.35 - sill);
     layout.window = {0.5 * (slot_width - window_width), 0.5 * (slot_width + window_width), sill, sill + window_height};
-    if (wall.style == FacadeStyle::Office) {  // nearly the whole bay, a band of wall between
-        const double ribbon = std::min(1.6 + 0.3 * dice.building(kWindowHeight), floor_height - 1.2);
+    if (c.style == FacadeStyle::Office) {  // nearly the whole bay, a band of wall between
+        const double ribbon = std::min(c.ribbon, floor_height - 1.2);
         layout.window = {0.08, slot_width - 0.08, 0.9, 0.9 + ribbon};
     }
-    if (wall.style == FacadeStyle::CurtainWall) {  // slim mullions
+    if (c.style == FacadeStyle::CurtainWall) {  // slim mullions
         layout.window = {0.06, slot_width - 0.06, 0.08, floor_height - 0.08};
         layout.recess = 0.06;
     }
-}
-
-// Balconies: per building, and then only on some of its walls, never on one-floor walls, on
-// curtain walls or offices.
-void place_balconies(const WallInput& wall, const FacadeDice& dice, WallLayout& layout) {
-    const bool no_balconies = wall.style == FacadeStyle::CurtainWall || wall.style == FacadeStyle::Office;
-    if (no_balconies || layout.floors < 2 || dice.building(kHasBalconies) >= 0.4 || dice.of_wall(kWallBalconies) >= 0.7)
-        return;
-    const double slot_width = layout.slot_width, floor_height = layout.floor_height;
-    layout.balconies = true;
-    layout.balcony_every = dice.building(kBalconyEvery) < 0.5 ? 1 : 2;
-    layout.balcony_depth = 1.0 + 0.4 * dice.building(kBalconyDepth);
-    const double door_width = std::min(0.9 + 0.3 * dice.building(kDoorWidth), slot_width - 0.5);
-    const double door_top = std::min(WallLayout::kSlabThickness + 2.1, floor_height - 0.3);
-    layout.door = {0.5 * (slot_width - door_width), 0.5 * (slot_width + door_width), WallLayout::kSlabThickness, door_top};
-}
-
-// Shop front: a row of large panes on the ground floor of buildings that stand on the ground.
-void place_shop_front(const FacadeOptions& options, const WallInput& wall, const FacadeDice& dice,
-                      WallLayout& layout) {
-    const double shop_probability = wall.style == FacadeStyle::Shops   ? 1.0
-                                    : wall.style == FacadeStyle::House ? 0.0
-                                                                       : options.shop_probability;
-    if (wall.bottom_z < 0.5 && layout.floor_height >= 2.8 && dice.building(kShop) < shop_probability) {
-        layout.shop = true;
+    if (grid.balconies) {
+        layout.balconies = true;
+        layout.balcony_every = c.balcony_every;
+        layout.balcony_depth = c.balcony_depth;
+        const double door_width = std::min(c.door_width, slot_width - 0.5);
+        const double door_top = std::min(WallLayout::kSlabThickness + 2.1, floor_height - 0.3);
+        layout.door = {0.5 * (slot_width - door_width), 0.5 * (slot_width + door_width), WallLayout::kSlabThickness,
+                       door_top};
     }
+    layout.shop = grid.shop;
+    return layout;
 }
-
-}  // namespace
 
 WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall) {
-    WallLayout layout;
-    layout.length = wall.length;
-    layout.height = wall.height;
-    if (!(wall.length > 0) || !(wall.height > 0)) return layout;
-    if (wall.style == FacadeStyle::Plain) return layout;
-    const FacadeDice dice{options, wall};
-    if (!lay_out_grid(wall, dice, layout)) return layout;
-    place_window(wall, dice, layout);
-    place_balconies(wall, dice, layout);
-    place_shop_front(options, wall, dice, layout);
-    return layout;
+    const FacadeChoices choices = facade_choices(options, wall.building_key, wall.style);
+    return wall_layout(choices, wall_grid(options, choices, wall), wall.length, wall.height);
 }
 
 CellKind cell_kind(const WallLayout& layout, int floor, int slot) {

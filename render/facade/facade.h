@@ -107,6 +107,30 @@ uint64_t facade_building_key(const Building& building);
 // THE rules: derive a wall's layout from (seed, building key, wall index) and its size.
 WallLayout make_wall_layout(const FacadeOptions& options, const WallInput& wall);
 
+// make_wall_layout in three steps, for a city's millions of walls: what the rules choose once per
+// building (every wall of a building shares its style, so floors line up at corners), what they
+// choose per wall (its grid: 40 bytes), and the layout made from both (whenever it is needed).
+struct FacadeChoices {
+    FacadeStyle style = FacadeStyle::Normal;
+    double bottom_margin = 0, top_margin = 0, edge_margin = 0;
+    double floor_target = 0, slot_target = 0;      // storey height and bay width aimed at
+    double recess = 0, room_depth = 0;
+    double window_width = 0, sill = 0, window_height = 0, ribbon = 0;  // before a slot or storey bounds them
+    bool balconies = false;                        // on some of its walls
+    int balcony_every = 1;
+    double balcony_depth = 0, door_width = 0;
+    bool shop = false;                             // where a wall allows a shop front
+};
+struct WallGrid {
+    int floors = 0, slots = 0;  // 0: a plain wall
+    double slot_width = 0, floor_height = 0, room_depth = 0;
+    bool balconies = false, shop = false;
+    bool plain() const { return floors <= 0 || slots <= 0; }
+};
+FacadeChoices facade_choices(const FacadeOptions& options, uint64_t building_key, FacadeStyle style);
+WallGrid wall_grid(const FacadeOptions& options, const FacadeChoices& choices, const WallInput& wall);
+WallLayout wall_layout(const FacadeChoices& choices, const WallGrid& grid, double length, double height);
+
 CellKind cell_kind(const WallLayout& layout, int floor, int slot);
 
 // Whether the window of cell (floor, slot) is lit at night: a pure function of (seed, building

@@ -91,14 +91,21 @@ std::vector<std::function<Geometry()>> class_builders(const Scene& scene, const 
 }  // namespace
 
 std::unique_ptr<RenderScene> build_render_geometry(const Scene& scene, const GeometryModes& modes,
-                                                   const FacadeOptions& facades, const ProgressSettings& progress) {
+                                                   const FacadeOptions& facades, const ProgressSettings& progress,
+                                                   const std::function<void()>& before_buildings) {
     // Buildings are nearly all of the work (every facade triangle), so they measure it.
     Progress geometry_progress("geometry", scene.buildings.size(), progress);
     // Each builder reads only the scene, so they run side by side and are added in their order
-    // whatever finished first.
+    // whatever finished first. The buildings' (the first) come last when the caller frees what
+    // the others read before them.
     const auto builders = class_builders(scene, modes, facades, geometry_progress);
     std::vector<Geometry> geometries(builders.size());
-    tbb::parallel_for(size_t{0}, builders.size(), [&](size_t i) { geometries[i] = builders[i](); });
+    const size_t first = before_buildings ? 1 : 0;
+    tbb::parallel_for(first, builders.size(), [&](size_t i) { geometries[i] = builders[i](); });
+    if (before_buildings) {
+        before_buildings();
+        geometries[0] = builders[0]();
+    }
     geometry_progress.finish();
     auto render_scene = std::make_unique<RenderScene>();
     for (Geometry& geometry : geometries) render_scene->add(std::move(geometry));
@@ -112,8 +119,22 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
     return render_scene;
 }
 
-void release_geometry_only_classes(Scene& scene, bool keep_buildings) {
-    auto release = [](auto& objects) { std::decay_t<decltype(objects)>().swap(objects); };
+namespace {
+
+template <class Objects>
+void release(Objects& objects) {
+    Objects().swap(objects);
+}
+
+void give_back_pages() {
+#ifdef __GLIBC__
+    malloc_trim(0);  // millions of small blocks: give the pages back, Embree allocates its own
+#endif
+}
+
+}  // namespace
+
+void release_geometry_only_classes(Scene& scene) {
     release(scene.roads);
     release(scene.joints);
     release(scene.sidewalks);
@@ -123,14 +144,17 @@ void release_geometry_only_classes(Scene& scene, bool keep_buildings) {
     release(scene.path_joints);
     release(scene.crossings);
     release(scene.retaining_walls);
-    if (keep_buildings) {
+    release(scene.lamps);
+    give_back_pages();
+}
+
+void release_buildings(Scene& scene, bool keep_walls) {
+    if (keep_walls) {
         for (Building& building : scene.buildings) release(building.roof_faces);
     } else {
         release(scene.buildings);
     }
-#ifdef __GLIBC__
-    malloc_trim(0);  // millions of small blocks: give the pages back, Embree allocates its own
-#endif
+    give_back_pages();
 }
 
 }  // namespace citygen

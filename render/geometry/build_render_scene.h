@@ -2,6 +2,7 @@
 // class, built in the mode chosen for that class.
 #pragma once
 
+#include <functional>
 #include <memory>
 
 #include "common/progress.h"
@@ -18,18 +19,23 @@ std::unique_ptr<RenderScene> build_render_scene(const Scene& scene, const Geomet
                                                 const FacadeOptions& facades = FacadeOptions{},
                                                 const ProgressSettings& progress = ProgressSettings{});
 
-// build_render_scene in two steps, for a caller that frees what only the geometry reads
-// (release_geometry_only_classes) before the BVH build adds its own memory: the geometry of every
-// class, then RenderScene::commit.
+// build_render_scene in two steps, for a caller that frees what only the geometry reads before
+// the BVH build adds its own memory: the geometry of every class, then RenderScene::commit.
+// With `before_buildings`, the other classes' geometry is built first, then before_buildings()
+// runs (release_geometry_only_classes: their objects go before the largest geometry is made),
+// then the buildings'.
 std::unique_ptr<RenderScene> build_render_geometry(const Scene& scene, const GeometryModes& modes,
                                                    const FacadeOptions& facades = FacadeOptions{},
-                                                   const ProgressSettings& progress = ProgressSettings{});
+                                                   const ProgressSettings& progress = ProgressSettings{},
+                                                   const std::function<void()>& before_buildings = nullptr);
 
 // Frees the classes that nothing but their geometry reads once the lights, the looks and the
-// view are made: roads, joints, sidewalks, land cover, trees, paths, crossings, retaining walls,
-// and the buildings unless `keep_buildings` (lit windows are re-derived from their walls at
-// night; their roof faces go). The geometry keeps its own copy of what it needs; the ground, the
-// field, the lamps and the header stay.
-void release_geometry_only_classes(Scene& scene, bool keep_buildings);
+// view are made: roads, joints, sidewalks, land cover, trees, paths, crossings, retaining walls
+// and lamps. The geometry keeps its own copy of what it needs; the buildings, the ground, the
+// field and the header stay.
+void release_geometry_only_classes(Scene& scene);
+// Frees the buildings once their geometry is built, or with `keep_walls` (lit windows are
+// re-derived from their walls at night) only their roof faces.
+void release_buildings(Scene& scene, bool keep_walls);
 
 }  // namespace citygen

@@ -104,10 +104,18 @@ std::unique_ptr<ProceduralGeometry> build_procedural_path_joints(const Scene& sc
     return geometry;
 }
 
-uint16_t path_surface_material(const PathEdge& path, Vec2 p) {
+PathPaint path_paint(const PathEdge& path) {
+    PathPaint paint;
+    paint.path_class = path.path_class;
+    paint.straight = path.centreline.size() >= 2;
+    if (paint.straight) paint.a = path.centreline.front(), paint.b = path.centreline.back();
+    return paint;
+}
+
+uint16_t path_surface_material(const PathPaint& path, Vec2 p) {
     const uint16_t base = path_material(path.path_class);
-    if (!is_rail(path.path_class) || path.centreline.size() < 2) return base;
-    const Vec2 a = path.centreline.front(), d = normalize(path.centreline.back() - a);
+    if (!is_rail(path.path_class) || !path.straight) return base;
+    const Vec2 a = path.a, d = normalize(path.b - a);
     const double along = dot(p - a, d), across = std::fabs(cross(d, p - a));
     constexpr double kHalfGauge = 0.7175 + 0.035, kRailHead = 0.035;
     if (std::fabs(across - kHalfGauge) < kRailHead) return kRailSteel;
@@ -117,14 +125,10 @@ uint16_t path_surface_material(const PathEdge& path, Vec2 p) {
 }
 
 std::unique_ptr<RenderGeometry> with_rail_tracks(std::unique_ptr<RenderGeometry> geometry, const Scene& scene) {
-    // Its own copy of the centrelines and classes: the scene may go first.
-    auto paths = std::make_shared<std::vector<PathEdge>>();
-    for (const PathEdge& p : scene.paths) {
-        PathEdge copy;
-        copy.centreline = p.centreline;
-        copy.path_class = p.path_class;
-        paths->push_back(std::move(copy));
-    }
+    // Its own copy of what it paints from: the scene may go first.
+    auto paths = std::make_shared<std::vector<PathPaint>>();
+    paths->reserve(scene.paths.size());
+    for (const PathEdge& p : scene.paths) paths->push_back(path_paint(p));
     return std::make_unique<SurfaceDetailGeometry>(std::move(geometry), [paths](Hit& hit) {
         if (hit.kind != ObjectKind::Path || hit.object >= paths->size()) return;
         hit.material = path_surface_material((*paths)[hit.object], {hit.position.x, hit.position.y});

@@ -26,9 +26,17 @@ TriangleMesh build_stored_path_joints(const Scene& scene);
 std::unique_ptr<ProceduralGeometry> build_procedural_paths(const Scene& scene);
 std::unique_ptr<ProceduralGeometry> build_procedural_path_joints(const Scene& scene);
 
-// The material at p on path `index`: rails 1.435 m apart (7 cm heads) and sleepers every
-// 0.6 m on rail classes, else the class material.
-uint16_t path_surface_material(const PathEdge& path, Vec2 p);
+// What a path's surface is worked out from: its class and the ends of its centreline.
+struct PathPaint {
+    Vec2 a, b;
+    PathClass path_class = PathClass::Footway;
+    bool straight = false;  // a centreline of two points or more
+};
+PathPaint path_paint(const PathEdge& path);
+
+// The material at p on a path: rails 1.435 m apart (7 cm heads) and sleepers every 0.6 m on
+// rail classes, else the class material.
+uint16_t path_surface_material(const PathPaint& path, Vec2 p);
 
 // Wraps the path geometry (either mode) so rail strips show their track.
 std::unique_ptr<RenderGeometry> with_rail_tracks(std::unique_ptr<RenderGeometry> geometry, const Scene& scene);

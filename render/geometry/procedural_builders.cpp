@@ -46,12 +46,21 @@ std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scen
         const double ground = building_base(scene, b);
         const double bottom = ground + b.min_height, top = ground + b.height;
         const BuildingWalls walls(b);
+        const WallInput first = walls.input(0);
+        const FacadeChoices choices = facade_choices(facades, first.building_key, first.style);
+        uint32_t choices_index = 0;  // added with the building's first wall that has windows
+        bool choices_added = false;
         for (size_t w = 0, n = walls.count(); w < n; ++w) {
             Vec2 p, q;
             walls.wall(w, &p, &q);
             const WallInput input = walls.input(w);
             if (p == q || !(input.height > 0)) continue;  // no wall under a roof that starts at the bottom
-            geometry->add_wall(index, make_wall_layout(facades, input), p, q, bottom, static_cast<uint32_t>(w));
+            const WallGrid grid = wall_grid(facades, choices, input);
+            if (!grid.plain() && !choices_added) {
+                choices_index = geometry->add_facade_choices(choices);
+                choices_added = true;
+            }
+            geometry->add_wall(index, input, choices_index, grid, p, q, bottom);
         }
         if (b.roof_faces.empty()) geometry->add_polygon(index, b.outer, b.holes, top, kRoof, +1);
         for (const RoofFace& face : b.roof_faces)

@@ -9,12 +9,13 @@
 
 namespace citygen {
 
-void ProceduralGeometry::add_wall(uint32_t object, const WallLayout& layout, Vec2 a, Vec2 b, double bottom,
-                                  uint32_t wall_index) {
-    uint32_t layout_index = kPlainLayout;
-    if (!layout.plain()) layout_index = layouts_.push_back(layout);
-    walls_.push_back({{a.x, a.y, bottom}, normalize(b - a), layout.length, layout.height, object, wall_index,
-                      layout_index});
+uint32_t ProceduralGeometry::add_facade_choices(const FacadeChoices& choices) { return choices_.push_back(choices); }
+
+void ProceduralGeometry::add_wall(uint32_t object, const WallInput& wall, uint32_t choices, const WallGrid& grid, Vec2 a,
+                                  Vec2 b, double bottom) {
+    const uint32_t grid_index = grid.plain() ? kPlainWall : grids_.push_back(grid);
+    walls_.push_back({{a.x, a.y, bottom}, normalize(b - a), wall.length, wall.height, object, wall.wall_index,
+                      grid_index, choices});
 }
 
 void ProceduralGeometry::add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z,
@@ -111,7 +112,8 @@ void ProceduralGeometry::add_face(uint32_t object, const std::vector<Vec3>& poin
 }
 
 size_t ProceduralGeometry::buffer_bytes() const {
-    return walls_.capacity() * sizeof(Wall) + wall_runs_.capacity() * sizeof(uint32_t) + layouts_.bytes() +
+    return walls_.capacity() * sizeof(Wall) + wall_runs_.capacity() * sizeof(uint32_t) + grids_.bytes() +
+           choices_.bytes() +
            faces_.capacity() * sizeof(Face) + face_points_.capacity() * sizeof(Vec2) +
            polygons_.capacity() * sizeof(Polygon) +
            points_.capacity() * sizeof(Vec2) + ring_ends_.capacity() * sizeof(uint32_t) +

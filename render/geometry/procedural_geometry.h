@@ -38,9 +38,13 @@ public:
         : kind_(kind), wall_materials_(wall_materials) {}
 
     // `object` is the index of the scene object the primitive belongs to (reported for hits).
-    // `wall_index` is the wall's number within its building (reported for pane hits).
-    // The wall stands on the edge a->b from z = bottom (its frame is wall_frame(a, b, bottom)).
-    void add_wall(uint32_t object, const WallLayout& layout, Vec2 a, Vec2 b, double bottom, uint32_t wall_index = 0);
+    // A building's facade choices, shared by its walls: add_wall's `choices`.
+    uint32_t add_facade_choices(const FacadeChoices& choices);
+    // The wall `wall` (its index within its building is reported for pane hits) with this grid
+    // (plain or not) stands on the edge a->b from z = bottom (its frame is wall_frame(a, b, bottom)).
+    // Its layout is wall_layout(choices, grid, ...), made again whenever a ray needs it.
+    void add_wall(uint32_t object, const WallInput& wall, uint32_t choices, const WallGrid& grid, Vec2 a, Vec2 b,
+                  double bottom);
     void reserve_walls(size_t count) { walls_.reserve(count); }  // no regrowth of the largest array
     // A horizontal polygon at height z facing up (normal_z = +1) or down (-1); any orientation.
     void add_polygon(uint32_t object, const Ring& outer, const std::vector<Ring>& holes, double z, uint16_t material,
@@ -88,31 +92,33 @@ public:
     static constexpr uint32_t kWallsPerRun = 2;
 
 private:
-    // A wall keeps its frame as the numbers it is made of and its layout by index: a city holds
-    // millions of walls, a third of them plain.
+    // A wall keeps its frame as the numbers it is made of, and its layout as its grid and its
+    // building's choices (by index): a city holds millions of walls, a third of them plain.
     struct Wall {
         Vec3 origin;  // lower end of a
         Vec2 along;   // unit direction a->b
         double length, height;
         uint32_t object, wall_index;
-        uint32_t layout;  // into layouts_, or kPlainLayout
+        uint32_t grid;     // into grids_, or kPlainWall
+        uint32_t choices;  // into choices_
     };
-    static constexpr uint32_t kPlainLayout = 0xffffffffu;
-    // The layouts in blocks of fixed size: a metropolis holds millions of them, and a vector's
-    // regrowth and final shrink would hold them twice for a moment, at the render's peak.
-    class LayoutBlocks {
+    static constexpr uint32_t kPlainWall = 0xffffffffu;
+    // Millions of values in blocks of fixed size: a vector's regrowth and final shrink would
+    // hold them twice for a moment, at the render's peak.
+    template <class T>
+    class Blocks {
     public:
-        uint32_t push_back(const WallLayout& layout) {
-            if ((size_ & kMask) == 0) blocks_.push_back(std::make_unique<WallLayout[]>(kBlock));
-            blocks_.back()[size_ & kMask] = layout;
+        uint32_t push_back(const T& value) {
+            if ((size_ & kMask) == 0) blocks_.push_back(std::make_unique<T[]>(kBlock));
+            blocks_.back()[size_ & kMask] = value;
             return size_++;
         }
-        const WallLayout& operator[](uint32_t i) const { return blocks_[i >> kShift][i & kMask]; }
-        size_t bytes() const { return blocks_.size() * kBlock * sizeof(WallLayout); }
+        const T& operator[](uint32_t i) const { return blocks_[i >> kShift][i & kMask]; }
+        size_t bytes() const { return blocks_.size() * kBlock * sizeof(T); }
 
     private:
-        static constexpr uint32_t kShift = 8, kBlock = 1u << kShift, kMask = kBlock - 1;  // 39 KB
-        std::vector<std::unique_ptr<WallLayout[]>> blocks_;
+        static constexpr uint32_t kShift = 8, kBlock = 1u << kShift, kMask = kBlock - 1;
+        std::vector<std::unique_ptr<T[]>> blocks_;
         uint32_t size_ = 0;
     };
     struct Polygon {
@@ -159,11 +165,12 @@ private:
     // The nearest curb face of a curbed polygon hit in [tmin, tmax].
     bool intersect_curbs(const Polygon& polygon, Vec3 origin, Vec3 direction, double tmin, double tmax,
                          PrimitiveHit* hit) const;
-    // f(layout, frame) of a wall; a plain wall's layout is made on the stack only for it.
+    // f(layout, frame) of a wall, its layout made on the stack only for it.
     template <class F>
     auto with_wall(const Wall& wall, F&& f) const {
         const WallFrame frame = wall_frame(wall.origin, wall.along);
-        if (wall.layout != kPlainLayout) return f(layouts_[wall.layout], frame);
+        if (wall.grid != kPlainWall)
+            return f(wall_layout(choices_[wall.choices], grids_[wall.grid], wall.length, wall.height), frame);
         WallLayout plain;
         plain.length = wall.length;
         plain.height = wall.height;
@@ -175,7 +182,8 @@ private:
     std::vector<Wall> walls_;
     // Where each run of walls starts, and walls_.size() at the end (made by create_embree_geometry).
     std::vector<uint32_t> wall_runs_;
-    LayoutBlocks layouts_;  // of the walls with windows
+    Blocks<WallGrid> grids_;          // of the walls with windows
+    Blocks<FacadeChoices> choices_;   // of the buildings with windows
     std::vector<Polygon> polygons_;
     std::vector<Face> faces_;
     std::vector<Vec2> face_points_;    // all faces' projected points, back to back

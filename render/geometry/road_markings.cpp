@@ -25,9 +25,23 @@ uint16_t asphalt_grain(Vec2 p) {
                                                                                                       : kAsphalt;
 }
 
-uint16_t road_surface_material(const RoadEdge& road, const std::vector<const Crossing*>& crossings, Vec2 p) {
-    if (road.centreline.size() < 2) return asphalt_grain(p);
-    const Vec2 a = road.centreline.front(), d = normalize(road.centreline.back() - a), n = perp_left(d);
+RoadPaint road_paint(const RoadEdge& road) {
+    RoadPaint paint;
+    paint.straight = road.centreline.size() >= 2;
+    if (paint.straight) paint.a = road.centreline.front(), paint.b = road.centreline.back();
+    paint.width = road.width;
+    paint.lanes_forward = road.lanes_forward;
+    paint.lanes_backward = road.lanes_backward;
+    paint.centre_line = road.centre_line;
+    paint.edge_lines = road.edge_lines;
+    paint.cycle_lane_left = road.cycle_lane_left;
+    paint.cycle_lane_right = road.cycle_lane_right;
+    return paint;
+}
+
+uint16_t road_surface_material(const RoadPaint& road, const std::vector<const Crossing*>& crossings, Vec2 p) {
+    if (!road.straight) return asphalt_grain(p);
+    const Vec2 a = road.a, d = normalize(road.b - a), n = perp_left(d);
     const double along = dot(p - a, d), across = dot(p - a, n);
     const double half = 0.5 * road.width;
 
@@ -83,24 +97,13 @@ uint16_t road_surface_material(const RoadEdge& road, const std::vector<const Cro
 std::unique_ptr<RenderGeometry> with_road_markings(std::unique_ptr<RenderGeometry> roads, const Scene& scene) {
     // The decorator keeps its own copy of what it paints from (the scene may go first).
     struct Paint {
-        std::vector<RoadEdge> roads;
+        std::vector<RoadPaint> roads;
         std::vector<Crossing> crossings;
         std::vector<std::vector<const Crossing*>> per_road;
     };
     auto paint = std::make_shared<Paint>();
     paint->roads.reserve(scene.roads.size());
-    for (const RoadEdge& r : scene.roads) {
-        RoadEdge copy;
-        copy.centreline = r.centreline;
-        copy.width = r.width;
-        copy.lanes_forward = r.lanes_forward;
-        copy.lanes_backward = r.lanes_backward;
-        copy.centre_line = r.centre_line;
-        copy.edge_lines = r.edge_lines;
-        copy.cycle_lane_left = r.cycle_lane_left;
-        copy.cycle_lane_right = r.cycle_lane_right;
-        paint->roads.push_back(std::move(copy));
-    }
+    for (const RoadEdge& r : scene.roads) paint->roads.push_back(road_paint(r));
     paint->crossings = scene.crossings;
     paint->per_road.resize(scene.roads.size());
     for (const Crossing& c : paint->crossings)

@@ -88,11 +88,15 @@ SmallEmitters::SmallEmitters(const SceneLights& lights, const Camera& camera, bo
                 double x0, y0, x1, y1;
                 image_bounds(pane, &x0, &y0, &x1, &y1);
                 add(camera, Rectangle{pane.building, pane.wall, pane.cell, 0, 0, 0, 0}, x0, y0, x1, y1);
-                panes_.push_back({pane.building, pane.wall, pane.cell});
             });
-        std::sort(panes_.begin(), panes_.end());
     }
     std::sort(covers_.begin(), covers_.end());
+    size_t pane_count = 0;
+    for (const Rectangle& r : rectangles_) pane_count += r.cell != 0;
+    panes_.reserve(pane_count);
+    for (const Rectangle& r : rectangles_)
+        if (r.cell != 0) panes_.push_back({r.object, r.wall, r.cell});
+    std::sort(panes_.begin(), panes_.end());
 }
 
 bool SmallEmitters::counts_on_film(const Hit& hit) const {

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <vector>
 
 #include "render/camera/camera.h"
@@ -78,8 +79,9 @@ private:
 
     std::vector<uint8_t> small_;   // per lamp: its globe is one of these
     std::vector<PaneId> panes_;    // the gathered panes, sorted
-    std::vector<Rectangle> rectangles_;
-    std::vector<Cover> covers_;  // every pixel a rectangle overlaps, sorted
+    // Deques: seen from above a metropolis has millions, and they grow without being copied.
+    std::deque<Rectangle> rectangles_;
+    std::deque<Cover> covers_;  // every pixel a rectangle overlaps, sorted
     int width_ = 0;
 };
 

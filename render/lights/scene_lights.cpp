@@ -274,10 +274,9 @@ bool SceneLights::lit_window_at(const Hit& hit) const {
 void SceneLights::for_each_lit_pane(Vec3 eye, const std::function<bool(const SeenPane&)>& wanted,
                                     const std::function<void(const SeenPane&)>& visit) const {
     // Runs of strips side by side, each wall's geometry derived once from its building's walls
-    // (strips are ordered by building and wall); the wanted panes joined in order.
+    // (strips are ordered by building and wall).
     constexpr size_t kStripsPerRun = 4096;
-    std::vector<std::vector<SeenPane>> kept((strips_.size() + kStripsPerRun - 1) / kStripsPerRun);
-    tbb::parallel_for(size_t{0}, kept.size(), [&](size_t run) {
+    auto gather_run = [&](size_t run, std::vector<SeenPane>& kept) {
         std::optional<BuildingWalls> walls;
         uint32_t building = ~0u, wall = ~0u;
         WallGeometry g;
@@ -306,12 +305,23 @@ void SceneLights::for_each_lit_pane(Vec3 eye, const std::function<bool(const See
                                     static_cast<uint32_t>(floor) * 65536u + static_cast<uint32_t>(slot) + 1,
                                     {g.frame.to_world(u0, v0, pane.at), g.frame.to_world(u1, v0, pane.at),
                                      g.frame.to_world(u1, v1, pane.at), g.frame.to_world(u0, v1, pane.at)}};
-                if (wanted(seen)) kept[run].push_back(seen);
+                if (wanted(seen)) kept.push_back(seen);
             }
         }
-    });
-    for (const std::vector<SeenPane>& run : kept)
-        for (const SeenPane& pane : run) visit(pane);
+    };
+    // The wanted panes visited in order, a batch of runs at a time: a metropolis seen from above
+    // wants millions, and all of them at once would hold hundreds of megabytes.
+    constexpr size_t kRunsPerBatch = 64;
+    const size_t runs = (strips_.size() + kStripsPerRun - 1) / kStripsPerRun;
+    std::vector<std::vector<SeenPane>> kept(std::min(runs, kRunsPerBatch));
+    for (size_t first = 0; first < runs; first += kRunsPerBatch) {
+        const size_t count = std::min(kRunsPerBatch, runs - first);
+        tbb::parallel_for(size_t{0}, count, [&](size_t i) { gather_run(first + i, kept[i]); });
+        for (size_t i = 0; i < count; ++i) {
+            for (const SeenPane& pane : kept[i]) visit(pane);
+            kept[i].clear();
+        }
+    }
 }
 
 int64_t SceneLights::strip_light(const Hit& hit) const {
