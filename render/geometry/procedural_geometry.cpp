@@ -1,6 +1,7 @@
 #include "render/geometry/procedural_geometry.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -8,6 +9,12 @@
 #include "render/geometry/face_plane.h"
 
 namespace citygen {
+
+ProceduralGeometry::ProceduralGeometry(ObjectKind kind, const SurfaceMaterials& wall_materials)
+    : kind_(kind), wall_materials_(wall_materials) {
+    static std::atomic<uint64_t> instances{0};
+    id_ = ++instances;  // never 0: an empty cache slot belongs to no instance
+}
 
 uint32_t ProceduralGeometry::add_facade_choices(const FacadeChoices& choices) { return choices_.push_back(choices); }
 
@@ -177,7 +184,7 @@ bool ProceduralGeometry::intersect_surface(uint32_t prim_id, Vec3 origin, Vec3 d
                                            PrimitiveHit* hit) const {
     if (prim_id < walls_.size()) {
         WallHit wall_hit;
-        const bool hit_wall = with_wall(walls_[prim_id], [&](const WallLayout& layout, const WallFrame& frame) {
+        const bool hit_wall = with_wall(prim_id, [&](const WallLayout& layout, const WallFrame& frame) {
             return intersect_wall(layout, frame, origin, direction, tmin, tmax, &wall_hit);
         });
         if (!hit_wall) return false;
@@ -249,7 +256,7 @@ bool ProceduralGeometry::intersect_curbs(const Polygon& polygon, Vec3 origin, Ve
 bool ProceduralGeometry::surface_occluded(uint32_t prim_id, Vec3 origin, Vec3 direction, double tmin,
                                           double tmax) const {
     if (prim_id < walls_.size()) {
-        return with_wall(walls_[prim_id], [&](const WallLayout& layout, const WallFrame& frame) {
+        return with_wall(prim_id, [&](const WallLayout& layout, const WallFrame& frame) {
             return wall_occluded(layout, frame, origin, direction, tmin, tmax);
         });
     }
@@ -265,7 +272,7 @@ void ProceduralGeometry::surface_bounds(uint32_t prim_id, Vec3* lo_out, Vec3* hi
         hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
     };
     if (prim_id < walls_.size()) {
-        with_wall(walls_[prim_id], [&](const WallLayout& layout, const WallFrame& frame) {
+        with_wall(prim_id, [&](const WallLayout& layout, const WallFrame& frame) {
             for (double u : {0.0, layout.length})
                 for (double v : {0.0, layout.height})
                     for (double w : {layout.w_min(), layout.w_max()}) extend(frame.to_world(u, v, w));

@@ -34,8 +34,7 @@ public:
     // Material id for each facade surface kind (index = FacadeSurface value).
     using SurfaceMaterials = std::array<uint16_t, kFacadeSurfaceCount>;
 
-    ProceduralGeometry(ObjectKind kind, const SurfaceMaterials& wall_materials)
-        : kind_(kind), wall_materials_(wall_materials) {}
+    ProceduralGeometry(ObjectKind kind, const SurfaceMaterials& wall_materials);
 
     // `object` is the index of the scene object the primitive belongs to (reported for hits).
     // A building's facade choices, shared by its walls: add_wall's `choices`.
@@ -165,19 +164,36 @@ private:
     // The nearest curb face of a curbed polygon hit in [tmin, tmax].
     bool intersect_curbs(const Polygon& polygon, Vec3 origin, Vec3 direction, double tmin, double tmax,
                          PrimitiveHit* hit) const;
-    // f(layout, frame) of a wall, its layout made on the stack only for it.
+    // f(layout, frame) of wall `index`. The rays of a pixel, and its neighbours', meet the same
+    // walls again and again: each thread keeps the layouts it made last (values only, so nothing
+    // seen depends on the cache or the thread count).
     template <class F>
-    auto with_wall(const Wall& wall, F&& f) const {
+    auto with_wall(uint32_t index, F&& f) const {
+        const Wall& wall = walls_[index];
         const WallFrame frame = wall_frame(wall.origin, wall.along);
-        if (wall.grid != kPlainWall)
-            return f(wall_layout(choices_[wall.choices], grids_[wall.grid], wall.length, wall.height), frame);
-        WallLayout plain;
-        plain.length = wall.length;
-        plain.height = wall.height;
-        return f(plain, frame);
+        if (wall.grid == kPlainWall) {
+            WallLayout plain;
+            plain.length = wall.length;
+            plain.height = wall.height;
+            return f(plain, frame);
+        }
+        struct Cached {
+            uint64_t owner = 0;
+            uint32_t wall = 0;
+            WallLayout layout;
+        };
+        thread_local Cached cache[16];
+        Cached& slot = cache[index & 15];
+        if (slot.owner != id_ || slot.wall != index) {
+            slot.owner = id_;
+            slot.wall = index;
+            slot.layout = wall_layout(choices_[wall.choices], grids_[wall.grid], wall.length, wall.height);
+        }
+        return f(slot.layout, frame);
     }
 
     ObjectKind kind_;
+    uint64_t id_;  // tells this instance's layouts in the per-thread cache from others'
     SurfaceMaterials wall_materials_;
     std::vector<Wall> walls_;
     // Where each run of walls starts, and walls_.size() at the end (made by create_embree_geometry).
