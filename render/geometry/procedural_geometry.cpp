@@ -18,8 +18,8 @@ ProceduralGeometry::ProceduralGeometry(ObjectKind kind, const SurfaceMaterials& 
 
 uint32_t ProceduralGeometry::add_facade_choices(const FacadeChoices& choices) { return choices_.push_back(choices); }
 
-void ProceduralGeometry::add_wall(uint32_t object, const WallInput& wall, uint32_t choices, const WallGrid& grid, Vec2 a,
-                                  Vec2 b, double bottom) {
+void ProceduralGeometry::add_wall(uint32_t object, const WallInput& wall, uint32_t choices, const WallGrid& grid,
+                                  Vec2 a, Vec2 b, double bottom) {
     const uint32_t grid_index = grid.plain() ? kPlainWall : grids_.push_back(grid);
     walls_.push_back({{a.x, a.y, bottom}, normalize(b - a), wall.length, wall.height, object, wall.wall_index,
                       grid_index, choices});

@@ -22,11 +22,11 @@ struct RoadPaint {
 };
 RoadPaint road_paint(const RoadEdge& road);
 
-// Paint and asphalt at point p of a road; `crossings` are the scene.crossings on that road. Centre lines: dashed 3 m on / 6 m off, solid, or double;
-// lane dividers dashed; edge lines 0.3 m inside the edge; cycle lanes 1.5 m wide at the
-// edge behind a solid line (the motor lanes share the rest); lines 12-15 cm wide; zebra
-// stripes 0.5 m wide, 0.5 m apart, 3 m long along the road; stop lines 0.4 m.
-// Elsewhere asphalt with a 4 cm speckle of lighter grain.
+// Paint and asphalt at point p of a road; `crossings` are the scene.crossings on that road. Centre
+// lines: dashed 3 m on / 6 m off, solid, or double; lane dividers dashed; edge lines 0.3 m inside
+// the edge; cycle lanes 1.5 m wide at the edge behind a solid line (the motor lanes share the
+// rest); lines 12-15 cm wide; zebra stripes 0.5 m wide, 0.5 m apart, 3 m long along the road; stop
+// lines 0.4 m. Elsewhere asphalt with a 4 cm speckle of lighter grain.
 uint16_t road_surface_material(const RoadPaint& road, const std::vector<const Crossing*>& crossings, Vec2 p);
 
 // Asphalt grain alone (junction polygons).

@@ -55,11 +55,12 @@ TEST(SceneBuild, ClassesFreedBeforeTheBuildingsGiveTheSameHits) {
         whole->commit(ProgressSettings{true});
         Scene freed = town;
         bool buildings_there = false;
-        const auto built = build_render_geometry(freed, GeometryModes::all(mode), FacadeOptions{}, ProgressSettings{true},
-                                                 [&] {
-                                                     release_geometry_only_classes(freed);
-                                                     buildings_there = !freed.buildings.empty();
-                                                 });
+        const auto release = [&] {
+            release_geometry_only_classes(freed);
+            buildings_there = !freed.buildings.empty();
+        };
+        const auto built =
+            build_render_geometry(freed, GeometryModes::all(mode), FacadeOptions{}, ProgressSettings{true}, release);
         release_buildings(freed, false);
         built->commit(ProgressSettings{true});
         EXPECT_TRUE(buildings_there);
