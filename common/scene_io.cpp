@@ -6,10 +6,11 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
-#include <fstream>
 #include <functional>
 #include <memory>
 #include <iterator>
+#include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -876,19 +877,31 @@ void check_scene_loads(const uint8_t* data, size_t size, const std::string& name
 }
 
 Scene load_scene(const std::string& path) {
+    // Non-blocking: a FIFO is refused below rather than waited on.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0) throw Error(path + ": cannot open scene file (" + std::strerror(errno) + ")");
     struct stat info;
-    if (::stat(path.c_str(), &info) == 0 && !S_ISREG(info.st_mode))
+    if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+        ::close(fd);
         throw Error(path + ": not a regular file (a directory, device or pipe cannot be a scene)");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open scene file (" + std::strerror(errno) + ")");
-    // One read of the whole file (a metropolis's scene is hundreds of MB).
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    in.seekg(0, std::ios::beg);
-    if (size < 0) throw Error(path + ": read error");
-    std::vector<uint8_t> bytes(static_cast<size_t>(size));
-    if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) throw Error(path + ": read error");
-    return decode_scene(bytes.data(), bytes.size(), path);
+    }
+    const size_t size = static_cast<size_t>(info.st_size);
+    if (size == 0) {
+        ::close(fd);
+        return decode_scene(nullptr, 0, path);  // its one line for an empty file
+    }
+    // The file's pages mapped whole and at once (a metropolis's scene is hundreds of MB): no
+    // zeroed buffer to fill, no copy, and no page fault per page while decoding.
+    void* bytes = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+    const int mmap_errno = errno;
+    ::close(fd);
+    if (bytes == MAP_FAILED) throw Error(path + ": cannot read scene file (" + std::strerror(mmap_errno) + ")");
+    struct Unmap {
+        void* p;
+        size_t n;
+        ~Unmap() { ::munmap(p, n); }
+    } unmap{bytes, size};
+    return decode_scene(static_cast<const uint8_t*>(bytes), size, path);
 }
 
 void write_file_atomically(const std::string& path, const void* data, size_t size) {

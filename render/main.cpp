@@ -19,6 +19,7 @@
 #include "common/scene_io.h"
 #include "render/camera/camera.h"
 #include "render/cli_values.h"
+#include "render/huge_pages.h"
 #include "render/options.h"
 #include "render/export/export_gltf.h"
 #include "render/export/export_ply.h"
@@ -216,6 +217,7 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
         o.spp_given = app.count("--spp") > 0;
         o.scene_path = o.scene_paths.front();
+        restart_with_huge_pages_for(o.scene_paths, argv);
     } catch (const CLI::Success& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {

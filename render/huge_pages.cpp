@@ -1,0 +1,35 @@
+#include "render/huge_pages.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace citygen {
+
+bool wants_huge_pages(const std::vector<std::string>& scene_paths, const char* tunables) {
+    if (tunables && std::strstr(tunables, "glibc.malloc.hugetlb")) return false;
+    unsigned long long bytes = 0;
+    for (const std::string& path : scene_paths) {
+        struct stat info;
+        if (::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode)) bytes += info.st_size;
+    }
+    return bytes >= kHugePageSceneBytes;
+}
+
+void restart_with_huge_pages_for(const std::vector<std::string>& scene_paths, char** argv) {
+#if defined(__GLIBC__) && defined(__linux__)
+    const char* tunables = std::getenv("GLIBC_TUNABLES");
+    if (!wants_huge_pages(scene_paths, tunables)) return;
+    const std::string value =
+        tunables && *tunables ? std::string(tunables) + ":glibc.malloc.hugetlb=1" : "glibc.malloc.hugetlb=1";
+    if (::setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
+    ::execv("/proc/self/exe", argv);
+    // Not restarted: the same render, in small pages.
+#else
+    (void)scene_paths;
+    (void)argv;
+#endif
+}
+
+}  // namespace citygen
