@@ -21,8 +21,12 @@ void restart_with_huge_pages_for(const std::vector<std::string>& scene_paths, ch
 #if defined(__GLIBC__) && defined(__linux__)
     const char* tunables = std::getenv("GLIBC_TUNABLES");
     if (!wants_huge_pages(scene_paths, tunables)) return;
-    const std::string value =
-        tunables && *tunables ? std::string(tunables) + ":glibc.malloc.hugetlb=1" : "glibc.malloc.hugetlb=1";
+    // The tunable alone also pads each growth of malloc's heaps to whole huge pages: the 8x8
+    // metropolis's night peaked 55 MiB higher. Without the pad it peaks 10 MiB lower than in
+    // small pages, and the set-up is as fast.
+    std::string value = tunables && *tunables ? std::string(tunables) + ":" : std::string();
+    value += "glibc.malloc.hugetlb=1";
+    if (!std::strstr(value.c_str(), "glibc.malloc.top_pad")) value += ":glibc.malloc.top_pad=0";
     if (::setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
     ::execv("/proc/self/exe", argv);
     // Not restarted: the same render, in small pages.

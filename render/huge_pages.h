@@ -1,7 +1,8 @@
 // Large scenes in 2 MiB pages. A metropolis's set-up fills gigabytes of fresh memory, and the
 // kernel hands it over 4 KiB at a time unless malloc asks for transparent huge pages. glibc asks
 // only when its `glibc.malloc.hugetlb` tunable is set, and it reads tunables when a program
-// starts, so the render starts itself again with the tunable set.
+// starts, so the render starts itself again with the tunable set (huge_pages.cpp says why
+// malloc's top pad goes to 0 with it).
 #pragma once
 
 #include <string>
