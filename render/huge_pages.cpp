@@ -21,9 +21,9 @@ void restart_with_huge_pages_for(const std::vector<std::string>& scene_paths, ch
 #if defined(__GLIBC__) && defined(__linux__)
     const char* tunables = std::getenv("GLIBC_TUNABLES");
     if (!wants_huge_pages(scene_paths, tunables)) return;
-    // The tunable alone also pads each growth of malloc's heaps to whole huge pages: the 8x8
-    // metropolis's night peaked 55 MiB higher. Without the pad it peaks 10 MiB lower than in
-    // small pages, and the set-up is as fast.
+    // The tunable alone also pads each growth of malloc's heaps to whole huge pages, which
+    // raised the peak above that of small pages; without the pad it is no higher, and the
+    // set-up as fast (docs/bench/2026-12-scale.md, sixth round).
     std::string value = tunables && *tunables ? std::string(tunables) + ":" : std::string();
     value += "glibc.malloc.hugetlb=1";
     if (!std::strstr(value.c_str(), "glibc.malloc.top_pad")) value += ":glibc.malloc.top_pad=0";

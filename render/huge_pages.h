@@ -10,8 +10,8 @@
 
 namespace citygen {
 
-// Scenes of at least this many bytes together are worth the second start-up (about 0.4 s for
-// render's libraries): their set-up saves a few seconds per 100 MB.
+// Scenes of at least this many bytes together are worth the second start-up (render's
+// libraries take a fraction of a second to load): their set-up saves seconds per 100 MB.
 constexpr unsigned long long kHugePageSceneBytes = 64ull << 20;
 
 // Whether a render of these scenes restarts: they are that large and `tunables` (the value of
