@@ -880,22 +880,19 @@ Scene load_scene(const std::string& path) {
     // Non-blocking: a FIFO is refused below rather than waited on.
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
     if (fd < 0) throw Error(path + ": cannot open scene file (" + std::strerror(errno) + ")");
+    struct Close {
+        int fd;
+        ~Close() { ::close(fd); }
+    } close_file{fd};
     struct stat info;
-    if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
-        ::close(fd);
+    if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode))
         throw Error(path + ": not a regular file (a directory, device or pipe cannot be a scene)");
-    }
     const size_t size = static_cast<size_t>(info.st_size);
-    if (size == 0) {
-        ::close(fd);
-        return decode_scene(nullptr, 0, path);  // its one line for an empty file
-    }
+    if (size == 0) return decode_scene(nullptr, 0, path);  // its one line for an empty file
     // The file's pages mapped whole and at once (a metropolis's scene is hundreds of MB): no
     // zeroed buffer to fill, no copy, and no page fault per page while decoding.
     void* bytes = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
-    const int mmap_errno = errno;
-    ::close(fd);
-    if (bytes == MAP_FAILED) throw Error(path + ": cannot read scene file (" + std::strerror(mmap_errno) + ")");
+    if (bytes == MAP_FAILED) throw Error(path + ": cannot read scene file (" + std::strerror(errno) + ")");
     struct Unmap {
         void* p;
         size_t n;
