@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
-#include <functional>
 #include <memory>
 #include <iterator>
 #include <fcntl.h>
@@ -303,13 +302,11 @@ flatbuffers::Offset<fb::Building> encode_building(Builder& b, const Building& x)
 // Frees a part of the scene once it is encoded, when the encoder was asked to (a const scene
 // is only read).
 template <typename T>
-void release_part(std::vector<T>& part, const std::function<void()>* released) {
-    if (!released) return;
-    std::vector<T>().swap(part);
-    (*released)();
+void release_part(std::vector<T>& part, bool release) {
+    if (release) std::vector<T>().swap(part);
 }
 template <typename T>
-void release_part(const std::vector<T>&, const std::function<void()>*) {}
+void release_part(const std::vector<T>&, bool) {}
 
 // Each part of the scene in the order of the file; the buildings are encoded as they come.
 std::vector<flatbuffers::Offset<fb::RoadEdge>> encode_roads(Builder& b, const std::vector<RoadEdge>& items) {
@@ -463,14 +460,12 @@ void SceneEncoder::add_building(const Building& building) {
     state_->buildings.push_back(encode_building(state_->b, building));
 }
 
-void SceneEncoder::finish(const Scene& scene) { finish_parts(scene, nullptr); }
+void SceneEncoder::finish(const Scene& scene) { finish_parts(scene, false); }
 
-void SceneEncoder::finish_releasing(Scene& scene, const std::function<void()>& released) {
-    finish_parts(scene, &released);
-}
+void SceneEncoder::finish_releasing(Scene& scene) { finish_parts(scene, true); }
 
 template <typename S>
-void SceneEncoder::finish_parts(S& scene, const std::function<void()>* release) {
+void SceneEncoder::finish_parts(S& scene, bool release) {
     Builder& b = state_->b;
     // The header was written first, with the bounds known then: now the final ones, in place.
     fb::Header* header = flatbuffers::GetMutableTemporaryPointer(b, state_->header);

@@ -1,7 +1,6 @@
 // Reading and writing scene files (format: schema/scene.fbs).
 #pragma once
 
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,9 +27,9 @@ public:
     // Encodes every part after the buildings (scene.buildings is not read) and completes the
     // buffer; the header's bounds become scene.header's.
     void finish(const Scene& scene);
-    // The same, freeing each part of `scene` as soon as it is encoded and then calling
-    // `released` (e.g. to hand the freed memory back to the system).
-    void finish_releasing(Scene& scene, const std::function<void()>& released);
+    // The same, freeing each part of `scene` as soon as it is encoded, so the encoded scene
+    // grows into their memory.
+    void finish_releasing(Scene& scene);
     // The encoded scene, once finished.
     const uint8_t* data() const;
     size_t size() const;
@@ -39,7 +38,7 @@ private:
     struct State;
     std::unique_ptr<State> state_;
     template <typename S>
-    void finish_parts(S& scene, const std::function<void()>* released);
+    void finish_parts(S& scene, bool release);
 };
 
 // A generous upper bound of encode_scene(scene).size(), for SceneEncoder's reserve.

@@ -6,10 +6,6 @@
 
 #include <CLI/CLI.hpp>
 
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 #include "common/error.h"
 #include "common/output_target.h"
 #include "common/scene_info.h"
@@ -184,13 +180,6 @@ int run_parse(ParseJob& job, const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-#ifdef __GLIBC__
-    // glibc gives threads that allocate at the same time arenas of their own, and what one arena
-    // frees the others do not reuse, which raises the peak by a third with stages side by side
-    // (docs/bench/2026-11-parse.md). One arena costs no CPU time here: the stages allocate little
-    // compared to what they compute.
-    mallopt(M_ARENA_MAX, 1);
-#endif
     CLI::App app{"osmparse: turn OpenStreetMap data into a citygen scene"};
     app.set_version_flag("--version", std::string("citygen osmparse ") + CITYGEN_VERSION);
     ParseJob job;

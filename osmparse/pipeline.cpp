@@ -7,10 +7,6 @@
 #include <memory>
 #include <optional>
 
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 #include <tbb/task_arena.h>
 
 #include "common/rng.h"
@@ -209,13 +205,6 @@ void hide_roof_tags(OsmData& osm, double fraction, uint64_t seed) {
     }
 }
 
-// Hands the pages of freed memory back to the system (see parse_osm_to_scene).
-void trim_heap() {
-#ifdef __GLIBC__
-    malloc_trim(0);
-#endif
-}
-
 // The parts of the parse, each named in the stage list by the string in its comment.
 struct ParseState {
     ParseState(const ParseJob& job, bool to_file) : job(job), to_file(to_file) {}
@@ -248,7 +237,6 @@ struct ParseState {
 
     std::unique_ptr<SceneEncoder> encoder;  // "encoded scene" (parse_osm_to_file)
     Box2 encoded_box;                       // the bounds of the buildings encoded and freed
-    size_t trimmed_at = 0;                  // the encoder's size when the heap was last trimmed
 };
 
 void read(ParseState& s, ParseReport& report) {
@@ -318,7 +306,6 @@ void slice_buildings(ParseState& s, ParseReport&) {
         // Reserved before the roofs exist: the bound of the rest alone is ~2x the whole
         // encoded scene on the real extracts; a short reserve costs only a copy as it grows.
         s.encoder = std::make_unique<SceneEncoder>(s.scene.header, 2 * encoded_size_bound(s.scene));
-        s.trimmed_at = s.encoder->size();
     }
     // A slice of the file's buildings: build_roofs still runs on every thread.
     const size_t slice = s.to_file ? 1024 : all.size();
@@ -347,16 +334,12 @@ void choose_slice_colours(ParseState& s, ParseReport& report) {
 }
 
 // Nothing reads the buildings after this but the scene's bounds: encoded, they are freed once
-// their extent is taken. Their pages go back to the system every megabyte of encoded scene.
+// their extent is taken, and the encoded scene grows into their memory.
 void encode_slice(ParseState& s, ParseReport&) {
     std::vector<Building>& buildings = s.slices[s.slice].buildings;
     extend_by_footprints(s.encoded_box, buildings);
     for (const Building& b : buildings) s.encoder->add_building(b);
     release(buildings);
-    if (s.encoder->size() > s.trimmed_at + (1 << 20)) {
-        trim_heap();
-        s.trimmed_at = s.encoder->size();
-    }
 }
 
 void gather_buildings(ParseState& s, ParseReport&) {
@@ -468,7 +451,6 @@ StageHooks parse_hooks(ParseState& s) {
         {"paths", [&s] { s.paths = PathSurface(); }},
         {"building slices", [&s] { release(s.slices); }},
     };
-    hooks.freed = trim_heap;  // the freed memory is in small pieces all over the heap: its pages back
     hooks.slice_count = [&s] { return s.slices.size(); };
     hooks.select_slice = [&s](size_t i) { s.slice = i; };
     return hooks;
@@ -484,20 +466,14 @@ void run_pipeline(ParseState& state, ParseReport& report) {
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     ParseState state(job, false);
     run_pipeline(state, report);
-    // The OSM data and the stages' working sets are freed now, in small pieces all over the heap
-    // (one arena, see main.cpp): hand their pages back before the scene is encoded, so encoding
-    // adds to what the scene holds, not to the stages' peak (docs/bench/2026-11-parse.md).
-    trim_heap();
     return std::move(state.scene);
 }
 
 void parse_osm_to_file(const ParseJob& job, ParseReport& report, const std::string& path) {
     ParseState state(job, true);
     run_pipeline(state, report);
-    trim_heap();
-    // Each part is freed once encoded, and its pages handed back before the encoder takes
-    // more: the encoded scene grows as the in-memory one shrinks.
-    state.encoder->finish_releasing(state.scene, trim_heap);
+    // Each part is freed once encoded: the encoded scene grows as the in-memory one shrinks.
+    state.encoder->finish_releasing(state.scene);
     check_scene_loads(state.encoder->data(), state.encoder->size(), path);  // never a file its loader refuses
     write_file_atomically(path, state.encoder->data(), state.encoder->size());
 }

@@ -105,14 +105,11 @@ void run_stages(const std::vector<Stage>& stages, const StageHooks& hooks, Parse
             report.merge(reports[i]);
             report.stage_time(stages[i].name, seconds[i]);
         }
-        bool any = false;
         for (const auto& [part, i] : last) {
             const auto f = hooks.free.find(part);
             if (i > run.back() || f == hooks.free.end() || !freed.insert(part).second) continue;
             f->second();
-            any = true;
         }
-        if (any && hooks.freed) hooks.freed();
     }
 }
 

@@ -26,9 +26,8 @@ struct Stage {
 
 struct StageHooks {
     // How to free a part once its last reader is done; parts not named here are kept (the
-    // results). Freed parts are then followed by `freed`, e.g. to hand memory back to the system.
+    // results).
     std::map<std::string, std::function<void()>> free;
-    std::function<void()> freed;
     // For per-slice stages: how many slices there are, and making slice i the current one.
     std::function<size_t()> slice_count;
     std::function<void(size_t)> select_slice;

@@ -30,7 +30,7 @@ build() {
         -DCMAKE_CXX_COMPILER=clang++ \
         -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g $sanitize $coverage" \
         -DCMAKE_EXE_LINKER_FLAGS="$sanitize" \
-        -DCITYGEN_FUZZ=ON > /dev/null
+        -DCITYGEN_FUZZ=ON -DCITYGEN_TCMALLOC=OFF > /dev/null
     cmake --build "$dir" -j"$jobs"
 }
 
