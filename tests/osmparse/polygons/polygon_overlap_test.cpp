@@ -1,11 +1,14 @@
 // The building index (polygon_overlap.h): every query visits each building whose box meets the
-// query box exactly once, and queries keep no state, so threads may share one index.
+// query box exactly once, queries keep no state, so threads may share one index, and long rings
+// answer contains() from their bands as from all their edges.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <thread>
 
+#include "osmparse/polygons/exact_predicates.h"
 #include "osmparse/polygons/polygon_overlap.h"
 #include "tests/test_scenes.h"
 
@@ -115,4 +118,40 @@ TEST(BuildingIndex, BorrowedPolygonsAnswerLikeTheBuildingsTheyPointTo) {
     const BuildingIndex of_quad(std::vector<PolygonRef>{{&quad}});
     EXPECT_DOUBLE_EQ(of_quad.overlap(Ring{{5, 5}, {15, 5}, {15, 15}, {5, 15}}), 25.0);
     EXPECT_TRUE(of_quad.contains({1, 1}));
+}
+
+// A coast-like ring of thousands of vertices (its edges sorted into bands of y for contains())
+// with a long island as a hole, and an edge across the whole ring: contains() answers as the
+// plain winding number does, at points on the vertices' own y values, between them and outside.
+TEST(BuildingIndex, LongRingsAnswerAsTheWholeRingDoes) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> wiggle(0.6, 1.0);
+    auto star = [&](double radius, int n, Vec2 centre) {
+        Ring ring;
+        for (int i = 0; i < n; ++i) {
+            const double a = 2 * kPi * i / n, r = radius * wiggle(rng);
+            ring.push_back(centre + Vec2(r * std::cos(a), r * std::sin(a)));
+        }
+        return ring;
+    };
+    Building coast;
+    coast.outer = star(1000, 4000, {0, 0});
+    coast.outer.push_back({0, -1500});  // two edges reaching below the rest: every band in between
+    coast.holes.push_back(star(200, 600, {300, 100}));
+    ASSERT_GE(coast.holes[0].size(), BuildingIndex::kBandedRingVertices);
+    const std::vector<Building> buildings{coast};
+    const BuildingIndex index(buildings);
+    std::vector<Vec2> points;
+    std::uniform_real_distribution<double> where(-1600, 1600);
+    for (int i = 0; i < 20000; ++i) points.push_back({where(rng), where(rng)});
+    for (size_t i = 0; i < coast.outer.size(); i += 7) points.push_back({where(rng), coast.outer[i].y});
+    for (const Vec2& v : coast.holes[0]) points.push_back({v.x + 0.5, v.y});
+    size_t inside = 0;
+    for (const Vec2& p : points) {
+        const bool whole = exact_point_in_ring(p, coast.outer) && !exact_point_in_ring(p, coast.holes[0]);
+        ASSERT_EQ(index.contains(p), whole) << p.x << "," << p.y;
+        inside += whole;
+    }
+    EXPECT_GT(inside, 2000u);
+    EXPECT_LT(inside, points.size() - 2000);
 }
