@@ -66,18 +66,16 @@ inline double signed_area(const Ring& ring) {
     return 0.5 * a;
 }
 
+// What edge a -> b adds to p's winding number: nothing unless a.y <= p.y < b.y or b.y <= p.y < a.y.
+inline int winding_step(Vec2 a, Vec2 b, Vec2 p) {
+    if (a.y <= p.y) return b.y > p.y && cross(b - a, p - a) > 0 ? 1 : 0;
+    return b.y <= p.y && cross(b - a, p - a) < 0 ? -1 : 0;
+}
 // Winding-number point-in-polygon over n points stored back to back; points exactly on the
 // boundary may go either way.
 inline bool point_in_ring(Vec2 p, const Vec2* ring, size_t n) {
     int winding = 0;
-    for (size_t i = 0; i < n; ++i) {
-        Vec2 a = ring[i], b = ring[i + 1 == n ? 0 : i + 1];
-        if (a.y <= p.y) {
-            if (b.y > p.y && cross(b - a, p - a) > 0) ++winding;
-        } else if (b.y <= p.y && cross(b - a, p - a) < 0) {
-            --winding;
-        }
-    }
+    for (size_t i = 0; i < n; ++i) winding += winding_step(ring[i], ring[i + 1 == n ? 0 : i + 1], p);
     return winding != 0;
 }
 inline bool point_in_ring(Vec2 p, const Ring& ring) { return point_in_ring(p, ring.data(), ring.size()); }

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "osmparse/polygons/clean_footprint.h"
+#include "osmparse/polygons/ring_bands.h"
 #include "osmparse/read/read_osm.h"
 
 namespace citygen {
@@ -340,12 +341,19 @@ std::vector<LandCover> assemble_sea(const OsmData& osm, const Projection& projec
     // Never a flooded city: a "sea" holding most buildings is land seen the wrong way round.
     std::vector<LandCover> kept;
     for (LandCover& c : sea) {
+        // Every building against a sea of coastlines thousands of points long: banded.
+        const RingBands outer(c.outer);
+        std::vector<RingBands> holes;
+        for (const Ring& hole : c.holes) holes.emplace_back(hole);
+        auto in = [](Vec2 p, const Ring& ring, const RingBands& bands) {
+            return bands.winding(ring, p, winding_step) != 0;
+        };
         size_t wet = 0;
         for (const Building& b : buildings) {
             const Vec2 p = b.outer.front();
-            if (!point_in_ring(p, c.outer)) continue;
+            if (!in(p, c.outer, outer)) continue;
             bool in_hole = false;
-            for (const Ring& hole : c.holes) in_hole = in_hole || point_in_ring(p, hole);
+            for (size_t h = 0; h < c.holes.size(); ++h) in_hole = in_hole || in(p, c.holes[h], holes[h]);
             wet += !in_hole;
         }
         if (wet >= 10 && 2 * wet > buildings.size()) {

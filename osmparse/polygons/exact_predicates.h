@@ -65,13 +65,14 @@ inline bool exact_segments_touch(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
            (o4 == 0 && in_box(c, d, b));
 }
 
-// Winding-number point in ring with exact turns: exact for a point off the boundary; a point on
-// it may go either way (callers test the boundaries apart first).
-// What edge a -> b adds to p's winding number: nothing unless a.y <= p.y < b.y or b.y <= p.y < a.y.
+// What edge a -> b adds to p's winding number, with an exact turn: nothing unless a.y <= p.y < b.y
+// or b.y <= p.y < a.y.
 inline int exact_winding_step(Vec2 a, Vec2 b, Vec2 p) {
     if (a.y <= p.y) return b.y > p.y && exact_orientation(a, b, p) > 0 ? 1 : 0;
     return b.y <= p.y && exact_orientation(a, b, p) < 0 ? -1 : 0;
 }
+// Winding-number point in ring with exact turns: exact for a point off the boundary; a point on
+// it may go either way (callers test the boundaries apart first).
 inline bool exact_point_in_ring(Vec2 p, const Vec2* ring, size_t n) {
     int winding = 0;
     for (size_t i = 0; i < n; ++i) winding += exact_winding_step(ring[i], ring[i + 1 == n ? 0 : i + 1], p);

@@ -149,8 +149,8 @@ BuildingIndex::BuildingIndex(std::vector<PolygonRef> polygons, double cell)
     }
     for (const PolygonRef& polygon : polygons_) {
         auto band = [&](const Ring& ring) {
-            RingBands bands;
-            if (ring.size() >= kBandedRingVertices && make_bands(ring, &bands)) bands_.emplace(&ring, std::move(bands));
+            RingBands bands(ring);
+            if (!bands.empty()) bands_.emplace(&ring, std::move(bands));
         };
         band(*polygon.outer);
         if (polygon.holes)
@@ -193,54 +193,10 @@ double BuildingIndex::overlap(const Ring& piece, double* max_one) const {
     return total;
 }
 
-bool BuildingIndex::make_bands(const Ring& ring, RingBands* bands) {
-    const size_t n = ring.size();
-    const Box2 box = bounds_of(ring);
-    const size_t count = n / 8;  // about eight edges a band where they are spread evenly
-    if (!(box.max.y > box.min.y)) return false;
-    bands->y0 = box.min.y;
-    bands->height = (box.max.y - box.min.y) / static_cast<double>(count);
-    // The band of y, clamped: monotonic in y, as each step rounds monotonically.
-    auto band_of = [&](double y) {
-        const double k = std::floor((y - bands->y0) / bands->height);
-        return static_cast<size_t>(std::clamp(k, 0.0, static_cast<double>(count - 1)));
-    };
-    // Each edge in every band its y range meets. Long edges that cross many bands (a zigzag
-    // across the whole ring) would make this quadratic: such rings are not banded.
-    std::vector<size_t> sizes(count + 1, 0);
-    size_t entries = 0;
-    for (size_t i = 0; i < n; ++i) {
-        const Vec2 a = ring[i], b = ring[i + 1 == n ? 0 : i + 1];
-        const size_t lo = band_of(std::min(a.y, b.y)), hi = band_of(std::max(a.y, b.y));
-        entries += hi - lo + 1;
-        if (entries > 16 * n) return false;
-        for (size_t k = lo; k <= hi; ++k) ++sizes[k + 1];
-    }
-    bands->first.assign(count + 1, 0);
-    for (size_t k = 0; k < count; ++k) bands->first[k + 1] = static_cast<uint32_t>(bands->first[k] + sizes[k + 1]);
-    bands->edges.resize(entries);
-    std::vector<uint32_t> next(bands->first.begin(), bands->first.end() - 1);
-    for (size_t i = 0; i < n; ++i) {
-        const Vec2 a = ring[i], b = ring[i + 1 == n ? 0 : i + 1];
-        for (size_t k = band_of(std::min(a.y, b.y)), hi = band_of(std::max(a.y, b.y)); k <= hi; ++k)
-            bands->edges[next[k]++] = static_cast<uint32_t>(i);
-    }
-    return true;
-}
-
 bool BuildingIndex::in_ring(Vec2 p, const Ring& ring) const {
     const auto found = bands_.empty() ? bands_.end() : bands_.find(&ring);
     if (found == bands_.end()) return exact_point_in_ring(p, ring);
-    const RingBands& bands = found->second;
-    const double k = std::floor((p.y - bands.y0) / bands.height);
-    const size_t band = static_cast<size_t>(std::clamp(k, 0.0, static_cast<double>(bands.first.size() - 2)));
-    const size_t n = ring.size();
-    int winding = 0;
-    for (uint32_t e = bands.first[band]; e < bands.first[band + 1]; ++e) {
-        const uint32_t i = bands.edges[e];
-        winding += exact_winding_step(ring[i], ring[i + 1 == n ? 0 : i + 1], p);
-    }
-    return winding != 0;
+    return found->second.winding(ring, p, exact_winding_step) != 0;
 }
 
 bool BuildingIndex::contains(Vec2 p) const {

@@ -19,6 +19,7 @@
 #include "common/geometry.h"
 #include "common/scene.h"
 #include "osmparse/polygons/grid_cell_key.h"
+#include "osmparse/polygons/ring_bands.h"
 
 namespace citygen {
 
@@ -98,20 +99,9 @@ public:
     // An object covering more cells than this is kept in one list that every query checks,
     // so no object's extent decides the index's memory or build time.
     static constexpr double kMaxCellsPerObject = 4096;
-    // Rings of at least this many vertices (the sea, a forest, a lake) are banded for contains().
-    static constexpr size_t kBandedRingVertices = 256;
 
 private:
-    // A long ring's edges sorted into bands of y: an edge adds to a point's winding number only
-    // if the point's y is within the edge's, so contains() walks the edges of the point's band
-    // alone, with the same exact test and the same answer.
-    struct RingBands {
-        double y0 = 0, height = 1;     // band k holds y in [y0 + k height, y0 + (k + 1) height)
-        std::vector<uint32_t> first;  // band k's edges are edges[first[k] .. first[k + 1])
-        std::vector<uint32_t> edges;  // edge i: ring[i] -> ring[i + 1]
-    };
-    static bool make_bands(const Ring& ring, RingBands* bands);
-    bool in_ring(Vec2 p, const Ring& ring) const;  // exact_point_in_ring, banded where banded
+    bool in_ring(Vec2 p, const Ring& ring) const;  // exact_point_in_ring, from the bands of a long ring
 
     struct Cell {
         int64_t x = 0, y = 0;
@@ -148,7 +138,7 @@ private:
     int shift_ = 64;                 // slot_hash(key) >> shift_: the first slot to probe
     size_t cell_count_ = 0;
     std::vector<uint32_t> large_;  // objects spanning more than kMaxCellsPerObject cells
-    std::unordered_map<const Ring*, RingBands> bands_;  // the long rings' bands
+    std::unordered_map<const Ring*, RingBands> bands_;  // the long rings' (the sea's, a forest's)
 };
 
 }  // namespace citygen

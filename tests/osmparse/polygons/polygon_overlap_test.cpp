@@ -138,7 +138,7 @@ TEST(BuildingIndex, LongRingsAnswerAsTheWholeRingDoes) {
     coast.outer = star(1000, 4000, {0, 0});
     coast.outer.push_back({0, -1500});  // two edges reaching below the rest: every band in between
     coast.holes.push_back(star(200, 600, {300, 100}));
-    ASSERT_GE(coast.holes[0].size(), BuildingIndex::kBandedRingVertices);
+    ASSERT_GE(coast.holes[0].size(), RingBands::kMinVertices);
     const std::vector<Building> buildings{coast};
     const BuildingIndex index(buildings);
     std::vector<Vec2> points;
