@@ -365,6 +365,8 @@ std::vector<Stage> parse_stages(ParseState& s) {
          }},
         {"way layers", {"osm ways"}, {"way layers"}, [&](ParseReport&) { s.way_layers = way_layers(s.osm); },
          !p.terrain.dem_files.empty()},
+        // Beside the roads against the buildings; the sea's flood check sees the map's buildings.
+        {"land cover", {"osm", "projection", "buildings"}, {"land cover"}, run(lay_out_land_cover)},
         {"roads vs buildings", {"road graph", "buildings"}, {"narrowed roads"},
          [&](ParseReport& r) { s.narrowed = narrow_roads(std::move(s.road_graph), scene.buildings, p.roads, r); }},
         {"road polygons", {"narrowed roads"}, {"road surface"},
@@ -381,7 +383,6 @@ std::vector<Stage> parse_stages(ParseState& s) {
              scene.lamps = place_lamps(s.osm, *s.projection, scene, p.lamps, p.seed, r);
              scene.lamps.shrink_to_fit();  // counted as placed (grown by doubling), then kept to the end
          }},
-        {"land cover", {"osm", "projection", "buildings"}, {"land cover"}, run(lay_out_land_cover)},
         // --dem: ways above others by their layer get decks, as bridges do.
         {"layered bridges", {"roads", "paths", "way layers", "land cover"}, {"roads", "paths"},
          [&](ParseReport& r) { mark_layered_bridges(scene.roads, scene.paths, s.way_layers, scene.land_cover, r); },
