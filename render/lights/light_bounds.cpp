@@ -68,9 +68,8 @@ inline bool any(F4 m) { return bits(m.v[0]) | bits(m.v[1]) | bits(m.v[2]) | bits
 
 double safe_acos(double x) { return std::acos(std::clamp(x, -1.0, 1.0)); }
 
-// v rotated by `angle` around the unit axis k (Rodrigues).
-Vec3 rotate(Vec3 v, Vec3 k, double angle) {
-    const double c = std::cos(angle), s = std::sin(angle);
+// v rotated around the unit axis k by the angle of cosine c and sine s (Rodrigues).
+Vec3 rotate(Vec3 v, Vec3 k, double c, double s) {
     return v * c + cross(k, v) * s + k * (dot(k, v) * (1 - c));
 }
 
@@ -88,6 +87,20 @@ void LightBounds::set_axis(Vec3 v) {
     w[0] = static_cast<float>(v.x);
     w[1] = static_cast<float>(v.y);
     w[2] = static_cast<float>(v.z);
+    axis_settled = false;  // a float normalization, normalized again, may move by an ulp
+}
+
+void LightBounds::set_axis_up() {
+    w[0] = w[1] = 0;
+    w[2] = 1;
+    axis_settled = true;
+}
+
+void LightBounds::settle_axis() {
+    if (axis_settled) return;
+    const float before[3] = {w[0], w[1], w[2]};
+    set_axis(axis());
+    axis_settled = w[0] == before[0] && w[1] == before[1] && w[2] == before[2];
 }
 
 LightBounds4::LightBounds4() {
@@ -190,12 +203,13 @@ void LightBounds::join(const LightBounds& b) {
     // Join the normal cones (the common cases first: a whole sphere such as a lamp's globe, or
     // two parallel walls).
     if (cos_theta_o <= -1 || b.cos_theta_o <= -1) {
-        set_axis({0, 0, 1});
+        set_axis_up();
         cos_theta_o = -1;
         return;
     }
     if (w[0] == b.w[0] && w[1] == b.w[1] && w[2] == b.w[2]) {
-        set_axis(axis());
+        axis_settled = axis_settled || b.axis_settled;
+        settle_axis();
         cos_theta_o = std::min(cos_theta_o, b.cos_theta_o);
         return;
     }
@@ -206,7 +220,7 @@ void LightBounds::join(const LightBounds& b) {
     const float a_cos = cos_theta_o;
     const double cos_d = dot(a_axis, b.axis());
     if (b.cos_theta_o >= 1 && cos_d >= a_cos) {
-        set_axis(a_axis);
+        settle_axis();
         return;
     }
     if (a_cos >= 1 && cos_d >= b.cos_theta_o) {
@@ -219,7 +233,7 @@ void LightBounds::join(const LightBounds& b) {
     const double theta_a = theta(a_cos), theta_b = theta(b.cos_theta_o);
     const double theta_d = safe_acos(cos_d);
     if (std::min(theta_d + theta_b, kPi) <= theta_a) {
-        set_axis(a_axis);
+        settle_axis();
     } else if (std::min(theta_d + theta_a, kPi) <= theta_b) {
         set_axis(b.axis());
         cos_theta_o = b.cos_theta_o;
@@ -227,11 +241,14 @@ void LightBounds::join(const LightBounds& b) {
         const double theta_o = (theta_a + theta_d + theta_b) / 2;
         const Vec3 wr = cross(a_axis, b.axis());
         if (theta_o >= kPi || dot(wr, wr) == 0) {
-            set_axis({0, 0, 1});
+            set_axis_up();
             cos_theta_o = -1;
         } else {
-            set_axis(rotate(a_axis, normalize(wr), theta_o - theta_a));
-            cos_theta_o = static_cast<float>(std::max(-1.0, std::cos(theta_o) - 1e-5));  // float rounding: never narrower
+            // Rotated by theta_o - theta_a: by theta_o itself, and its cosine shared, when a is a
+            // single direction (the usual case while panes gather).
+            const double turn = theta_o - theta_a, cos_turn = std::cos(turn), cos_o = theta_a == 0 ? cos_turn : std::cos(theta_o);
+            set_axis(rotate(a_axis, normalize(wr), cos_turn, std::sin(turn)));
+            cos_theta_o = static_cast<float>(std::max(-1.0, cos_o - 1e-5));  // float rounding: never narrower
         }
     }
 }

@@ -16,6 +16,9 @@ struct LightBounds {
     float cos_theta_o = 1;    // normals lie within theta_o of w
     float cos_theta_e = 0;    // each normal emits within theta_e of itself
     bool two_sided = false;
+    // w is known to be its own normalization (set_axis(axis()) would not change it): the joins
+    // that keep a cluster's axis then skip the square root and division that would confirm it.
+    bool axis_settled = false;
 
     Vec3 min() const { return {lo[0], lo[1], lo[2]}; }
     Vec3 max() const { return {hi[0], hi[1], hi[2]}; }
@@ -23,6 +26,8 @@ struct LightBounds {
     Vec3 axis() const { return {w[0], w[1], w[2]}; }
     void set_box(Vec3 a, Vec3 b);
     void set_axis(Vec3 v);
+    void set_axis_up();  // set_axis({0, 0, 1}) without the arithmetic
+    void settle_axis();  // set_axis(axis()), once
     // *this = union_of(*this, b), without a copy (the split search joins millions of lights).
     void join(const LightBounds& b);
 
