@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
 #include <tbb/parallel_for.h>
@@ -18,27 +19,36 @@ constexpr double kMostShare = 0.75;  // weight of the nearest-point share in a d
 constexpr int kMaxSahDepth = 40;  // below this, plain median splits
 constexpr size_t kParallelItems = 4096;  // nodes this large are built with both halves side by side
 
-// The solid angle term of pbrt-v4's cost, a function of the two cone angles only. Most of the
-// clusters a split search costs share their cones, so the last one is remembered.
+// The solid angle term of pbrt-v4's cost, a function of the two cone angles only. The split
+// searches cost the same few cones over and over (a single direction, the whole sphere, the
+// cones of a street's facades), so each thread remembers the values it worked out.
 class OrientationMeasure {
 public:
     double operator()(float cos_theta_o, float cos_theta_e) {
-        if (cos_theta_o == last_o_ && cos_theta_e == last_e_) return last_;
-        last_o_ = cos_theta_o;
-        last_e_ = cos_theta_e;
+        uint32_t o, e;
+        std::memcpy(&o, &cos_theta_o, 4);
+        std::memcpy(&e, &cos_theta_e, 4);
+        const uint64_t key = uint64_t(o) << 32 | e;
+        Entry& entry = entries_[(key * 0x9E3779B97F4A7C15ull) >> (64 - kLogEntries)];
+        if (entry.key == key) return entry.value;
         const double theta_o = std::acos(std::clamp(double(cos_theta_o), -1.0, 1.0));
         const double theta_e = std::acos(std::clamp(double(cos_theta_e), -1.0, 1.0));
         const double theta_w = std::min(theta_o + theta_e, kPi);
         const double sin_o = std::sin(theta_o);
-        last_ = 2 * kPi * (1 - std::cos(theta_o)) +
-                kPi / 2 * (2 * theta_w * sin_o - std::cos(theta_o - 2 * theta_w) - 2 * theta_o * sin_o +
-                           std::cos(theta_o));
-        return last_;
+        entry.key = key;
+        entry.value = 2 * kPi * (1 - std::cos(theta_o)) +
+                      kPi / 2 * (2 * theta_w * sin_o - std::cos(theta_o - 2 * theta_w) - 2 * theta_o * sin_o +
+                                 std::cos(theta_o));
+        return entry.value;
     }
 
 private:
-    float last_o_ = 2, last_e_ = 2;  // no cone's cosine
-    double last_ = 0;
+    static constexpr int kLogEntries = 12;
+    struct Entry {
+        uint64_t key = ~uint64_t{0};  // NaN cosines: no cone's
+        double value = 0;
+    };
+    Entry entries_[1 << kLogEntries];
 };
 
 // pbrt-v4's cost of a cluster for the split search: power x solid angle of its orientation
@@ -216,7 +226,7 @@ void BVHLightSampler::cheapest_split(const std::vector<Item>& items, size_t begi
         above[count - 1] = LightBounds{};
         if (count > 1) above[count - 2] = buckets[filled[count - 1]];
         for (int j = count - 3; j >= 0; --j) above[j] = union_of(above[j + 1], buckets[filled[j + 1]]);
-        OrientationMeasure orientation;
+        thread_local OrientationMeasure orientation;
         auto try_split = [&](int split, const LightBounds& low, const LightBounds& high) {
             const double cost = cluster_cost(low, axis, orientation) + cluster_cost(high, axis, orientation);
             if (cost < axis_cost[axis]) {
