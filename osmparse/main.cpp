@@ -12,6 +12,7 @@
 #include "common/scene_io.h"
 #include "osmparse/output/diff_scenes.h"
 #include "osmparse/output/write_geojson.h"
+#include "osmparse/heap/huge_page_heap.h"
 #include "osmparse/pipeline.h"
 #include "osmparse/terrain/read_dem.h"
 
@@ -180,6 +181,7 @@ int run_parse(ParseJob& job, const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    use_huge_pages_for_the_heap();
     CLI::App app{"osmparse: turn OpenStreetMap data into a citygen scene"};
     app.set_version_flag("--version", std::string("citygen osmparse ") + CITYGEN_VERSION);
     ParseJob job;
