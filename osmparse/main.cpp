@@ -10,9 +10,9 @@
 #include "common/output_target.h"
 #include "common/scene_info.h"
 #include "common/scene_io.h"
+#include "osmparse/heap/huge_page_heap.h"
 #include "osmparse/output/diff_scenes.h"
 #include "osmparse/output/write_geojson.h"
-#include "osmparse/heap/huge_page_heap.h"
 #include "osmparse/pipeline.h"
 #include "osmparse/terrain/read_dem.h"
 
