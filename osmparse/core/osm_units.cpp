@@ -60,7 +60,7 @@ std::optional<double> parse_osm_length(const char* text) {
         ++p;
         metres = *value * kInch;
     } else if (std::strncmp(p, "ft", 2) == 0 || std::strncmp(p, "feet", 4) == 0) {
-        p += (p[2] == 'e') ? 4 : 2;
+        p += std::strncmp(p, "feet", 4) == 0 ? 4 : 2;
         metres = *value * kFoot;
     } else if (std::strncmp(p, "mi", 2) == 0) {
         return std::nullopt;  // miles are not a building or road length

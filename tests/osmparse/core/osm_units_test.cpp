@@ -22,6 +22,14 @@ TEST(OsmUnits, FeetAndInches) {
     EXPECT_NEAR(*parse_osm_length("10\""), 0.254, 1e-9);
 }
 
+// "ft" and a letter is not "feet": the reader once took it for "feet" and stepped past the
+// string's end (found by cli_values_fuzz). The second NUL is where it then stopped.
+TEST(OsmUnits, FtFollowedByALetterIsNotFeet) {
+    const char text[] = {'3', 'f', 't', 'e', '\0', '\0'};
+    EXPECT_FALSE(parse_osm_length(text).has_value());
+    EXPECT_NEAR(*parse_osm_length("3 feet"), 0.9144, 1e-9);
+}
+
 TEST(OsmUnits, RejectsGarbage) {
     for (const char* bad : {"", "tall", "-5", "3;4", "12 parsecs", "nan", "inf", "1.2.3", "12'x", "5 mi"})
         EXPECT_FALSE(parse_osm_length(bad).has_value()) << bad;
