@@ -65,8 +65,7 @@ Color direct_light_at(const PathContext& context, const Ray& ray, Hit hit, uint6
     double transmittance = 1;
     if (settings.haze_extinction > 0) {
         transmittance = aerial_transmittance(settings.haze_extinction, hit.t);
-        const Vec3 horizon = normalize(Vec3{ray.direction.x, ray.direction.y, 0.06});
-        haze = context.sky.radiance(horizon, false) * (1 - transmittance);
+        haze = horizon_haze(context.sky, ray.direction) * (1 - transmittance);
     }
     const Material material = surface_material(context.materials, context.building_looks, hit);
     const Vec3 wo = -ray.direction;
@@ -91,6 +90,15 @@ Color direct_light_at(const PathContext& context, const Ray& ray, Hit hit, uint6
         }
     }
     return haze + light * transmittance;
+}
+
+// The same for a camera ray that hits nothing: the smooth sky (or the haze below the horizon)
+// goes back unfiltered too. Were it left to the filter, a pixel that mixes sky and ground (the
+// ground plane's far edge, a roof against the sky) would carry the sky's light in what the
+// filter mixes with its all-ground neighbours: a dark line along the horizon.
+Color direct_light_past_scene(const PathContext& context, const Ray& ray) {
+    if (context.settings.fog.density > 0) return {0, 0, 0};
+    return smooth_sky_seen(context, ray.direction);
 }
 
 // `x`, `y` in the full frame; `i` indexes the film.
@@ -124,7 +132,11 @@ void fill_guides(const PathContext& context, const Camera& camera, int x, int y,
             const Ray ray = camera.generate_ray(x + (sx + 0.5) / kGrid, y + (sy + 0.5) / kGrid);
             Hit hit;
             ++rays;
-            if (!context.scene.intersect(ray, hit)) continue;
+            if (!context.scene.intersect(ray, hit)) {
+                const Color d = direct_light_past_scene(context, ray);
+                for (int c = 0; c < 3; ++c) direct[c] += d[c];
+                continue;
+            }
             const Color a = albedo_at(context, hit, ray.direction);
             const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
             const Color d = direct_light_at(context, ray, hit, rays);
@@ -178,6 +190,8 @@ void add_samples(const PathContext& context, const Camera& camera, int x, int y,
             Hit hit;
             if (direct && (++rays, context.scene.intersect(ray, hit)))
                 pixel.direct_sum = pixel.direct_sum + direct_light_at(context, ray, hit, rays);
+            else if (direct)
+                pixel.direct_sum = pixel.direct_sum + direct_light_past_scene(context, ray);
         }
     }
 }

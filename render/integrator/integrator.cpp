@@ -27,6 +27,15 @@ double russian_roulette_survival(Color throughput, double min_survival) {
 
 double shadow_roulette_for(double exposure) { return exposure > 0 ? 0.03 / exposure : 0; }
 
+Color horizon_haze(const Sky& sky, Vec3 direction) {
+    return sky.radiance(normalize(Vec3{direction.x, direction.y, 0.06}), false);
+}
+
+Color smooth_sky_seen(const PathContext& context, Vec3 direction) {
+    if (context.settings.haze_extinction > 0 && direction.z < 0) return horizon_haze(context.sky, direction);
+    return context.sky.radiance(direction, false);
+}
+
 Vec3 offset_origin(Vec3 position, Vec3 normal) {
     const double scale = std::max({std::fabs(position.x), std::fabs(position.y), std::fabs(position.z)});
     return position + normal * (1e-4 + 2e-6 * scale);
@@ -185,12 +194,10 @@ bool PathTracer::scatter_in_fog(int bounce, double t_scatter, Ray& ray) {
 
 // Aerial perspective on a camera ray. False when the ray ends in the haze.
 bool PathTracer::add_haze(const Ray& ray, bool found, const Hit& hit) {
-    const Vec3 horizon = normalize(Vec3{ray.direction.x, ray.direction.y, 0.06});
     if (found) {
-        // The surface's light dims with distance and the horizon's haze (the sky's colour low
-        // in the ray's azimuth) takes its place.
+        // The surface's light dims with distance and the horizon's haze takes its place.
         const double T = aerial_transmittance(settings_.haze_extinction, hit.t);
-        radiance_ = radiance_ + throughput_ * sky_.radiance(horizon, false) * (1 - T);
+        radiance_ = radiance_ + throughput_ * horizon_haze(sky_, ray.direction) * (1 - T);
         throughput_ = throughput_ * T;
         return true;
     }
@@ -199,7 +206,7 @@ bool PathTracer::add_haze(const Ray& ray, bool found, const Hit& hit) {
         // haze lets through under e^-3.9 of the ground even at the longest visibility): the
         // ground there would be all haze, so show the haze, as on the plane just before its
         // edge, not the sky's darkened stand-in for the land (a dark line on wide views).
-        radiance_ = radiance_ + throughput_ * sky_.radiance(horizon, false);
+        radiance_ = radiance_ + throughput_ * horizon_haze(sky_, ray.direction);
         return false;
     }
     return true;

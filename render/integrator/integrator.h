@@ -76,6 +76,15 @@ struct FirstVertexNumbers {
 Color trace_path(const PathContext& context, Ray ray, Rng& rng, uint64_t& rays,
                  const FirstVertexNumbers* first = nullptr);
 
+// The aerial haze's colour along a camera ray: the sky's colour low in the ray's azimuth, which
+// distant ground fades into.
+Color horizon_haze(const Sky& sky, Vec3 direction);
+
+// The smooth part of what a camera ray that leaves the scene shows, free of noise: the sky
+// without its stars and sun disc or, below the horizon with haze on, the haze the ground past
+// the plane's edge would show. (Stars and the disc are smaller than a pixel's samples resolve.)
+Color smooth_sky_seen(const PathContext& context, Vec3 direction);
+
 // Moves a ray origin off the surface along `normal` by a distance that covers float error at
 // city coordinates (a few hundred micrometres at 2 km from the origin).
 Vec3 offset_origin(Vec3 position, Vec3 normal);
