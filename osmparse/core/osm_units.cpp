@@ -59,8 +59,8 @@ std::optional<double> parse_osm_length(const char* text) {
     } else if (*p == '"') {
         ++p;
         metres = *value * kInch;
-    } else if (std::strncmp(p, "ft", 2) == 0 || std::strncmp(p, "feet", 4) == 0) {
-        p += std::strncmp(p, "feet", 4) == 0 ? 4 : 2;
+    } else if (std::strncmp(p, "feet", 4) == 0 || std::strncmp(p, "ft", 2) == 0) {
+        p += p[1] == 'e' ? 4 : 2;
         metres = *value * kFoot;
     } else if (std::strncmp(p, "mi", 2) == 0) {
         return std::nullopt;  // miles are not a building or road length

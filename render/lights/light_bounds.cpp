@@ -246,7 +246,8 @@ void LightBounds::join(const LightBounds& b) {
         } else {
             // Rotated by theta_o - theta_a: by theta_o itself, and its cosine shared, when a is a
             // single direction (the usual case while panes gather).
-            const double turn = theta_o - theta_a, cos_turn = std::cos(turn), cos_o = theta_a == 0 ? cos_turn : std::cos(theta_o);
+            const double turn = theta_o - theta_a, cos_turn = std::cos(turn);
+            const double cos_o = theta_a == 0 ? cos_turn : std::cos(theta_o);
             set_axis(rotate(a_axis, normalize(wr), cos_turn, std::sin(turn)));
             cos_theta_o = static_cast<float>(std::max(-1.0, cos_o - 1e-5));  // float rounding: never narrower
         }

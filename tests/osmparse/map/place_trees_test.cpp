@@ -100,8 +100,9 @@ TEST(Trees, FixtureHasMappedRowAndForestTreesNoneOnTheRoadOrInTheHouseOrPond) {
     const double r = TreeParams{}.forest_spacing;
     for (size_t i = 0; i < s.trees.size(); ++i)
         for (size_t j = i + 1; j < s.trees.size(); ++j)
-            if (s.trees[i].source == TreeSource::Scattered && s.trees[j].source == TreeSource::Scattered)
+            if (s.trees[i].source == TreeSource::Scattered && s.trees[j].source == TreeSource::Scattered) {
                 ASSERT_GE(length(s.trees[i].position - s.trees[j].position), r);
+            }
     // Something was kept out: there are trees on both sides of the road but none near its centreline.
     const double road_y = at(s, 0, -20).y;
     size_t north = 0, south = 0;
