@@ -187,11 +187,13 @@ void add_samples(const PathContext& context, const Camera& camera, int x, int y,
             pixel.sum = pixel.sum + L;
             pixel.gathered_sum = pixel.gathered_sum + gathered;
             pixel.luminance_squares += luminance(L) * luminance(L);
-            Hit hit;
-            if (direct && (++rays, context.scene.intersect(ray, hit)))
-                pixel.direct_sum = pixel.direct_sum + direct_light_at(context, ray, hit, rays);
-            else if (direct)
-                pixel.direct_sum = pixel.direct_sum + direct_light_past_scene(context, ray);
+            if (direct) {
+                Hit hit;
+                ++rays;
+                pixel.direct_sum = pixel.direct_sum + (context.scene.intersect(ray, hit)
+                                                           ? direct_light_at(context, ray, hit, rays)
+                                                           : direct_light_past_scene(context, ray));
+            }
         }
     }
 }
