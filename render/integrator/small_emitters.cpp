@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_sort.h>
+
 #include "common/rng.h"
 #include "render/integrator/pixel_jitter.h"
 #include "render/lights/scene_lights.h"
@@ -90,13 +92,14 @@ SmallEmitters::SmallEmitters(const SceneLights& lights, const Camera& camera, bo
                 add(camera, Rectangle{pane.building, pane.wall, pane.cell, 0, 0, 0, 0}, x0, y0, x1, y1);
             });
     }
-    std::sort(covers_.begin(), covers_.end());
+    // Both orders are total (no two entries equal), so the parallel sorts are deterministic.
+    tbb::parallel_sort(covers_.begin(), covers_.end());
     size_t pane_count = 0;
     for (const Rectangle& r : rectangles_) pane_count += r.cell != 0;
     panes_.reserve(pane_count);
     for (const Rectangle& r : rectangles_)
         if (r.cell != 0) panes_.push_back({r.object, r.wall, r.cell});
-    std::sort(panes_.begin(), panes_.end());
+    tbb::parallel_sort(panes_.begin(), panes_.end());
 }
 
 bool SmallEmitters::counts_on_film(const Hit& hit) const {

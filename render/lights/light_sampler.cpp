@@ -5,7 +5,6 @@
 #include <cstring>
 #include <utility>
 
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include "common/error.h"
@@ -14,7 +13,6 @@ namespace citygen {
 
 namespace {
 
-constexpr int kBuckets = 12;
 constexpr double kMostShare = 0.75;  // weight of the nearest-point share in a descent step
 constexpr int kMaxSahDepth = 40;  // below this, plain median splits
 constexpr size_t kParallelItems = 4096;  // nodes this large are built with both halves side by side
@@ -196,58 +194,142 @@ void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, 
     for (int lane = count; lane < 4; ++lane) nodes_[self].child[lane] = kLeaf;  // empty: power 0, never chosen
 }
 
-// The bucket boundary of the cheapest split of items [begin, end) over the three axes (axis -1:
-// none). The axes are costed side by side for large nodes; the best is chosen in axis order.
-void BVHLightSampler::cheapest_split(const std::vector<Item>& items, size_t begin, size_t end, Vec3 cmin, Vec3 cmax,
-                                     bool parallel, int* best_axis, int* best_bucket) {
-    double axis_cost[3] = {1e300, 1e300, 1e300};
-    int axis_bucket[3] = {-1, -1, -1};
-    auto cost_axis = [&](int axis) {
-        const double extent = cmax[axis] - cmin[axis];
-        if (!(extent > 0)) return;
-        LightBounds buckets[kBuckets];
-        for (size_t i = begin; i < end; ++i) {
-            int b = static_cast<int>(kBuckets * (items[i].bounds.centroid()[axis] - cmin[axis]) / extent);
-            b = std::clamp(b, 0, kBuckets - 1);
-            buckets[b].join(items[i].bounds);
+// The bucket along `axis` of a light: `scale` is the bucket count over the centroids' extent.
+int BVHLightSampler::bucket_of(const Item& item, int axis, Vec3 cmin, double scale, int buckets) {
+    const int b = static_cast<int>((item.bounds.centroid()[axis] - cmin[axis]) * scale);
+    return std::clamp(b, 0, buckets - 1);
+}
+
+// No more buckets than lights: a small node, most of the tree, costs as few candidates as it has lights.
+int BVHLightSampler::bucket_count(size_t lights) { return static_cast<int>(std::min<size_t>(kBuckets, lights)); }
+
+// The bounds of the lights in each bucket along each axis (axes with no extent left empty), for
+// the split's cost only (the tree's own nodes are joined exactly, in build()): boxes, power and
+// emission angle as join() makes them, but each normal cone centred on the bucket's mean normal
+// and as wide as its farthest light needs. Joining the cones one light at a time (pbrt-v4's
+// Union) costs inverse cosines each time the cone grows, and a city's facades face every way, so
+// it grows all the time. Two passes over the lights, each for the three axes at once: the lights
+// of the upper nodes are far larger than the caches.
+void BVHLightSampler::bucket_bounds(const std::vector<Item>& items, size_t begin, size_t end, Vec3 cmin, Vec3 cmax,
+                                    LightBounds buckets[3][kBuckets]) {
+    const double extent[3] = {cmax.x - cmin.x, cmax.y - cmin.y, cmax.z - cmin.z};
+    const int count = bucket_count(end - begin);
+    int axes[3], axis_count = 0;
+    double scale[3];
+    for (int axis = 0; axis < 3; ++axis) {
+        scale[axis] = count / extent[axis];
+        if (extent[axis] > 0) axes[axis_count++] = axis;
+    }
+    Vec3 normal_sum[3][kBuckets] = {};
+    bool everywhere[3][kBuckets] = {};
+    // Each light's bucket along each axis, from the first pass for the second.
+    thread_local std::vector<uint8_t> bucket_at;
+    bucket_at.resize(3 * (end - begin));
+    uint8_t* at = bucket_at.data();
+    for (size_t i = begin; i < end; ++i, at += 3) {
+        const LightBounds& light = items[i].bounds;
+        if (!(light.phi > 0)) continue;  // as join(): no power, no bounds
+        for (int a = 0; a < axis_count; ++a) {
+            const int axis = axes[a];
+            const int b = at[axis] = static_cast<uint8_t>(bucket_of(items[i], axis, cmin, scale[axis], count));
+            LightBounds& bucket = buckets[axis][b];
+            for (int k = 0; k < 3; ++k) {
+                bucket.lo[k] = std::min(bucket.lo[k], light.lo[k]);
+                bucket.hi[k] = std::max(bucket.hi[k], light.hi[k]);
+            }
+            bucket.cos_theta_e = bucket.phi > 0 ? std::min(bucket.cos_theta_e, light.cos_theta_e) : light.cos_theta_e;
+            bucket.phi += light.phi;
+            bucket.two_sided = bucket.two_sided || light.two_sided;
+            everywhere[axis][b] = everywhere[axis][b] || light.cos_theta_o <= -1;
+            normal_sum[axis][b] = normal_sum[axis][b] + light.axis();
         }
+    }
+    float min_cos[3][kBuckets];
+    bool any_cone = false;
+    for (int a = 0; a < axis_count; ++a)
+        for (int b = 0, axis = axes[a]; b < count; ++b) {
+            min_cos[axis][b] = 1;
+            const double length = std::sqrt(dot(normal_sum[axis][b], normal_sum[axis][b]));
+            everywhere[axis][b] = everywhere[axis][b] || !(length > 1e-9);  // normals that cancel out
+            if (buckets[axis][b].phi > 0 && !everywhere[axis][b]) {
+                buckets[axis][b].set_axis(normal_sum[axis][b] * (1 / length));
+                any_cone = true;
+            }
+        }
+    // The widest angle from the axis of each light's cone: the angle to its axis plus its own
+    // half angle, by the sum formulas (past pi: every direction).
+    at = bucket_at.data();
+    for (size_t i = begin; any_cone && i < end; ++i, at += 3) {
+        const LightBounds& light = items[i].bounds;
+        if (!(light.phi > 0)) continue;
+        const double cos_t = light.cos_theta_o, sin_t = std::sqrt(std::max(0.0, 1 - cos_t * cos_t));
+        for (int a = 0; a < axis_count; ++a) {
+            const int axis = axes[a];
+            const int b = at[axis];
+            if (everywhere[axis][b]) continue;
+            const float* w = buckets[axis][b].w;
+            const double cos_a = std::clamp(
+                double(light.w[0]) * w[0] + double(light.w[1]) * w[1] + double(light.w[2]) * w[2], -1.0, 1.0);
+            double c = cos_a;
+            if (cos_t < 1) {
+                const double sin_a = std::sqrt(std::max(0.0, 1 - cos_a * cos_a));
+                c = sin_a * cos_t + cos_a * sin_t < 0 ? -1 : cos_a * cos_t - sin_a * sin_t;
+            }
+            min_cos[axis][b] = std::min(min_cos[axis][b], static_cast<float>(c));
+        }
+    }
+    for (int a = 0; a < axis_count; ++a)
+        for (int b = 0, axis = axes[a]; b < count; ++b) {
+            LightBounds& bucket = buckets[axis][b];
+            if (!(bucket.phi > 0)) continue;
+            if (everywhere[axis][b] || min_cos[axis][b] <= -1) {
+                bucket.set_axis_up();
+                bucket.cos_theta_o = -1;
+            } else {
+                bucket.cos_theta_o = min_cos[axis][b];
+            }
+        }
+}
+
+// The bucket boundary of the cheapest split of items [begin, end) over the three axes (axis -1:
+// none); the first of equal costs wins, in axis order.
+void BVHLightSampler::cheapest_split(const std::vector<Item>& items, size_t begin, size_t end, Vec3 cmin, Vec3 cmax,
+                                     int* best_axis, int* best_bucket) {
+    LightBounds buckets[3][kBuckets];
+    bucket_bounds(items, begin, end, cmin, cmax, buckets);
+    const int buckets_per_axis = bucket_count(end - begin);
+    thread_local OrientationMeasure orientation;
+    double best_cost = 1e300;
+    for (int axis = 0; axis < 3; ++axis) {
         // Costs of the splits from a sweep each way over the buckets that hold light (a split
-        // next to an empty bucket divides the lights as the one before it, and the first of equal
-        // costs wins: small nodes, most of the tree, have few such buckets). below[j] holds the
-        // lights of filled[0..j], above[j] those of filled[j+1..].
+        // next to an empty bucket divides the lights as the one before it: small nodes, most of
+        // the tree, have few such buckets). below[j] holds the lights of filled[0..j], above[j]
+        // those of filled[j+1..].
+        const LightBounds* bucket = buckets[axis];
         int filled[kBuckets];
         int count = 0;
-        for (int b = 0; b < kBuckets; ++b)
-            if (buckets[b].phi > 0) filled[count++] = b;
-        if (count == 0) return;
+        for (int b = 0; b < buckets_per_axis; ++b)
+            if (bucket[b].phi > 0) filled[count++] = b;
+        if (count == 0) continue;
         LightBounds below[kBuckets], above[kBuckets];
-        below[0] = buckets[filled[0]];
-        for (int j = 1; j < count; ++j) below[j] = union_of(below[j - 1], buckets[filled[j]]);
+        below[0] = bucket[filled[0]];
+        for (int j = 1; j < count; ++j) below[j] = union_of(below[j - 1], bucket[filled[j]]);
         above[count - 1] = LightBounds{};
-        if (count > 1) above[count - 2] = buckets[filled[count - 1]];
-        for (int j = count - 3; j >= 0; --j) above[j] = union_of(above[j + 1], buckets[filled[j + 1]]);
-        thread_local OrientationMeasure orientation;
+        if (count > 1) above[count - 2] = bucket[filled[count - 1]];
+        for (int j = count - 3; j >= 0; --j) above[j] = union_of(above[j + 1], bucket[filled[j + 1]]);
         auto try_split = [&](int split, const LightBounds& low, const LightBounds& high) {
             const double cost = cluster_cost(low, axis, orientation) + cluster_cost(high, axis, orientation);
-            if (cost < axis_cost[axis]) {
-                axis_cost[axis] = cost;
-                axis_bucket[axis] = split;
+            if (cost < best_cost) {
+                best_cost = cost;
+                *best_axis = axis;
+                *best_bucket = split;
             }
         };
         if (filled[0] > 0)  // nothing below: all of them above, joined in the same order
-            try_split(0, LightBounds{}, count > 1 ? union_of(above[0], buckets[filled[0]]) : buckets[filled[0]]);
+            try_split(0, LightBounds{}, count > 1 ? union_of(above[0], bucket[filled[0]]) : bucket[filled[0]]);
         for (int j = 0; j < count; ++j)
-            if (filled[j] < kBuckets - 1) try_split(filled[j], below[j], above[j]);
-    };
-    if (parallel) tbb::parallel_for(0, 3, cost_axis);
-    else for (int axis = 0; axis < 3; ++axis) cost_axis(axis);
-    double best_cost = 1e300;
-    for (int axis = 0; axis < 3; ++axis)
-        if (axis_cost[axis] < best_cost) {
-            best_cost = axis_cost[axis];
-            *best_axis = axis;
-            *best_bucket = axis_bucket[axis];
-        }
+            if (filled[j] < buckets_per_axis - 1) try_split(filled[j], below[j], above[j]);
+    }
 }
 
 void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint32_t self,
@@ -267,14 +349,14 @@ void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, 
     // median along the widest axis when the centroids coincide or the tree grows deep.
     const bool large = end - begin >= kParallelItems;
     int best_axis = -1, best_bucket = -1;
-    if (depth < kMaxSahDepth) cheapest_split(items, begin, end, cmin, cmax, large, &best_axis, &best_bucket);
+    // Two lights split one way only.
+    if (depth < kMaxSahDepth && end - begin > 2) cheapest_split(items, begin, end, cmin, cmax, &best_axis, &best_bucket);
     size_t mid = begin;
     if (best_axis >= 0) {
         const double extent = cmax[best_axis] - cmin[best_axis];
-        auto below = [&](const Item& item) {
-            int b = static_cast<int>(kBuckets * (item.bounds.centroid()[best_axis] - cmin[best_axis]) / extent);
-            return std::clamp(b, 0, kBuckets - 1) <= best_bucket;
-        };
+        const int buckets = bucket_count(end - begin);
+        const double scale = buckets / extent;
+        auto below = [&](const Item& item) { return bucket_of(item, best_axis, cmin, scale, buckets) <= best_bucket; };
         mid = std::partition(items.begin() + begin, items.begin() + end, below) - items.begin();
     }
     if (mid == begin || mid == end) {  // no useful split: halve along the widest spread

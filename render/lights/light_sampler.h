@@ -80,6 +80,7 @@ private:
     };
     static constexpr uint32_t kLeaf = 0x80000000u;
     static constexpr uint32_t kRoot = ~0u;
+    static constexpr int kBuckets = 12;  // at most, per axis, for the split search
     struct Item {
         LightBounds bounds;
         uint32_t light;
@@ -90,8 +91,12 @@ private:
     };
     // The probability of each of a node's lanes for q (empty lanes: 0).
     void lane_probabilities(const LightQuery& q, const Node& node, double p[4]) const;
+    static int bucket_of(const Item& item, int axis, Vec3 cmin, double scale, int buckets);
+    static int bucket_count(size_t lights);
+    static void bucket_bounds(const std::vector<Item>& items, size_t begin, size_t end, Vec3 cmin, Vec3 cmax,
+                              LightBounds buckets[3][kBuckets]);
     static void cheapest_split(const std::vector<Item>& items, size_t begin, size_t end, Vec3 cmin, Vec3 cmax,
-                               bool parallel, int* best_axis, int* best_bucket);
+                               int* best_axis, int* best_bucket);
     // Builds the binary subtree of items [begin, end) in tree[self] (siblings side by side), its
     // descendants from tree[next] on in depth-first order: a subtree of m lights has 2m - 1 nodes,
     // so both halves know their place and large ones are built side by side, the same tree.

@@ -86,6 +86,10 @@ void SceneLights::gather_window_strips(std::vector<LightBounds>& bounds) {
         const uint32_t begin = static_cast<uint32_t>(i) * kBuildingsPerBatch;
         gather_window_strips(begin, std::min(n, begin + kBuildingsPerBatch), batches[i]);
     });
+    size_t strips = 0;
+    for (const StripBatch& batch : batches) strips += batch.strips.size();
+    strips_.reserve(strips);
+    bounds.reserve(bounds.size() + strips);
     for (StripBatch& batch : batches) {
         strips_.insert(strips_.end(), batch.strips.begin(), batch.strips.end());
         bounds.insert(bounds.end(), batch.bounds.begin(), batch.bounds.end());
