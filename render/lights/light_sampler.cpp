@@ -5,6 +5,7 @@
 #include <cstring>
 #include <utility>
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include "common/error.h"
@@ -16,6 +17,7 @@ namespace {
 constexpr double kMostShare = 0.75;  // weight of the nearest-point share in a descent step
 constexpr int kMaxSahDepth = 40;  // below this, plain median splits
 constexpr size_t kParallelItems = 4096;  // nodes this large are built with both halves side by side
+constexpr uint32_t kParallelNodes = 1024;  // 4-wide subtrees this large are made side by side
 
 // The solid angle term of pbrt-v4's cost, a function of the two cone angles only. The split
 // searches cost the same few cones over and over (a single direction, the whole sphere, the
@@ -137,11 +139,11 @@ BVHLightSampler::BVHLightSampler(std::vector<LightBounds> lights) : LightSampler
     build(items, 0, items.size(), 0, 0, 1, tree);
     items = {};
     leaf_of_.assign(light_count_, 0);
-    const size_t nodes = collapsed_size(tree, 0);  // reserved exactly: no regrowth, no spare
-    nodes_.reserve(nodes);
-    parents_.reserve(nodes);
-    nodes_.emplace_back();
-    parents_.push_back(kRoot);
+    const size_t nodes = tree[0].index & kLeaf ? 1 : tree[0].collapsed;  // sized exactly: no regrowth, no spare
+    if (nodes >= kLeaf / 4) throw Error("too many lights for the light sampler");
+    nodes_.resize(nodes);
+    parents_.resize(nodes);
+    parents_[0] = kRoot;
     collapse(tree, 0, 0);
 }
 
@@ -164,18 +166,12 @@ int BVHLightSampler::lanes_of(const std::vector<BinaryNode>& tree, uint32_t b, u
     return count;
 }
 
-size_t BVHLightSampler::collapsed_size(const std::vector<BinaryNode>& tree, uint32_t b) {
-    uint32_t lanes[4];
-    const int count = lanes_of(tree, b, lanes);
-    size_t n = 1;
-    for (int lane = 0; lane < count; ++lane)
-        if (!(tree[lanes[lane]].index & kLeaf)) n += collapsed_size(tree, lanes[lane]);
-    return n;
-}
-
 void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self) {
-    uint32_t lanes[4];
+    // The 4-wide nodes in depth-first order, each subtree's from the node after its root on: the
+    // lanes' subtrees know their places, and large ones are made side by side.
+    uint32_t lanes[4], below[4];
     const int count = lanes_of(tree, b, lanes);
+    uint32_t next = self + 1;
     for (int lane = 0; lane < count; ++lane) {
         const BinaryNode& child = tree[lanes[lane]];
         nodes_[self].bounds.set(lane, child.bounds);
@@ -183,15 +179,21 @@ void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, 
             nodes_[self].child[lane] = child.index;
             leaf_of_[child.index & ~kLeaf] = self * 4 + lane;
         } else {
-            const uint32_t node = static_cast<uint32_t>(nodes_.size());
-            if (node >= kLeaf / 4) throw Error("too many lights for the light sampler");
-            nodes_.emplace_back();
-            parents_.push_back(self * 4 + lane);
-            nodes_[self].child[lane] = node;
-            collapse(tree, lanes[lane], node);
+            below[lane] = next;
+            parents_[next] = self * 4 + lane;
+            nodes_[self].child[lane] = next;
+            next += child.collapsed;
         }
     }
     for (int lane = count; lane < 4; ++lane) nodes_[self].child[lane] = kLeaf;  // empty: power 0, never chosen
+    auto collapse_lane = [&](int lane) {
+        if (!(tree[lanes[lane]].index & kLeaf)) collapse(tree, lanes[lane], below[lane]);
+    };
+    if (next - self >= kParallelNodes) {
+        tbb::parallel_for(0, count, collapse_lane);
+    } else {
+        for (int lane = 0; lane < count; ++lane) collapse_lane(lane);
+    }
 }
 
 // The bucket along `axis` of a light: `scale` is the bucket count over the centroids' extent.
@@ -381,6 +383,10 @@ void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, 
     }
     tree[self].bounds = union_of(tree[first].bounds, tree[first + 1].bounds);
     tree[self].index = first;
+    uint32_t lanes[4];
+    tree[self].collapsed = 1;
+    for (int lane = 0, count = lanes_of(tree, self, lanes); lane < count; ++lane)
+        tree[self].collapsed += tree[lanes[lane]].collapsed;  // a leaf's is 0
 }
 
 bool BVHLightSampler::sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {

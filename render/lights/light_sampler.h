@@ -88,6 +88,7 @@ private:
     struct BinaryNode {
         LightBounds bounds;
         uint32_t index = 0;  // leaf: kLeaf | the light; interior: its first child (the second follows it)
+        uint32_t collapsed = 0;  // interior: how many 4-wide nodes collapse() makes of it
     };
     // The probability of each of a node's lanes for q (empty lanes: 0).
     void lane_probabilities(const LightQuery& q, const Node& node, double p[4]) const;
@@ -104,8 +105,6 @@ private:
                       std::vector<BinaryNode>& tree);
     // The binary nodes that become the lanes of the 4-wide node made from binary node b.
     static int lanes_of(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t lanes[4]);
-    // How many 4-wide nodes collapse(tree, b, ...) makes.
-    static size_t collapsed_size(const std::vector<BinaryNode>& tree, uint32_t b);
     // Makes node `self` of the 4-wide tree from binary node `b` and its descendants.
     void collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self);
 
