@@ -224,16 +224,12 @@ void BVHLightSampler::bucket_bounds(const std::vector<Item>& items, size_t begin
     }
     Vec3 normal_sum[3][kBuckets] = {};
     bool everywhere[3][kBuckets] = {};
-    // Each light's bucket along each axis, from the first pass for the second.
-    thread_local std::vector<uint8_t> bucket_at;
-    bucket_at.resize(3 * (end - begin));
-    uint8_t* at = bucket_at.data();
-    for (size_t i = begin; i < end; ++i, at += 3) {
+    for (size_t i = begin; i < end; ++i) {
         const LightBounds& light = items[i].bounds;
         if (!(light.phi > 0)) continue;  // as join(): no power, no bounds
         for (int a = 0; a < axis_count; ++a) {
             const int axis = axes[a];
-            const int b = at[axis] = static_cast<uint8_t>(bucket_of(items[i], axis, cmin, scale[axis], count));
+            const int b = bucket_of(items[i], axis, cmin, scale[axis], count);
             LightBounds& bucket = buckets[axis][b];
             for (int k = 0; k < 3; ++k) {
                 bucket.lo[k] = std::min(bucket.lo[k], light.lo[k]);
@@ -260,14 +256,13 @@ void BVHLightSampler::bucket_bounds(const std::vector<Item>& items, size_t begin
         }
     // The widest angle from the axis of each light's cone: the angle to its axis plus its own
     // half angle, by the sum formulas (past pi: every direction).
-    at = bucket_at.data();
-    for (size_t i = begin; any_cone && i < end; ++i, at += 3) {
+    for (size_t i = begin; any_cone && i < end; ++i) {
         const LightBounds& light = items[i].bounds;
         if (!(light.phi > 0)) continue;
         const double cos_t = light.cos_theta_o, sin_t = std::sqrt(std::max(0.0, 1 - cos_t * cos_t));
         for (int a = 0; a < axis_count; ++a) {
             const int axis = axes[a];
-            const int b = at[axis];
+            const int b = bucket_of(items[i], axis, cmin, scale[axis], count);
             if (everywhere[axis][b]) continue;
             const float* w = buckets[axis][b].w;
             const double cos_a = std::clamp(
