@@ -169,7 +169,7 @@ int BVHLightSampler::lanes_of(const std::vector<BinaryNode>& tree, uint32_t b, u
 void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, uint32_t self) {
     // The 4-wide nodes in depth-first order, each subtree's from the node after its root on: the
     // lanes' subtrees know their places, and large ones are made side by side.
-    uint32_t lanes[4], below[4];
+    uint32_t lanes[4], lane_node[4];
     const int count = lanes_of(tree, b, lanes);
     uint32_t next = self + 1;
     for (int lane = 0; lane < count; ++lane) {
@@ -179,7 +179,7 @@ void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, 
             nodes_[self].child[lane] = child.index;
             leaf_of_[child.index & ~kLeaf] = self * 4 + lane;
         } else {
-            below[lane] = next;
+            lane_node[lane] = next;
             parents_[next] = self * 4 + lane;
             nodes_[self].child[lane] = next;
             next += child.collapsed;
@@ -187,7 +187,7 @@ void BVHLightSampler::collapse(const std::vector<BinaryNode>& tree, uint32_t b, 
     }
     for (int lane = count; lane < 4; ++lane) nodes_[self].child[lane] = kLeaf;  // empty: power 0, never chosen
     auto collapse_lane = [&](int lane) {
-        if (!(tree[lanes[lane]].index & kLeaf)) collapse(tree, lanes[lane], below[lane]);
+        if (!(tree[lanes[lane]].index & kLeaf)) collapse(tree, lanes[lane], lane_node[lane]);
     };
     if (next - self >= kParallelNodes) {
         tbb::parallel_for(0, count, collapse_lane);
