@@ -80,5 +80,34 @@ TEST(BVHLightSampler, ProbabilitiesOfALargeTreeSumToOne) {
     }
 }
 
+// The nodes' cones hold their lights' normals (the split search's cheaper bucket cones never
+// become a node's), and every leaf is where the tree says: a light that surely reaches a point
+// has a chance there, and sampling it reports the probability pmf() gives.
+TEST(BVHLightSampler, EveryLightThatReachesAPointHasAChance) {
+    const std::vector<LightBounds> lights = city_of_lights(20000);
+    const auto tree = tree_with_threads(lights, 2);
+    for (const Vec3 p : {Vec3{1000, 1000, 1.5}, Vec3{10, 1990, 20}, Vec3{1500, 300, 60}}) {
+        int reaching = 0;
+        for (uint32_t i = 0; i < lights.size(); ++i) {
+            const LightBounds& b = lights[i];
+            // A globe lights every way; a pane lights p if p is in front of all of its box (the
+            // box reaches at most 1.5 m along its normal from the centre).
+            const bool reaches = b.cos_theta_o <= -1 || dot(p - b.centroid(), b.axis()) > 1.5;
+            if (!reaches) continue;
+            ++reaching;
+            EXPECT_GT(tree->pmf(p, {0, 0, 0}, i), 0) << "light " << i;
+        }
+        EXPECT_GT(reaching, 10000);
+        std::mt19937_64 rng(3);
+        std::uniform_real_distribution<double> unit(0, 1);
+        for (int s = 0; s < 200; ++s) {
+            uint32_t light = 0;
+            double pmf = 0;
+            ASSERT_TRUE(tree->sample(p, {0, 0, 0}, unit(rng), &light, &pmf));
+            EXPECT_DOUBLE_EQ(pmf, tree->pmf(p, {0, 0, 0}, light));
+        }
+    }
+}
+
 }  // namespace
 }  // namespace citygen
