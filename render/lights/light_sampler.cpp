@@ -384,12 +384,20 @@ void BVHLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, 
         tree[self].collapsed += tree[lanes[lane]].collapsed;  // a leaf's is 0
 }
 
+void BVHLightSampler::prefetch(uint32_t node) const {
+    const char* bytes = reinterpret_cast<const char*>(&nodes_[node]);
+    for (size_t offset = 0; offset < sizeof(Node); offset += 64) __builtin_prefetch(bytes + offset);
+}
+
 bool BVHLightSampler::sample(Vec3 p, Vec3 n, double u, uint32_t* light, double* pmf) const {
     if (light_count_ == 0) return false;
     const LightQuery q(p, n);
     uint32_t node = 0;
     double probability = 1;
     for (;;) {
+        // Every child is fetched while this node's lanes are weighed: one of them is next.
+        for (uint32_t child : nodes_[node].child)
+            if (!(child & kLeaf)) prefetch(child);
         double lane_p[4];
         lane_probabilities(q, nodes_[node], lane_p);
         // The lane u falls in (the last with a chance if rounding leaves u above their sum),
@@ -421,6 +429,7 @@ double BVHLightSampler::pmf(Vec3 p, Vec3 n, uint32_t light) const {
     uint32_t path[64];
     int depth = 0;
     for (uint32_t at = leaf_of_[light]; at != kRoot && depth < 64; at = parents_[at / 4]) path[depth++] = at;
+    for (int i = 0; i < depth; ++i) prefetch(path[i] / 4);
     const LightQuery q(p, n);
     double probability = 1;
     while (depth > 0) {

@@ -74,7 +74,7 @@ public:
 private:
     // A node of the 4-wide tree: up to four children (the grandchildren of a node of the binary
     // tree the build makes, or its children where those are leaves).
-    struct Node {
+    struct alignas(64) Node {  // three cache lines
         LightBounds4 bounds;
         uint32_t child[4];  // kLeaf | the light, or a node; lanes with no power are empty
     };
@@ -90,6 +90,9 @@ private:
         uint32_t index = 0;  // leaf: kLeaf | the light; interior: its first child (the second follows it)
         uint32_t collapsed = 0;  // interior: how many 4-wide nodes collapse() makes of it
     };
+    // Asks the cache for a node: on a large city the tree is far larger than the caches, and a
+    // descent would otherwise wait on memory at every level.
+    void prefetch(uint32_t node) const;
     // The probability of each of a node's lanes for q (empty lanes: 0).
     void lane_probabilities(const LightQuery& q, const Node& node, double p[4]) const;
     static int bucket_of(const Item& item, int axis, Vec3 cmin, double scale, int buckets);
