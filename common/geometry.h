@@ -1,6 +1,7 @@
 // Small 2D/3D vector types and the polygon predicates every stage shares.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -86,8 +87,8 @@ inline double distance_to_boundary(Vec2 p, const Ring& ring) {
     for (size_t i = 0, n = ring.size(); i < n; ++i) {
         const Vec2 a = ring[i], b = ring[(i + 1) % n], ab = b - a;
         const double len2 = dot(ab, ab);
-        const double t = len2 > 0 ? std::fmin(std::fmax(dot(p - a, ab) / len2, 0.0), 1.0) : 0.0;
-        best = std::fmin(best, length(p - (a + ab * t)));
+        const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+        best = std::min(best, length(p - (a + ab * t)));
     }
     return best;
 }
@@ -100,9 +101,11 @@ bool ring_is_convex(const Ring& ring);
 
 struct Box2 {
     Vec2 min{1e300, 1e300}, max{-1e300, -1e300};
+    // std::min(current, p): a NaN coordinate is ignored, as std::fmin would, but inlined (fmin
+    // is a call into libm).
     void extend(Vec2 p) {
-        min.x = std::fmin(min.x, p.x); min.y = std::fmin(min.y, p.y);
-        max.x = std::fmax(max.x, p.x); max.y = std::fmax(max.y, p.y);
+        min.x = std::min(min.x, p.x); min.y = std::min(min.y, p.y);
+        max.x = std::max(max.x, p.x); max.y = std::max(max.y, p.y);
     }
     bool empty() const { return min.x > max.x; }
     bool overlaps(const Box2& o) const {

@@ -55,8 +55,8 @@ inline int exact_orientation(Vec2 a, Vec2 b, Vec2 c) {
 inline bool exact_segments_touch(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
     // Within the segment's box: comparisons of doubles are exact.
     auto in_box = [](Vec2 s, Vec2 e, Vec2 p) {
-        return std::fmin(s.x, e.x) <= p.x && p.x <= std::fmax(s.x, e.x) && std::fmin(s.y, e.y) <= p.y &&
-               p.y <= std::fmax(s.y, e.y);
+        return std::min(s.x, e.x) <= p.x && p.x <= std::max(s.x, e.x) && std::min(s.y, e.y) <= p.y &&
+               p.y <= std::max(s.y, e.y);
     };
     const int o1 = exact_orientation(a, b, c), o2 = exact_orientation(a, b, d);
     const int o3 = exact_orientation(c, d, a), o4 = exact_orientation(c, d, b);
