@@ -1,8 +1,8 @@
 // Large scenes in 2 MiB pages. A metropolis's set-up fills gigabytes of fresh memory, and the
 // kernel hands it over 4 KiB at a time unless malloc asks for transparent huge pages. glibc asks
 // only when its `glibc.malloc.hugetlb` tunable is set, and it reads tunables when a program
-// starts, so the render starts itself again with the tunable set (huge_pages.cpp says why
-// malloc's top pad goes to 0 with it).
+// starts, so the render starts itself again with the tunable set (huge_page_tunables says what
+// else it sets, and why).
 #pragma once
 
 #include <string>
@@ -17,6 +17,10 @@ constexpr unsigned long long kHugePageSceneBytes = 64ull << 20;
 // Whether a render of these scenes restarts: they are that large and `tunables` (the value of
 // GLIBC_TUNABLES, or null) does not set the tunable yet (by us or by the user).
 bool wants_huge_pages(const std::vector<std::string>& scene_paths, const char* tunables);
+
+// The value of GLIBC_TUNABLES for the restart: `tunables` (the current value, or null) with
+// huge pages and the heap settings that go with them, each unless it is set already.
+std::string huge_page_tunables(const char* tunables);
 
 // Replaces the process by the same command with the tunable set where malloc is glibc's and
 // wants_huge_pages. Returns when it does not restart, or when the restart fails (the render then

@@ -1,6 +1,10 @@
 // The procedural builders: the same surfaces as the stored builders (stored_buildings.cpp,
 // stored_flat_polygons.cpp), as user-geometry primitives instead of triangles.
 #include <algorithm>
+#include <memory>
+#include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "render/facade/facade_materials.h"
 #include "render/geometry/bridge_geometry.h"
@@ -32,14 +36,12 @@ void add_ground_polygon(const Scene& scene, const Ring& outer, const std::vector
         geometry.add_face(object, {draped.points[t[0]], draped.points[t[1]], draped.points[t[2]]}, material);
 }
 
-std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades,
-                                                               Progress* progress) {
-    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Building, facade_surface_materials());
-    size_t walls = 0;
-    for (const Building& b : scene.buildings)
-        if (has_volume(b)) walls += building_wall_count(b);
-    geometry->reserve_walls(walls);
-    for (uint32_t index = 0; index < scene.buildings.size(); ++index) {
+namespace {
+
+// Buildings [begin, end) into `geometry`, in order.
+void add_procedural_buildings(const Scene& scene, const FacadeOptions& facades, uint32_t begin, uint32_t end,
+                              ProceduralGeometry& geometry, Progress* progress) {
+    for (uint32_t index = begin; index < end; ++index) {
         if (progress) progress->advance();
         const Building& b = scene.buildings[index];
         if (!has_volume(b)) continue;
@@ -57,15 +59,45 @@ std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scen
             if (p == q || !(input.height > 0)) continue;  // no wall under a roof that starts at the bottom
             const WallGrid grid = wall_grid(facades, choices, input);
             if (!grid.plain() && !choices_added) {
-                choices_index = geometry->add_facade_choices(choices);
+                choices_index = geometry.add_facade_choices(choices);
                 choices_added = true;
             }
-            geometry->add_wall(index, input, choices_index, grid, p, q, bottom);
+            geometry.add_wall(index, input, choices_index, grid, p, q, bottom);
         }
-        if (b.roof_faces.empty()) geometry->add_polygon(index, b.outer, b.holes, top, kRoof, +1);
+        if (b.roof_faces.empty()) geometry.add_polygon(index, b.outer, b.holes, top, kRoof, +1);
         for (const RoofFace& face : b.roof_faces)
-            geometry->add_face(index, lifted_face(face, ground), roof_face_material(face));
-        if (b.min_height > 0) geometry->add_polygon(index, b.outer, b.holes, bottom, kFacade, -1);
+            geometry.add_face(index, lifted_face(face, ground), roof_face_material(face));
+        if (b.min_height > 0) geometry.add_polygon(index, b.outer, b.holes, bottom, kFacade, -1);
+    }
+}
+
+}  // namespace
+
+std::unique_ptr<ProceduralGeometry> build_procedural_buildings(const Scene& scene, const FacadeOptions& facades,
+                                                               Progress* progress) {
+    auto geometry = std::make_unique<ProceduralGeometry>(ObjectKind::Building, facade_surface_materials());
+    size_t walls = 0;
+    for (const Building& b : scene.buildings)
+        if (has_volume(b)) walls += building_wall_count(b);
+    geometry->reserve_walls(walls);
+    // Runs of buildings are made side by side and joined in order, a batch of runs at a time (all
+    // of a metropolis's at once would hold its walls twice).
+    constexpr uint32_t kBuildingsPerRun = 1024;
+    constexpr size_t kRunsPerBatch = 32;
+    const auto n = static_cast<uint32_t>(scene.buildings.size());
+    const size_t runs = (n + kBuildingsPerRun - 1) / kBuildingsPerRun;
+    std::vector<std::unique_ptr<ProceduralGeometry>> parts(std::min(runs, kRunsPerBatch));
+    for (size_t first = 0; first < runs; first += kRunsPerBatch) {
+        const size_t count = std::min(kRunsPerBatch, runs - first);
+        tbb::parallel_for(size_t{0}, count, [&](size_t i) {
+            const auto begin = static_cast<uint32_t>((first + i) * kBuildingsPerRun);
+            parts[i] = std::make_unique<ProceduralGeometry>(ObjectKind::Building, facade_surface_materials());
+            add_procedural_buildings(scene, facades, begin, std::min(n, begin + kBuildingsPerRun), *parts[i], progress);
+        });
+        for (size_t i = 0; i < count; ++i) {
+            geometry->append(*parts[i]);
+            parts[i].reset();
+        }
     }
     return geometry;
 }

@@ -118,6 +118,40 @@ void ProceduralGeometry::add_face(uint32_t object, const std::vector<Vec3>& poin
     faces_.push_back(face);
 }
 
+void ProceduralGeometry::append(const ProceduralGeometry& part) {
+    const uint32_t grids = grids_.size(), choices = choices_.size();
+    const auto rings = static_cast<uint32_t>(ring_ends_.size()), points = static_cast<uint32_t>(points_.size());
+    const auto hole_nodes = static_cast<uint32_t>(hole_nodes_.size());
+    const auto hole_rings = static_cast<uint32_t>(hole_rings_.size());
+    const auto face_points = static_cast<uint32_t>(face_points_.size());
+    for (uint32_t i = 0; i < part.choices_.size(); ++i) choices_.push_back(part.choices_[i]);
+    for (uint32_t i = 0; i < part.grids_.size(); ++i) grids_.push_back(part.grids_[i]);
+    for (Wall wall : part.walls_) {
+        if (wall.grid != kPlainWall) {
+            wall.grid += grids;
+            wall.choices += choices;
+        }
+        walls_.push_back(wall);
+    }
+    for (Polygon polygon : part.polygons_) {
+        polygon.first_ring += rings;
+        if (polygon.hole_root != kNoHoleTree) polygon.hole_root += hole_nodes;
+        polygons_.push_back(polygon);
+    }
+    for (uint32_t end : part.ring_ends_) ring_ends_.push_back(end + points);
+    points_.insert(points_.end(), part.points_.begin(), part.points_.end());
+    for (HoleNode node : part.hole_nodes_) {
+        node.first += node.count > 0 ? hole_rings : hole_nodes;  // a leaf's rings, or an inner node's second child
+        hole_nodes_.push_back(node);
+    }
+    for (uint32_t ring : part.hole_rings_) hole_rings_.push_back(ring + rings);
+    for (Face face : part.faces_) {
+        face.first_point += face_points;
+        faces_.push_back(face);
+    }
+    face_points_.insert(face_points_.end(), part.face_points_.begin(), part.face_points_.end());
+}
+
 size_t ProceduralGeometry::buffer_bytes() const {
     return walls_.capacity() * sizeof(Wall) + wall_runs_.capacity() * sizeof(uint32_t) + grids_.bytes() +
            choices_.bytes() +

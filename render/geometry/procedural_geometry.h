@@ -55,6 +55,9 @@ public:
     // A planar polygon in any orientation (roof faces, gable walls), front side counter-clockwise:
     // plane hit plus point-in-polygon in the plane's projection along its dominant axis.
     void add_face(uint32_t object, const std::vector<Vec3>& points, uint16_t material);
+    // Adds the surfaces of `part` (of the same kind) after those already here, as if they had
+    // been added here in its order: builders make runs of objects side by side and join them.
+    void append(const ProceduralGeometry& part);
 
     ObjectKind kind() const override { return kind_; }
     GeometryMode mode() const override { return GeometryMode::Procedural; }
@@ -99,7 +102,7 @@ private:
         double length, height;
         uint32_t object, wall_index;
         uint32_t grid;     // into grids_, or kPlainWall
-        uint32_t choices;  // into choices_
+        uint32_t choices;  // into choices_ (walls with a grid only)
     };
     static constexpr uint32_t kPlainWall = 0xffffffffu;
     // Millions of values in blocks of fixed size: a vector's regrowth and final shrink would
@@ -113,6 +116,7 @@ private:
             return size_++;
         }
         const T& operator[](uint32_t i) const { return blocks_[i >> kShift][i & kMask]; }
+        uint32_t size() const { return size_; }
         size_t bytes() const { return blocks_.size() * kBlock * sizeof(T); }
 
     private:

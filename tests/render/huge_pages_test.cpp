@@ -41,6 +41,17 @@ TEST(HugePages, TheTunableSetByAnyoneStopsTheRestart) {
     EXPECT_TRUE(wants_huge_pages({large}, ""));
 }
 
+TEST(HugePages, TheRestartKeepsFreedMemoryInTheHeapAndTheUsersOwnSettings) {
+    EXPECT_EQ(huge_page_tunables(nullptr),
+              "glibc.malloc.hugetlb=1:glibc.malloc.top_pad=0:glibc.malloc.mmap_max=0:"
+              "glibc.malloc.trim_threshold=4611686018427387904");
+    EXPECT_EQ(huge_page_tunables(""), huge_page_tunables(nullptr));
+    const std::string value = huge_page_tunables("glibc.malloc.arena_max=2:glibc.malloc.mmap_max=8");
+    EXPECT_EQ(value.find("glibc.malloc.arena_max=2:glibc.malloc.mmap_max=8:glibc.malloc.hugetlb=1"), 0u) << value;
+    EXPECT_EQ(value.find("mmap_max=0"), std::string::npos) << value;  // the user's value stays
+    EXPECT_NE(value.find("glibc.malloc.trim_threshold="), std::string::npos) << value;
+}
+
 TEST(HugePages, ALargeBadSceneStillGivesOneLine) {
     // The restarted render reports the bad file once, as the first start would have.
     TempDir dir;

@@ -173,6 +173,62 @@ TEST(ProceduralGeometry, ManyCourtyardsSameWallsAndHitsAsAWalkOverTheRings) {
     EXPECT_LT(roof, 20000 * 19 / 20);
 }
 
+// The procedural builder makes runs of buildings side by side and joins them: buildings far
+// down the list (windows, courtyards in a hole tree, a floating part, a gabled roof) keep their
+// own surfaces once joined after thousands of others, as the stored builder (one pass) makes them.
+TEST(ProceduralGeometry, BuildingsLateInALongListKeepTheirSurfaces) {
+    Scene scene;
+    scene.header.seed = 11;
+    for (int i = 0; i < 2500; ++i) {
+        const Vec2 at{-2000.0 + 40 * (i % 100), -2000.0 + 40 * (i / 100)};
+        scene.buildings.push_back(box_building(i + 1, at, at + Vec2{12, 9}, 6 + i % 20));
+    }
+    auto courtyards = [](int64_t id, Vec2 at) {
+        Building court = box_building(id, at, at + Vec2{61, 61}, 21);
+        for (int i = 0; i < 36; ++i) {
+            const Vec2 corner = at + Vec2{3.0 + 9.0 * (i % 6), 3.0 + 9.0 * (i / 6)};
+            court.holes.push_back({corner, corner + Vec2{0, 4}, corner + Vec2{4, 4}, corner + Vec2{4, 0}});
+        }
+        return court;
+    };
+    scene.buildings[0] = courtyards(1, {-1000, -1000});  // a hole tree before the one in view
+    scene.buildings.push_back(courtyards(9001, {0, 0}));
+    scene.buildings.push_back(box_building(9002, {70, 0}, {82, 12}, 30, 12));  // floating part
+    Building gabled = box_building(9003, {90, 0}, {104, 10}, 14);
+    gabled.roof_shape = RoofShape::Gabled;
+    gabled.roof_height = 4;  // walls to 10 m, the ridge along x at y = 5, 14 m (heights over the base)
+    gabled.roof_faces = {{{{90, 0, 10}, {104, 0, 10}, {104, 5, 14}, {90, 5, 14}}},
+                         {{{104, 10, 10}, {90, 10, 10}, {90, 5, 14}, {104, 5, 14}}},
+                         {{{104, 0, 10}, {104, 10, 10}, {104, 5, 14}}, RoofFaceKind::Gable},
+                         {{{90, 10, 10}, {90, 0, 10}, {90, 5, 14}}, RoofFaceKind::Gable}};
+    scene.buildings.push_back(gabled);
+    scene.ground.min = {-2100, -2100};
+    scene.ground.max = {2100, 2100};
+    scene.header.bounds_min = scene.ground.min;
+    scene.header.bounds_max = scene.ground.max;
+    FacadeOptions facades;
+    facades.seed = scene.header.seed;
+    facades.shop_probability = 0.5;
+    auto stored = build_render_scene(scene, GeometryModes::all(GeometryMode::Stored), facades);
+    auto procedural = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural), facades);
+    Rng rng(13);
+    int late = 0, mismatches = 0;
+    for (int i = 0; i < 20000; ++i) {
+        Ray ray;
+        ray.origin = {uniform(rng, -30, 130), uniform(rng, -40, 100), uniform(rng, 1, 60)};
+        const Vec3 target{uniform(rng, 0, 104), uniform(rng, 0, 61), uniform(rng, 0, 30)};
+        ray.direction = normalize(target - ray.origin);
+        Hit a, b;
+        const bool ha = stored->intersect(ray, a), hb = procedural->intersect(ray, b);
+        if (ha != hb || a.kind != b.kind || a.object != b.object || a.material != b.material ||
+            std::abs(a.t - b.t) > 1e-3 * std::max(1.0, a.t))
+            ++mismatches;
+        if (ha && a.kind == ObjectKind::Building && a.object >= 2500) ++late;
+    }
+    EXPECT_LE(mismatches, 20);  // rounding at shared edges
+    EXPECT_GT(late, 20000 / 4);
+}
+
 // Coplanar overlapping surfaces (two road quads over each other, as near-parallel roads give):
 // the same distance from both, and the lower primitive wins whatever order the BVH visits them
 // in, so a change elsewhere in the scene does not flip which one is seen.
