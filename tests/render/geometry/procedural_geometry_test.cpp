@@ -27,6 +27,22 @@ Building box_building(int64_t id, Vec2 min, Vec2 max, double height, double min_
     return b;
 }
 
+// The ground and the scene's bounds: the box from min to max.
+void set_ground(Scene& s, Vec2 min, Vec2 max) {
+    s.ground.min = min;
+    s.ground.max = max;
+    s.header.bounds_min = min;
+    s.header.bounds_max = max;
+}
+
+// Facades with shops (the scene's seed), as both modes' builders take them.
+FacadeOptions shop_facades(const Scene& s) {
+    FacadeOptions facades;
+    facades.seed = s.header.seed;
+    facades.shop_probability = 0.5;
+    return facades;
+}
+
 // A small street corner: towers of several sizes, an L-shaped block, a courtyard building,
 // a floating part, a road, a joint, sidewalks.
 Scene test_scene() {
@@ -56,10 +72,7 @@ Scene test_scene() {
     Sidewalk walk;
     walk.polygon = {{-50, 17}, {70, 17}, {70, 20}, {-50, 20}};
     s.sidewalks.push_back(walk);
-    s.ground.min = {-60, -20};
-    s.ground.max = {80, 70};
-    s.header.bounds_min = s.ground.min;
-    s.header.bounds_max = s.ground.max;
+    set_ground(s, {-60, -20}, {80, 70});
     return s;
 }
 
@@ -69,9 +82,7 @@ double uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * rng.nex
 
 TEST(ProceduralGeometry, SameHitsAsStoredTriangles) {
     const Scene scene = test_scene();
-    FacadeOptions facades;
-    facades.seed = scene.header.seed;
-    facades.shop_probability = 0.5;
+    const FacadeOptions facades = shop_facades(scene);
     auto stored = build_render_scene(scene, GeometryModes::all(GeometryMode::Stored), facades);
     auto procedural = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural), facades);
 
@@ -202,13 +213,8 @@ TEST(ProceduralGeometry, BuildingsLateInALongListKeepTheirSurfaces) {
                          {{{104, 0, 10}, {104, 10, 10}, {104, 5, 14}}, RoofFaceKind::Gable},
                          {{{90, 10, 10}, {90, 0, 10}, {90, 5, 14}}, RoofFaceKind::Gable}};
     scene.buildings.push_back(gabled);
-    scene.ground.min = {-2100, -2100};
-    scene.ground.max = {2100, 2100};
-    scene.header.bounds_min = scene.ground.min;
-    scene.header.bounds_max = scene.ground.max;
-    FacadeOptions facades;
-    facades.seed = scene.header.seed;
-    facades.shop_probability = 0.5;
+    set_ground(scene, {-2100, -2100}, {2100, 2100});
+    const FacadeOptions facades = shop_facades(scene);
     auto stored = build_render_scene(scene, GeometryModes::all(GeometryMode::Stored), facades);
     auto procedural = build_render_scene(scene, GeometryModes::all(GeometryMode::Procedural), facades);
     Rng rng(13);
