@@ -55,7 +55,8 @@ void add_facade_walls(const Building& b, uint32_t object, double bottom, const F
 }
 
 // Buffer sizes for all buildings (facades exact, roofs and undersides a bound), so the buffers
-// are allocated once instead of doubling: at tall heights they hold tens of millions of triangles.
+// are allocated once (in huge pages) instead of doubling: at tall heights they hold tens of
+// millions of triangles.
 void reserve_buildings(const Scene& scene, const FacadeOptions& facades, TriangleMesh& mesh) {
     size_t triangles = 0, vertices = 0;
     for (const Building& b : scene.buildings) {
@@ -71,10 +72,7 @@ void reserve_buildings(const Scene& scene, const FacadeOptions& facades, Triangl
         triangles += 2 * (ring_points + 2 * b.holes.size());  // roof and underside
         vertices += 2 * ring_points;
     }
-    mesh.vertices.reserve(3 * vertices + 4);  // + Embree's padding
-    mesh.indices.reserve(3 * triangles);
-    mesh.face_object.reserve(triangles);
-    mesh.face_material.reserve(triangles);
+    mesh.reserve(vertices, triangles);
 }
 
 // A planar face as triangles, wound counter-clockwise seen from the face's front: triangulated
