@@ -9,11 +9,11 @@
 
 #include <gperftools/malloc_extension.h>
 
+#include "common/huge_page_advice.h"
+
 namespace citygen {
 
 namespace {
-
-constexpr size_t kHugePage = size_t{2} << 20;
 
 size_t round_up(size_t n, size_t to) { return (n + to - 1) / to * to; }
 
@@ -34,7 +34,7 @@ public:
                 if (aligned > start) munmap(p, aligned - start);
                 const uintptr_t end = start + mapped;
                 if (end > aligned + bytes) munmap(reinterpret_cast<void*>(aligned + bytes), end - aligned - bytes);
-                madvise(reinterpret_cast<void*>(aligned), bytes, MADV_HUGEPAGE);  // a hint: 4 KiB pages if refused
+                advise_huge_pages(reinterpret_cast<void*>(aligned), bytes);
                 if (actual_size) *actual_size = bytes;
                 return reinterpret_cast<void*>(aligned);
             }

@@ -1,22 +1,8 @@
 #include "render/scene/triangle_mesh.h"
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
+#include "common/huge_page_advice.h"
 
 namespace citygen {
-
-void advise_huge_pages(const void* data, size_t bytes) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    constexpr uintptr_t kHugePage = uintptr_t{2} << 20;
-    const auto start = reinterpret_cast<uintptr_t>(data);
-    const uintptr_t first = (start + kHugePage - 1) & ~(kHugePage - 1), end = (start + bytes) & ~(kHugePage - 1);
-    if (end > first) ::madvise(reinterpret_cast<void*>(first), end - first, MADV_HUGEPAGE);
-#else
-    (void)data;
-    (void)bytes;
-#endif
-}
 
 void TriangleMesh::reserve(size_t vertex_count, size_t triangle_count) {
     vertices.reserve(3 * vertex_count + 4);

@@ -10,13 +10,6 @@
 
 namespace citygen {
 
-// Asks the kernel to back the whole 2 MiB pages within [data, data + bytes) with huge pages
-// (transparent huge pages, which most systems grant only where asked). A stored city's buffers
-// are hundreds of megabytes written once: in 4 KiB pages the kernel zeroes each on its first
-// touch, and tracing, which reads the vertices and indices in Embree's compact BVH, misses the
-// TLB. A hint: where it is refused the buffer stays in small pages.
-void advise_huge_pages(const void* data, size_t bytes);
-
 struct TriangleMesh {
     ObjectKind kind = ObjectKind::None;
     std::vector<float> vertices;           // x, y, z per vertex (+ padding Embree reads past the end)
@@ -30,8 +23,9 @@ struct TriangleMesh {
     };
     std::vector<PaneCell> pane_cells;
 
-    // Room for this many vertices (+ Embree's padding) and triangles, allocated once. Buffers of
-    // megabytes are marked for huge pages before their first write (advise_huge_pages).
+    // Room for this many vertices (+ Embree's padding) and triangles, allocated once and marked
+    // for huge pages before their first write (common/huge_page_advice.h): a stored city's
+    // buffers are hundreds of megabytes, which tracing reads through Embree's compact BVH.
     void reserve(size_t vertex_count, size_t triangle_count);
     size_t vertex_count() const { return vertices.size() / 3; }
     size_t triangle_count() const { return face_object.size(); }

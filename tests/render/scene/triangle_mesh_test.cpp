@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/huge_page_advice.h"
 #include "render/scene/triangle_mesh.h"
 
 using namespace citygen;
@@ -35,7 +36,6 @@ std::string vm_flags_at(const void* address) {
 bool marked_for_huge_pages(const void* address) { return vm_flags_at(address).find(" hg") != std::string::npos; }
 
 const void* first_whole_huge_page(const void* data) {
-    constexpr uintptr_t kHugePage = uintptr_t{2} << 20;
     return reinterpret_cast<const void*>((reinterpret_cast<uintptr_t>(data) + kHugePage - 1) & ~(kHugePage - 1));
 }
 
