@@ -2,7 +2,8 @@
 # Parse benchmark, run by hand (never from ctest): osmparse beside `osmium export -f geojsonseq`
 # (libosmium's own tool doing the same reading: node locations, multipolygon assembly, every
 # object written out) on Monaco and Kaiserslautern, each as XML and as PBF (Kaiserslautern's PBF
-# is made with `osmium cat` in a temporary directory), and Malta's PBF. Every run of
+# is made with `osmium cat` in a temporary directory), and Malta as PBF and as XML (made the same
+# way: the targets name both formats for Kaiserslautern and Malta). Every run of
 # a round does osmium, osmparse and (optionally) an older osmparse one after the other, so a
 # shared machine slows them alike. Prints median wall time of RUNS runs (after one warm-up
 # run), the ratio to osmium, peak resident memory (GNU time) and its ratio, then the median
@@ -36,7 +37,8 @@ bunzip2 -c "$shared/monaco.osm.bz2" > "$work/monaco.osm"
 cp "$shared/monaco.osm.pbf" "$shared/malta.osm.pbf" "$work/"
 gunzip -c "$shared/kaiserslautern.osm.gz" > "$work/kaiserslautern.osm"
 osmium cat --no-progress -O "$work/kaiserslautern.osm" -o "$work/kaiserslautern.osm.pbf"
-inputs=(monaco.osm monaco.osm.pbf kaiserslautern.osm kaiserslautern.osm.pbf malta.osm.pbf)
+osmium cat --no-progress -O "$work/malta.osm.pbf" -o "$work/malta.osm"
+inputs=(monaco.osm monaco.osm.pbf kaiserslautern.osm kaiserslautern.osm.pbf malta.osm malta.osm.pbf)
 tools=(osmium new)
 [ -n "$old" ] && tools+=(old)
 
