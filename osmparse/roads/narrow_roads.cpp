@@ -24,11 +24,22 @@ bool overlaps(const BuildingIndex& index, const Ring& piece) {
     return largest > kRoadBuildingOverlapTolerance;
 }
 
-// Step 2: the edges whose laid-out quad or joint overlaps a building, among the pieces
-// `needs_check` accepts (a quad by either end node, a joint by its key or a member).
-template <typename NeedsCheck>
-std::set<uint32_t> offending_edges(LayoutState& layout, const BuildingIndex& index, NeedsCheck needs_check) {
+// The junctions the nodes `nodes` belong to, each once.
+std::vector<const NodeLayout*> junctions_of(LayoutState& layout, const std::set<int64_t>& nodes) {
+    std::set<int64_t> keys;
+    std::vector<const NodeLayout*> out;
+    for (int64_t v : nodes)
+        if (const NodeLayout* j = layout.junction_of(v); j && keys.insert(j->node).second) out.push_back(j);
+    return out;
+}
+
+// Step 2: the edges whose laid-out quad or joint overlaps a building, among the pieces at the
+// nodes `dirty` holds (a quad by either end node, a joint by its key or a member), or all of
+// them when `dirty` is null. Only the dirty junctions are looked up: walking every junction
+// of a country's road graph each round cost more than the checks.
+std::set<uint32_t> offending_edges(LayoutState& layout, const BuildingIndex& index, const std::set<int64_t>* dirty) {
     const RoadGraph& graph = layout.graph;
+    auto needs_check = [&](int64_t node) { return !dirty || dirty->count(node) > 0; };
     // The pieces are checked in parallel (the overlap tests are most of the stage's time).
     std::vector<char> quad_offends(graph.edges.size(), 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, graph.edges.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
@@ -42,15 +53,12 @@ std::set<uint32_t> offending_edges(LayoutState& layout, const BuildingIndex& ind
         }
     });
     std::vector<const NodeLayout*> junctions;
-    layout.for_each_junction([&](const NodeLayout& node) { junctions.push_back(&node); });
+    if (dirty) junctions = junctions_of(layout, *dirty);
+    else layout.for_each_junction([&](const NodeLayout& node) { junctions.push_back(&node); });
     std::vector<char> joint_offends(junctions.size(), 0);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, junctions.size(), 256), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t k = r.begin(); k != r.end(); ++k) {
-            const NodeLayout& node = *junctions[k];
-            bool check = needs_check(node.node);
-            for (int64_t m : node.members) check = check || needs_check(m);
-            joint_offends[k] = check && !node.joint.empty() && overlaps(index, node.joint);
-        }
+        for (size_t k = r.begin(); k != r.end(); ++k)
+            joint_offends[k] = !junctions[k]->joint.empty() && overlaps(index, junctions[k]->joint);
     });
     std::set<uint32_t> offending;
     for (uint32_t e = 0; e < graph.edges.size(); ++e)
@@ -127,8 +135,7 @@ NarrowedRoads narrow_roads(RoadGraph graph, const std::vector<Building>& buildin
     lay_out_all(layout);
     std::set<int64_t> dirty;
     for (int round = 0; round < kLayoutRounds; ++round) {
-        const std::set<uint32_t> offending =
-            offending_edges(layout, index, [&](int64_t node) { return round == 0 || dirty.count(node) > 0; });
+        const std::set<uint32_t> offending = offending_edges(layout, index, round == 0 ? nullptr : &dirty);
         if (offending.empty()) break;
         dirty.clear();
         for (uint32_t e : offending) {
@@ -140,13 +147,10 @@ NarrowedRoads narrow_roads(RoadGraph graph, const std::vector<Building>& buildin
             dirty.insert(graph.edges[e].to_node);
         }
         // A narrowed edge also changes the merged junction its node belongs to.
-        layout.for_each_junction([&](const NodeLayout& node) {
-            bool touched = dirty.count(node.node) > 0;
-            for (int64_t m : node.members) touched = touched || dirty.count(m) > 0;
-            if (!touched) return;
-            dirty.insert(node.node);
-            dirty.insert(node.members.begin(), node.members.end());
-        });
+        for (const NodeLayout* junction : junctions_of(layout, dirty)) {
+            dirty.insert(junction->node);
+            dirty.insert(junction->members.begin(), junction->members.end());
+        }
         update_layout(layout, std::vector<uint32_t>(offending.begin(), offending.end()));
     }
     int64_t count = 0;
