@@ -224,7 +224,7 @@ struct ParseState {
     std::unordered_map<int64_t, int> way_layers;  // "way layers": the nonzero layers of highways and railways
     NarrowedRoads narrowed;    // "narrowed roads"
     RoadSurface surface;       // "road surface"
-    PathSurface paths;         // "paths"
+    PathSurface paths;         // "path surface"
 
     // "building slices": the buildings once every other stage is done with them, finished (roofs
     // and colours) and encoded a slice at a time; `has_roofs`: the empty blocks' buildings.
@@ -274,6 +274,9 @@ void lay_out_sidewalks(ParseState& s, ParseReport& report) {
 void lay_out_paths(ParseState& s, ParseReport& report) {
     const bool with_terrain = !s.params().terrain.dem_files.empty();
     s.paths = build_paths(s.osm, *s.projection, s.params().roads, with_terrain, report);
+}
+
+void put_paths_in_scene(ParseState& s, ParseReport& report) {
     s.scene.sidewalks = drop_doubled_sidewalks(std::move(s.scene.sidewalks), s.paths.paths, report);
     s.scene.paths = std::move(s.paths.paths);
     s.scene.path_joints = std::move(s.paths.joints);
@@ -374,8 +377,9 @@ std::vector<Stage> parse_stages(ParseState& s) {
         {"lanes", {"road surface", "osm", "osm ways"}, {"road surface", "osm ways"}, run(lay_out_road_lanes)},
         {"sidewalks", {"narrowed roads", "road surface", "buildings"}, {"sidewalks", "roads", "joints"},
          run(lay_out_sidewalks)},
-        {"paths and rails", {"osm", "osm ways", "projection", "sidewalks"}, {"paths", "sidewalks"},
-         run(lay_out_paths)},
+        // Beside the sidewalks: the paths read only the ways.
+        {"paths and rails", {"osm", "osm ways", "projection"}, {"path surface"}, run(lay_out_paths)},
+        {"paths off sidewalks", {"path surface", "sidewalks"}, {"paths", "sidewalks"}, run(put_paths_in_scene)},
         {"empty blocks", {"buildings", "roads", "joints", "sidewalks", "paths", "roof evidence"}, {"buildings"},
          run(add_empty_blocks), p.blocks.enabled},
         {"street lamps", {"osm", "projection", "buildings", "roads", "joints", "sidewalks"}, {"lamps"},
@@ -449,7 +453,7 @@ StageHooks parse_hooks(ParseState& s) {
         {"way layers", [&s] { s.way_layers = {}; }},
         {"narrowed roads", [&s] { s.narrowed = NarrowedRoads(); }},
         {"road surface", [&s] { s.surface = RoadSurface(); }},
-        {"paths", [&s] { s.paths = PathSurface(); }},
+        {"path surface", [&s] { s.paths = PathSurface(); }},
         {"building slices", [&s] { release(s.slices); }},
     };
     hooks.slice_count = [&s] { return s.slices.size(); };
