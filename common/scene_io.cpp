@@ -7,6 +7,7 @@
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <thread>
 #include <iterator>
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -896,19 +897,40 @@ Scene load_scene(const std::string& path) {
     return decode_scene(static_cast<const uint8_t*>(bytes), size, path);
 }
 
-void write_file_atomically(const std::string& path, const void* data, size_t size) {
+void write_file_atomically(const std::string& path, const void* data, size_t size,
+                           const std::function<void()>& check) {
     check_output_target(path);  // the rename would replace a symlink, FIFO or device node
     const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-    FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw Error(path + ": cannot write (" + std::strerror(errno) + ")");
-    bool ok = std::fwrite(data, 1, size, f) == size;
-    ok = (std::fflush(f) == 0) && ok;
-    ok = (::fsync(::fileno(f)) == 0) && ok;
-    ok = (std::fclose(f) == 0) && ok;
-    if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-        const std::string reason = std::strerror(errno);
+    std::string failure;  // why the temporary file could not be written, or empty
+    auto write_tmp = [&] {
+        FILE* f = std::fopen(tmp.c_str(), "wb");
+        if (!f) {
+            failure = std::strerror(errno);
+            return;
+        }
+        bool ok = std::fwrite(data, 1, size, f) == size;
+        ok = (std::fflush(f) == 0) && ok;
+        ok = (::fsync(::fileno(f)) == 0) && ok;
+        ok = (std::fclose(f) == 0) && ok;
+        if (!ok) failure = std::strerror(errno);
+    };
+    std::exception_ptr check_error;
+    if (check) {
+        std::thread writer(write_tmp);
+        try {
+            check();
+        } catch (...) {
+            check_error = std::current_exception();
+        }
+        writer.join();
+    } else {
+        write_tmp();
+    }
+    if (check_error || !failure.empty() || std::rename(tmp.c_str(), path.c_str()) != 0) {
+        if (failure.empty()) failure = std::strerror(errno);
         std::remove(tmp.c_str());
-        throw Error(path + ": cannot write (" + reason + ")");
+        if (check_error) std::rethrow_exception(check_error);
+        throw Error(path + ": cannot write (" + failure + ")");
     }
 }
 

@@ -1,6 +1,7 @@
 // Reading and writing scene files (format: schema/scene.fbs).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -60,7 +61,11 @@ Scene load_scene(const std::string& path);
 // leaves any existing file untouched and no partial file behind.
 void save_scene(const Scene& scene, const std::string& path);
 
-// Same atomic write for any bytes (used for scenes, GeoJSON, images written by us).
-void write_file_atomically(const std::string& path, const void* data, size_t size);
+// Same atomic write for any bytes (used for scenes, GeoJSON, images written by us). `check`,
+// if given, runs on this thread while another writes and syncs the bytes (a disk's wait is
+// long beside a scene's decode): the file replaces `path` only if `check` returns, and
+// whatever it throws is rethrown with nothing left behind.
+void write_file_atomically(const std::string& path, const void* data, size_t size,
+                           const std::function<void()>& check = nullptr);
 
 }  // namespace citygen

@@ -170,8 +170,8 @@ int run_parse(ParseJob& job, const Options& o) {
     } else {
         const Scene scene = parse_osm_to_scene(job, report);
         const std::vector<uint8_t> bytes = encode_scene(scene);
-        check_scene_loads(bytes.data(), bytes.size(), o.output);  // never a file its loader refuses
-        write_file_atomically(o.output, bytes.data(), bytes.size());
+        write_file_atomically(o.output, bytes.data(), bytes.size(),  // never a file its loader refuses
+                              [&] { check_scene_loads(bytes.data(), bytes.size(), o.output); });
         write_geojson(scene, o.geojson);
     }
     if (!job.quiet) report.print(stderr);

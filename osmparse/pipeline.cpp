@@ -479,8 +479,9 @@ void parse_osm_to_file(const ParseJob& job, ParseReport& report, const std::stri
     run_pipeline(state, report);
     // Each part is freed once encoded: the encoded scene grows as the in-memory one shrinks.
     state.encoder->finish_releasing(state.scene);
-    check_scene_loads(state.encoder->data(), state.encoder->size(), path);  // never a file its loader refuses
-    write_file_atomically(path, state.encoder->data(), state.encoder->size());
+    const uint8_t* bytes = state.encoder->data();
+    const size_t size = state.encoder->size();
+    write_file_atomically(path, bytes, size, [&] { check_scene_loads(bytes, size, path); });  // never a file its loader refuses
 }
 
 }  // namespace citygen

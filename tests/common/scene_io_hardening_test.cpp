@@ -136,3 +136,27 @@ TEST(Hardening, OutputTargetsMustBeRegularFilesOrNewNames) {
     EXPECT_THROW(write_file_atomically(fifo, "x", 1), Error);
     EXPECT_EQ(read_text(dir.file("old.scene")), "old");
 }
+
+// The check runs while the bytes are written: a check that throws leaves the old file as it was
+// and no temporary file beside it; one that returns lets the new bytes replace the old.
+TEST(Hardening, AFailedCheckWhileWritingLeavesTheOldFile) {
+    TempDir dir;
+    const std::string target = dir.file("out.scene");
+    write_text(target, "old");
+    const std::string bytes(1 << 20, 'n');  // long enough that the check ends before the write
+    bool checked = false;
+    EXPECT_THROW(write_file_atomically(target, bytes.data(), bytes.size(),
+                                       [&] {
+                                           checked = true;
+                                           throw Error("refused");
+                                       }),
+                 Error);
+    EXPECT_TRUE(checked);
+    EXPECT_EQ(read_text(target), "old");
+    size_t files = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) ++files;
+    EXPECT_EQ(files, 1u);  // no temporary file left
+
+    write_file_atomically(target, bytes.data(), bytes.size(), [&] {});
+    EXPECT_EQ(read_text(target), bytes);
+}
