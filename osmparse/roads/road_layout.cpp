@@ -103,6 +103,15 @@ void follow_join(LayoutState& state, NodeLayout& node, JoinKind kind) {
 // Every node with the ends of the edges meeting there, counter-clockwise, and its join.
 void collect_nodes(LayoutState& state) {
     const RoadGraph& graph = state.graph;
+    // The map's entries are made in id order first: every pass walks the map in that order,
+    // and entries made in edge order would lie scattered over the heap.
+    std::vector<int64_t> ids;
+    ids.reserve(2 * graph.edges.size());
+    for (uint32_t e = 0; e < graph.edges.size(); ++e)
+        if (!state.removed[e]) ids.insert(ids.end(), {graph.edges[e].from_node, graph.edges[e].to_node});
+    std::sort(ids.begin(), ids.end());
+    ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+    for (int64_t id : ids) state.nodes.emplace_hint(state.nodes.end(), id, NodeLayout{});
     for (uint32_t e = 0; e < graph.edges.size(); ++e) {
         if (state.removed[e]) continue;
         const RoadGraphEdge& edge = graph.edges[e];
