@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -258,7 +259,7 @@ private:
     TreeShape shape(unsigned prim) const {
         const Compact& c = trees_[prim];
         return tree_shape(c.x, c.y, c.height, c.crown, c.leaf_type == static_cast<uint8_t>(LeafType::Needleleaved),
-                          c.ground_z, prim);
+                          c.ground_z);
     }
 
     std::vector<Compact> trees_;
@@ -327,11 +328,10 @@ TreeShape tree_shape(const Scene& scene, uint32_t index) {
     const Tree& t = scene.trees[index];
     return tree_shape(static_cast<float>(t.position.x), static_cast<float>(t.position.y), static_cast<float>(t.height),
                       static_cast<float>(t.crown_diameter), t.leaf_type == LeafType::Needleleaved,
-                      ground_height(scene, t.position.x, t.position.y),
-                      index);
+                      ground_height(scene, t.position.x, t.position.y));
 }
 
-TreeShape tree_shape(float x, float y, float height, float crown, bool needle, double ground_z, uint32_t index) {
+TreeShape tree_shape(float x, float y, float height, float crown, bool needle, double ground_z) {
     TreeShape s;
     s.base = {x, y, ground_z};
     s.crown_radius = 0.5 * crown;
@@ -340,7 +340,12 @@ TreeShape tree_shape(float x, float y, float height, float crown, bool needle, d
     s.trunk_radius = std::clamp(0.025 * height, 0.08, 0.4);
     s.trunk_top = s.crown_centre.z - ground_z;
     s.leaf_material = needle ? kLeavesNeedle : kLeavesBroad;
-    s.noise_seed = static_cast<uint32_t>(index * 2654435761u);
+    // The leaves follow where the tree stands, not its place in the scene's list: a tile of the
+    // farm lists a forest's trees in another order than one parse of the region does.
+    uint32_t xb, yb;
+    std::memcpy(&xb, &x, sizeof xb);
+    std::memcpy(&yb, &y, sizeof yb);
+    s.noise_seed = static_cast<uint32_t>(hash_keys(0, xb, yb));
     return s;
 }
 

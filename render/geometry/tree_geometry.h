@@ -44,7 +44,7 @@ Vec3 crown_vertex(Vec3 c, double r, double h, CrownFacets facets, int k, int j);
 
 TreeShape tree_shape(const Scene& scene, uint32_t index);
 // The same from the few numbers the procedural mode keeps per tree.
-TreeShape tree_shape(float x, float y, float height, float crown, bool needle, double ground_z, uint32_t index);
+TreeShape tree_shape(float x, float y, float height, float crown, bool needle, double ground_z);
 
 // Whether the crown shell has leaves at p (world metres): 3D value noise at two scales
 // (0.7 m clumps, 0.25 m leaves), about 45 % cut away.
