@@ -7,8 +7,8 @@
 #include <cstring>
 #include <exception>
 #include <memory>
-#include <thread>
 #include <iterator>
+#include <thread>
 #include <fcntl.h>
 #include <sys/mman.h>
 #include <sys/stat.h>

@@ -481,7 +481,8 @@ void parse_osm_to_file(const ParseJob& job, ParseReport& report, const std::stri
     state.encoder->finish_releasing(state.scene);
     const uint8_t* bytes = state.encoder->data();
     const size_t size = state.encoder->size();
-    write_file_atomically(path, bytes, size, [&] { check_scene_loads(bytes, size, path); });  // never a file its loader refuses
+    // Never a file its loader refuses: decoded while the bytes go to disk.
+    write_file_atomically(path, bytes, size, [&] { check_scene_loads(bytes, size, path); });
 }
 
 }  // namespace citygen

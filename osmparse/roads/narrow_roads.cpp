@@ -35,8 +35,8 @@ std::vector<const NodeLayout*> junctions_of(LayoutState& layout, const std::set<
 
 // Step 2: the edges whose laid-out quad or joint overlaps a building, among the pieces at the
 // nodes `dirty` holds (a quad by either end node, a joint by its key or a member), or all of
-// them when `dirty` is null. Only the dirty junctions are looked up: walking every junction
-// of a country's road graph each round cost more than the checks.
+// them when `dirty` is null. The dirty nodes' junctions are looked up, not found by a walk over
+// every junction: after the first round they are few.
 std::set<uint32_t> offending_edges(LayoutState& layout, const BuildingIndex& index, const std::set<int64_t>* dirty) {
     const RoadGraph& graph = layout.graph;
     auto needs_check = [&](int64_t node) { return !dirty || dirty->count(node) > 0; };

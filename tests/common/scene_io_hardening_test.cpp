@@ -143,7 +143,7 @@ TEST(Hardening, AFailedCheckWhileWritingLeavesTheOldFile) {
     TempDir dir;
     const std::string target = dir.file("out.scene");
     write_text(target, "old");
-    const std::string bytes(1 << 20, 'n');  // long enough that the check ends before the write
+    const std::string bytes(1 << 20, 'n');
     bool checked = false;
     EXPECT_THROW(write_file_atomically(target, bytes.data(), bytes.size(),
                                        [&] {
