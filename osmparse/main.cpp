@@ -53,6 +53,7 @@ struct Options {
     std::string ignore_types, road_classes, trees = "all";
     CLI::Option* dem_resolution = nullptr;  // given or not: 0 is an error, not the default
     std::string origin, keep_inside;        // the farm's tiles (docs/farm.md)
+    std::string region_statistics, write_region_statistics;
 };
 
 void add_file_options(CLI::App& app, ParseJob& job, Options& o) {
@@ -127,6 +128,12 @@ void add_tile_options(CLI::App& app, Options& o) {
     app.add_option("--keep-inside", o.keep_inside,
                    "MINLAT,MINLON,MAXLAT,MAXLON: keep only objects anchored in this half-open box (a tile's core "
                    "without its overlap; needs --origin)");
+    app.add_option("--write-region-statistics", o.write_region_statistics,
+                   "FILE: write what the height and roof rules read of the buildings anchored in --keep-inside "
+                   "(all without it) and stop, with no scene; the tiles' files concatenated are the region's");
+    app.add_option("--region-statistics", o.region_statistics,
+                   "FILE: the height and roof rules read these statistics (a region's, from "
+                   "--write-region-statistics) instead of the extract's own");
 }
 
 void set_tile_options(ParseJob& job, const Options& o) {
@@ -138,14 +145,19 @@ void set_tile_options(ParseJob& job, const Options& o) {
         if (!job.origin) throw Error("--keep-inside needs --origin (the tiles' shared frame)");
         job.keep_inside = parse_lat_lon_box(o.keep_inside, "--keep-inside");
     }
+    if (!o.region_statistics.empty()) job.region_statistics = read_region_statistics(o.region_statistics);
 }
 
 // Checks the options against each other and the outputs before the (possibly long) parse, then
 // parses and writes.
 int run_parse(ParseJob& job, const Options& o) {
     ParseParams& p = job.params;
-    if (job.input.empty() || o.output.empty()) throw Error("need an input file and -o OUTPUT.scene (see --help)");
-    check_output_target(o.output, {job.input});
+    const bool statistics_only = !o.write_region_statistics.empty();
+    if (statistics_only && !o.output.empty())
+        throw Error("--write-region-statistics writes no scene: leave out -o");
+    const std::string& output = statistics_only ? o.write_region_statistics : o.output;
+    if (job.input.empty() || output.empty()) throw Error("need an input file and -o OUTPUT.scene (see --help)");
+    check_output_target(output, {job.input, o.region_statistics});
     if (!o.geojson.empty()) {
         check_output_target(o.geojson, {job.input, o.output});
         if (o.geojson == o.output) throw Error("--geojson and -o name the same file");
@@ -165,7 +177,9 @@ int run_parse(ParseJob& job, const Options& o) {
     p.trees.mode = o.trees == "none" ? TreeMode::None : o.trees == "mapped" ? TreeMode::Mapped : TreeMode::All;
 
     ParseReport report;
-    if (o.geojson.empty()) {
+    if (statistics_only) {
+        write_region_statistics(output, gather_region_statistics(job, report));
+    } else if (o.geojson.empty()) {
         parse_osm_to_file(job, report, o.output);  // the lower peak memory
     } else {
         const Scene scene = parse_osm_to_scene(job, report);

@@ -219,6 +219,7 @@ struct ParseState {
     Scene scene;  // "header", "buildings", "roads", "joints", "sidewalks", "paths", "lamps", ..., "terrain"
     std::optional<BuildingTagIndex> building_tags;  // "building tags": what roofs and colours read
     RoofEvidence roof_evidence;  // "roof evidence": the map's tagged roofs, which untagged ones follow
+    RegionStatistics statistics;  // "region statistics" (gather_region_statistics)
     size_t map_buildings = 0;  // the map's buildings come first; the empty blocks' after them
     RoadGraph road_graph;      // "road graph"
     std::unordered_map<int64_t, int> way_layers;  // "way layers": the nonzero layers of highways and railways
@@ -249,13 +250,26 @@ void read(ParseState& s, ParseReport& report) {
 
 void infer_building_heights(ParseState& s, ParseReport& report) {
     const BuildingParams& params = s.params().buildings;
+    const std::optional<RegionStatistics>& region = s.job.region_statistics;
     infer_heights(s.scene.buildings, land_use_areas(s.osm, *s.projection, report), params, report,
-                  homes_by_use(s.osm));
+                  homes_by_use(s.osm), region ? &region->heights : nullptr);
     // The building areas' rings are in the footprints now; the roofs and colours read only
     // some of their tags: those are kept, the areas freed.
     s.building_tags.emplace(std::move(s.osm.building_areas));
     s.map_buildings = s.scene.buildings.size();
-    s.roof_evidence = roof_evidence(s.scene.buildings, *s.building_tags);
+    s.roof_evidence = region ? region->roofs : roof_evidence(s.scene.buildings, *s.building_tags);
+}
+
+// A tile's part of the region's statistics: the buildings anchored in its core box, each counted
+// by exactly one tile (as keep_inside_box keeps it).
+void gather_statistics(ParseState& s, ParseReport&) {
+    std::function<bool(const Building&)> counted;
+    if (s.job.keep_inside)
+        counted = [&s](const Building& b) { return box_holds(*s.job.keep_inside, *s.projection, ring_anchor(b.outer)); };
+    ParseReport again;  // the heights' stage reported the land use already
+    s.statistics.heights = height_evidence(s.scene.buildings, land_use_areas(s.osm, *s.projection, again),
+                                           s.params().buildings, homes_by_use(s.osm), counted);
+    s.statistics.roofs = roof_evidence(s.scene.buildings, *s.building_tags, counted);
 }
 
 void lay_out_road_lanes(ParseState& s, ParseReport& report) {
@@ -461,22 +475,33 @@ StageHooks parse_hooks(ParseState& s) {
     return hooks;
 }
 
-void run_pipeline(ParseState& state, ParseReport& report) {
+void run_pipeline(ParseState& state, const std::vector<Stage>& stages, ParseReport& report) {
     tbb::task_arena arena(state.job.threads > 0 ? state.job.threads : tbb::task_arena::automatic);
-    arena.execute([&] { run_stages(parse_stages(state), parse_hooks(state), report); });
+    arena.execute([&] { run_stages(stages, parse_hooks(state), report); });
 }
 
 }  // namespace
 
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report) {
     ParseState state(job, false);
-    run_pipeline(state, report);
+    run_pipeline(state, parse_stages(state), report);
     return std::move(state.scene);
+}
+
+RegionStatistics gather_region_statistics(const ParseJob& job, ParseReport& report) {
+    ParseState state(job, false);
+    std::vector<Stage> stages = parse_stages(state);
+    const auto heights = std::find_if(stages.begin(), stages.end(), [](const Stage& st) { return st.name == "building heights"; });
+    stages.erase(heights + 1, stages.end());
+    stages.push_back({"region statistics", {"osm", "projection", "buildings", "building tags"}, {"region statistics"},
+                      [&state](ParseReport& r) { gather_statistics(state, r); }});
+    run_pipeline(state, stages, report);
+    return std::move(state.statistics);
 }
 
 void parse_osm_to_file(const ParseJob& job, ParseReport& report, const std::string& path) {
     ParseState state(job, true);
-    run_pipeline(state, report);
+    run_pipeline(state, parse_stages(state), report);
     // Each part is freed once encoded: the encoded scene grows as the in-memory one shrinks.
     state.encoder->finish_releasing(state.scene);
     const uint8_t* bytes = state.encoder->data();

@@ -8,6 +8,7 @@
 #include "osmparse/core/params.h"
 #include "osmparse/core/report.h"
 #include "osmparse/tiles/lat_lon_text.h"
+#include "osmparse/tiles/region_statistics.h"
 
 namespace citygen {
 
@@ -22,10 +23,17 @@ struct ParseJob {
     // so tiles share one frame; only the objects anchored in this box are kept.
     std::optional<LatLon> origin;           // --origin
     std::optional<LatLonBox> keep_inside;   // --keep-inside
+    // --region-statistics: what the height and roof rules read of the whole region, gathered
+    // over every tile, instead of this extract's own.
+    std::optional<RegionStatistics> region_statistics;
 };
 
 // The same scene and the same report rows whatever job.threads is.
 Scene parse_osm_to_scene(const ParseJob& job, ParseReport& report);
+
+// The statistics the height and roof rules read (region_statistics.h), of the buildings anchored
+// in job.keep_inside (all without it): only the stages up to the heights run.
+RegionStatistics gather_region_statistics(const ParseJob& job, ParseReport& report);
 
 // Parses and writes the scene file at `path` (save_scene's atomic write): the bytes of
 // save_scene(parse_osm_to_scene(job)), at a lower peak memory, as each part of the scene is

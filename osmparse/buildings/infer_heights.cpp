@@ -100,6 +100,7 @@ constexpr double kMaxHouseArea = 1000;     // m2: ten row houses of 100 m2
 // towers are not calibrated: a shed is one storey everywhere, and the few tagged towers of a
 // city are the notable ones.
 enum PriorGroup { kHouses, kFabric, kFlats, kOtherTypes, kPriorGroups, kNotCalibrated = kPriorGroups };
+static_assert(kPriorGroups == HeightEvidence::kCalibratedGroups);
 // The extract's own tagged buildings calibrate a group when there are at least kMinCalibration of
 // it: its median ratio tagged / prior, in logs, shrunk towards the prior as n / (n + kCalibrationWeight)
 // (at kCalibrationWeight tagged buildings the extract and the prior count alike). A handful of
@@ -124,6 +125,7 @@ const std::string& type_key(const std::string& type) {
 
 // Footprint classes for the extract-wide rule: the same bounds as the area table below.
 int area_class(double area) {
+    static_assert(HeightEvidence::kFootprintClasses == 5);
     if (area < 80) return 0;
     if (area < 200) return 1;
     if (area < 600) return 2;
@@ -236,7 +238,7 @@ public:
     // the centre of the kGrainCell square holding p: the grain is a property of the quarter, and
     // one median per square instead of per building keeps this stage fast (a city centre has
     // thousands of buildings within kGrainRadius).
-    double grain(Vec2 p) {
+    double grain(Vec2 p) const {
         const int64_t cx = cell(p.x, kGrainCell), cy = cell(p.y, kGrainCell);
         auto [known, inserted] = grain_of_square_.try_emplace(grid_cell_key(cx, cy), 0.0);
         if (!inserted) return known->second;
@@ -299,8 +301,9 @@ private:
     std::vector<Box2> boxes_;
     std::unordered_map<int64_t, std::vector<size_t>> walls_;
     std::unordered_map<int64_t, std::vector<std::pair<Vec2, double>>> grain_cells_;
-    std::unordered_map<int64_t, double> grain_of_square_;
-    std::vector<double> scratch_;
+    // The grains asked for so far (not thread-safe: one guesser runs on one thread).
+    mutable std::unordered_map<int64_t, double> grain_of_square_;
+    mutable std::vector<double> scratch_;
 };
 
 // Rule 1c: a tagged twin, or 0: the nearest tagged building within kTwinDistance of the same
@@ -525,19 +528,20 @@ struct Plan {
 // buildings (by type and size, near each building, its own storeys) and its land use.
 class HeightGuesser {
 public:
-    HeightGuesser(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
+    HeightGuesser(const std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
                   const BuildingParams& params, const std::set<OsmRef>& homes)
-        : buildings_(buildings), params_(params), homes_(homes), uses_(land_use),
-          surroundings_(buildings) {
-        std::vector<Tagged> tagged = tagged_heights();
-        median_by_kind(tagged);
-        grid_.emplace(std::move(tagged));
-        calibrate();
-    }
+        : buildings_(buildings), params_(params), homes_(homes), uses_(land_use), surroundings_(buildings),
+          grid_(tagged_heights()) {}
+
+    // What rule 3 and the calibration read of the buildings `counted` accepts (all when empty).
+    HeightEvidence evidence(const std::function<bool(const Building&)>& counted) const;
+    // Rule 3's medians and the groups' calibration from `evidence` (the extract's own, or a region's).
+    void read(const HeightEvidence& evidence);
 
     // Guesses the height of one OSM building from its pieces (a repaired bow-tie, a
-    // multipolygon's outers are one building: one guess from their joint footprint).
-    void guess(const std::vector<size_t>& indices, ParseReport& report);
+    // multipolygon's outers are one building: one guess from their joint footprint), in `out`:
+    // the buildings the guesser was made with.
+    void guess(const std::vector<size_t>& indices, std::vector<Building>& out, ParseReport& report) const;
 
 private:
     // The type every rule reads: a home by its use tags holds flats whatever its form; a house
@@ -547,25 +551,17 @@ private:
         if (homes_.count(b.osm)) return apartments;
         return area > kMaxHouseArea && is_house(b.type) ? residential : b.type;
     }
-    // Only heights from a building's own tags (never a guess, never a raised part's).
     std::vector<Tagged> tagged_heights() const {
         std::vector<Tagged> tagged;
         for (const Building& b : buildings_)
-            if (b.height_source != HeightSource::Random && b.min_height == 0 && !b.is_part)
+            if (is_tagged(b))
                 tagged.push_back({centroid(b.outer), b.height, std::fabs(signed_area(b.outer)),
                                   &type_of(b, std::fabs(signed_area(b.outer)))});
         return tagged;
     }
-    // Rule 3's medians by (type, footprint class), over the whole extract. Key (type, class) for
-    // the type and footprint class, (type, -1) for the type alone.
-    void median_by_kind(const std::vector<Tagged>& tagged) {
-        std::map<std::pair<std::string, int>, std::vector<double>> by_kind;
-        for (const Tagged& t : tagged) {
-            by_kind[{type_key(*t.type), area_class(t.area)}].push_back(t.height);
-            by_kind[{type_key(*t.type), -1}].push_back(t.height);
-        }
-        for (const auto& [kind, heights] : by_kind)
-            if (heights.size() >= kMinExtractSamples) kind_median_[kind] = median(heights);
+    // Whether a building's own tags give its height (never a guess, never a raised part's).
+    static bool is_tagged(const Building& b) {
+        return b.height_source != HeightSource::Random && b.min_height == 0 && !b.is_part;
     }
     double extract_median(const std::string& type, double area) const {
         auto it = kind_median_.find({type_key(type), area_class(area)});
@@ -573,21 +569,22 @@ private:
         if (it == kind_median_.end() && !is_untyped(type)) it = kind_median_.find({type_key(type), -1});
         return it == kind_median_.end() ? 0.0 : it->second;
     }
-    TypePrior type_prior(const std::string& type, const Plan& plan);
-    void calibrate();
-    Plan plan_of(const std::vector<size_t>& indices);
+    TypePrior type_prior(const std::string& type, const Plan& plan) const;
+    Plan plan_of(const std::vector<size_t>& indices) const;
 
-    std::vector<Building>& buildings_;
+    const std::vector<Building>& buildings_;
     const BuildingParams& params_;
     const std::set<OsmRef>& homes_;
-    std::map<std::pair<std::string, int>, double> kind_median_;
-    std::optional<TaggedGrid> grid_;
     LandUseIndex uses_;
     Surroundings surroundings_;
+    TaggedGrid grid_;
+    // Rule 3's medians: key (type, footprint class) for the type and footprint class, (type, -1)
+    // for the type alone.
+    std::map<std::pair<std::string, int>, double> kind_median_;
     std::vector<double> calibration_ = std::vector<double>(kPriorGroups + 1, 1.0);
 };
 
-TypePrior HeightGuesser::type_prior(const std::string& type, const Plan& plan) {
+TypePrior HeightGuesser::type_prior(const std::string& type, const Plan& plan) const {
     TypePrior p;
     const double area = plan.area;
     const Vec2 at = plan.at;
@@ -620,13 +617,14 @@ TypePrior HeightGuesser::type_prior(const std::string& type, const Plan& plan) {
     return p;
 }
 
-// The extract's own storeys: each group's prior against the tagged buildings of it (their own
-// footprints, as one of them would be guessed with its tags hidden).
-void HeightGuesser::calibrate() {
-    std::vector<std::vector<double>> ratios(kPriorGroups);
+// The tagged buildings' heights by type and footprint class (rule 3), and the extract's own
+// storeys: each group's prior against the tagged buildings of it (their own footprints, as one of
+// them would be guessed with its tags hidden).
+HeightEvidence HeightGuesser::evidence(const std::function<bool(const Building&)>& counted) const {
+    HeightEvidence e;
     for (size_t i = 0; i < buildings_.size(); ++i) {
         const Building& b = buildings_[i];
-        if (b.height_source == HeightSource::Random || b.min_height > 0 || b.is_part) continue;
+        if (!is_tagged(b) || (counted && !counted(b))) continue;
         Plan plan;
         plan.area = std::fabs(signed_area(b.outer));
         plan.plan_area = plan.area;
@@ -637,10 +635,25 @@ void HeightGuesser::calibrate() {
         }
         plan.at = centroid(b.outer);
         plan.attached = surroundings_.attached(i);
-        const TypePrior p = type_prior(type_of(b, plan.area), plan);
+        const std::string& type = type_of(b, plan.area);
+        e.tagged.push_back({type_key(type), area_class(plan.area), b.height});
+        const TypePrior p = type_prior(type, plan);
         if (p.group != kNotCalibrated && p.height > 0 && b.height > 0)
-            ratios[p.group].push_back(std::log(b.height / p.height));
+            e.calibration.push_back({p.group, std::log(b.height / p.height)});
     }
+    return e;
+}
+
+void HeightGuesser::read(const HeightEvidence& evidence) {
+    std::map<std::pair<std::string, int>, std::vector<double>> by_kind;
+    for (const HeightEvidence::Tagged& t : evidence.tagged) {
+        by_kind[{t.type, t.area_class}].push_back(t.height);
+        by_kind[{t.type, -1}].push_back(t.height);
+    }
+    for (const auto& [kind, heights] : by_kind)
+        if (heights.size() >= kMinExtractSamples) kind_median_[kind] = median(heights);
+    std::vector<std::vector<double>> ratios(kPriorGroups);
+    for (const HeightEvidence::Ratio& r : evidence.calibration) ratios[static_cast<size_t>(r.group)].push_back(r.log_ratio);
     for (int g = 0; g < kPriorGroups; ++g) {
         const double n = static_cast<double>(ratios[g].size());
         if (ratios[g].size() >= kMinCalibration)
@@ -648,7 +661,7 @@ void HeightGuesser::calibrate() {
     }
 }
 
-Plan HeightGuesser::plan_of(const std::vector<size_t>& indices) {
+Plan HeightGuesser::plan_of(const std::vector<size_t>& indices) const {
     Plan plan;  // plan: courtyards left out
     for (size_t i : indices) {
         const double a = std::fabs(signed_area(buildings_[i].outer));
@@ -666,7 +679,7 @@ Plan HeightGuesser::plan_of(const std::vector<size_t>& indices) {
     return plan;
 }
 
-void HeightGuesser::guess(const std::vector<size_t>& indices, ParseReport& report) {
+void HeightGuesser::guess(const std::vector<size_t>& indices, std::vector<Building>& out, ParseReport& report) const {
     const Plan plan = plan_of(indices);
     const double area = plan.area;
     const Building& b = buildings_[indices[0]];  // the pieces share their tags
@@ -678,10 +691,10 @@ void HeightGuesser::guess(const std::vector<size_t>& indices, ParseReport& repor
     // rule that needs them.
     std::optional<std::vector<std::pair<double, size_t>>> near;
     auto nearby = [&]() -> const std::vector<std::pair<double, size_t>>& {
-        if (!near) near = grid_->nearest(plan.at);
+        if (!near) near = grid_.nearest(plan.at);
         return *near;
     };
-    const TaggedGrid& grid = *grid_;
+    const TaggedGrid& grid = grid_;
     ReportReason note = prior.note;
     if (prior.sure) {
         height = prior.height * calibration_[prior.group];
@@ -717,18 +730,26 @@ void HeightGuesser::guess(const std::vector<size_t>& indices, ParseReport& repor
                                             static_cast<uint64_t>(b.osm.id), kJitter));
     const double jittered = std::clamp(height * (0.9 + 0.2 * u), 2.5, params_.max_height);
     for (size_t i : indices) {
-        buildings_[i].height = jittered;
-        buildings_[i].height_rule = rule;
-        buildings_[i].levels = std::max(1, static_cast<int>(std::lround(jittered / params_.level_height)));
+        out[i].height = jittered;
+        out[i].height_rule = rule;
+        out[i].levels = std::max(1, static_cast<int>(std::lround(jittered / params_.level_height)));
         report.note(ReportKind::BuildingHeights, note);
     }
 }
 
 }  // namespace
 
+HeightEvidence height_evidence(const std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
+                               const BuildingParams& params, const std::set<OsmRef>& homes,
+                               const std::function<bool(const Building&)>& counted) {
+    return HeightGuesser(buildings, land_use, params, homes).evidence(counted);
+}
+
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& homes) {
+                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& homes,
+                   const HeightEvidence* region) {
     HeightGuesser guesser(buildings, land_use, params, homes);
+    guesser.read(region ? *region : guesser.evidence({}));
     // The pieces of one OSM building are guessed together.
     std::map<std::pair<OsmRef, bool>, std::vector<size_t>> pieces;
     for (size_t i = 0; i < buildings.size(); ++i) {
@@ -740,7 +761,7 @@ void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseAr
         if (b.min_height > 0) continue;  // a raised part: building_heights gave it a storey
         pieces[{b.osm, b.is_part}].push_back(i);
     }
-    for (const auto& [ref, indices] : pieces) guesser.guess(indices, report);
+    for (const auto& [ref, indices] : pieces) guesser.guess(indices, buildings, report);
 }
 
 }  // namespace citygen

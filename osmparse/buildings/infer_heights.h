@@ -2,6 +2,7 @@
 // once, because the tagged heights of neighbours are one of the rules.
 #pragma once
 
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -28,6 +29,31 @@ struct LandUseArea {
 // (a stray node) are left out and noted as ReportReason::LandUseTooLarge under
 // ReportKind::BuildingHeights.
 std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& projection, ParseReport& report);
+
+// What rule 3 and the calibration below read of the extract as a whole, as lists: the evidence of
+// the parts of a region (a farm's tiles, each over its core box) concatenated is the region's,
+// so every tile can guess as one parse of the region does (docs/farm.md).
+struct HeightEvidence {
+    static constexpr int kFootprintClasses = 5;   // rule 3's: under 80, 200, 600, 1500 m2, larger
+    static constexpr int kCalibratedGroups = 4;   // houses, untyped and workplaces, flats, other types
+    struct Tagged {
+        std::string type;  // the type rule 3 reads (`building=building` as `yes`)
+        int area_class;    // its footprint class, 0 to kFootprintClasses - 1
+        double height;
+    };
+    struct Ratio {
+        int group;         // 0 to kCalibratedGroups - 1
+        double log_ratio;  // log(tagged height / the group's rule for it)
+    };
+    std::vector<Tagged> tagged;     // every building whose height its own tags give
+    std::vector<Ratio> calibration; // those of them in a calibrated group
+};
+
+// The evidence of the tagged buildings among `buildings` that `counted` accepts (all when it is
+// empty), read as infer_heights reads them.
+HeightEvidence height_evidence(const std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
+                               const BuildingParams& params, const std::set<OsmRef>& homes = {},
+                               const std::function<bool(const Building&)>& counted = {});
 
 // Replaces the random height of every ground-standing building with nothing tagged
 // (height_source Random, min_height 0) by the first rule that applies; height_rule records it.
@@ -75,8 +101,11 @@ std::vector<LandUseArea> land_use_areas(const OsmData& osm, const Projection& pr
 // their joint footprint (its area, its area-weighted centroid, a wall shared by any). Levels
 // are recomputed from the new height. Counts go to ReportKind::BuildingHeights in the report. The
 // result does not depend on the order of `buildings` beyond ties in distance.
+// `region`: the evidence rule 3 and the calibration read instead of the extract's own (a farm's,
+// gathered over all its tiles); the neighbour rules read the extract around each building.
 void infer_heights(std::vector<Building>& buildings, const std::vector<LandUseArea>& land_use,
-                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& homes = {});
+                   const BuildingParams& params, ParseReport& report, const std::set<OsmRef>& homes = {},
+                   const HeightEvidence* region = nullptr);
 
 // Rule 5 alone (exposed for tests): storeys of an untyped building or a workplace with a
 // footprint of `area` m2 among buildings whose median footprint within 400 m is `grain` m2;

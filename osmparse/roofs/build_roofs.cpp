@@ -100,9 +100,11 @@ RoofGroup roof_group(const Building& b, double area) {
     return RoofGroup::Flat;
 }
 
-RoofEvidence roof_evidence(const std::vector<Building>& buildings, const BuildingTagIndex& index) {
+RoofEvidence roof_evidence(const std::vector<Building>& buildings, const BuildingTagIndex& index,
+                           const std::function<bool(const Building&)>& counted) {
     RoofEvidence e;
     for (const Building& b : buildings) {
+        if (counted && !counted(b)) continue;
         const char* text = index.find(b.osm).get("roof:shape");
         RoofShape shape;
         if (!text || !parse_roof_shape(text, &shape)) continue;

@@ -2,6 +2,7 @@
 // building (after the heights are final).
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -40,12 +41,15 @@ enum class RoofGroup : uint8_t { Sacred, Houses, Sheds, SmallBlocks, SmallFlats,
 RoofGroup roof_group(const Building& building, double area);
 
 // What the extract's own roof:shape tags say: per group, how many whole ground-standing
-// buildings carry one and how many of those are pitched (any shape but flat).
+// buildings carry one and how many of those are pitched (any shape but flat). Counts: the
+// evidence of a farm's tiles, each over its core box, adds up to the region's (docs/farm.md).
 struct RoofEvidence {
     int tagged[static_cast<int>(RoofGroup::Count)] = {};
     int pitched[static_cast<int>(RoofGroup::Count)] = {};
 };
-RoofEvidence roof_evidence(const std::vector<Building>& buildings, const BuildingTagIndex& tags);
+// The evidence of the buildings `counted` accepts (all when it is empty).
+RoofEvidence roof_evidence(const std::vector<Building>& buildings, const BuildingTagIndex& tags,
+                           const std::function<bool(const Building&)>& counted = {});
 
 // The share of a group's untagged roofs that are pitched: churches and farm buildings pitched
 // unless the extract's tags say otherwise; the other groups flat (the OSM default roof:shape)

@@ -120,15 +120,15 @@ Vec2 edge_anchor(const std::vector<Vec2>& centreline) {
     return (centreline.front() + centreline.back()) * 0.5;
 }
 
+bool box_holds(const LatLonBox& box, const Projection& projection, Vec2 point) {
+    LatLon l;
+    projection.to_wgs84(point, l.lat, l.lon);
+    return box.contains(l);
+}
+
 size_t keep_inside_box(Scene& scene, const Projection& projection, const LatLonBox& box, ParseReport& report,
                        size_t leading) {
-    // In degrees, where the tiles' boxes meet exactly; the tiles share the projection, so an
-    // object's anchor is the same point in each.
-    auto inside = [&](Vec2 p) {
-        LatLon l;
-        projection.to_wgs84(p, l.lat, l.lon);
-        return box.contains(l);
-    };
+    auto inside = [&](Vec2 p) { return box_holds(box, projection, p); };
     const TileChoice c = choose_all(scene, inside);
     const size_t leading_kept = static_cast<size_t>(std::count_if(
         c.buildings.index.begin(), c.buildings.index.begin() + std::min(leading, c.buildings.index.size()),

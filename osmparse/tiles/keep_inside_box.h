@@ -15,6 +15,9 @@ namespace citygen {
 // The point that decides the tile of an object (scene metres).
 Vec2 ring_anchor(const Ring& ring);          // area centroid; the box centre of a degenerate ring
 Vec2 edge_anchor(const std::vector<Vec2>& centreline);  // the middle of its first and last point
+// Whether `box` holds a point (in degrees, where the tiles' boxes meet exactly; the tiles share
+// the projection, so an object's anchor is the same point in each).
+bool box_holds(const LatLonBox& box, const Projection& projection, Vec2 point);
 
 // Drops every object whose anchor is outside `box` and renumbers the references between the
 // rest. Sidewalks go with their corner's joint or their strip's road, crossings with their road,

@@ -3,6 +3,10 @@
 # extracted with an overlap around its core box (one osmium extract job, one pass over the
 # input), then parses every tile in one shared frame as a job array (osmparse --origin, and
 # --keep-inside its core box, so an object that crosses a tile edge is kept by one tile only).
+# Before that, two shorter job arrays gather the statistics the height and roof rules read of
+# the whole region (osmparse --write-region-statistics, each tile over its core box): the first
+# the tagged heights, the second the roof tags, whose groups depend on the heights the first
+# gives; each tile's parse reads the region's (--region-statistics), as one parse would.
 # render loads the tile scenes as one city: render OUTDIR/tile_*.scene -o city.png (docs/farm.md).
 #
 #   scripts/farm/parse_farm.sh REGION.osm.pbf OUTDIR --tiles CxR [farm options] [-- osmparse options]
@@ -63,7 +67,8 @@ columns=${BASH_REMATCH[1]} rows=${BASH_REMATCH[2]}
 dem=0 dem_resolution=0
 for option in "${parse_options[@]}"; do
   case "$option" in
-    -o|--output|--origin|--keep-inside|--geojson) die "osmparse option $option is the farm's own" ;;
+    -o|--output|--origin|--keep-inside|--geojson|--region-statistics|--write-region-statistics)
+      die "osmparse option $option is the farm's own" ;;
     --dem|--dem=*) dem=1 ;;
     --dem-resolution|--dem-resolution=*) dem_resolution=1 ;;
   esac
@@ -117,12 +122,22 @@ awk -v columns="$columns" -v rows="$rows" -v overlap="$overlap" -v a="$min_lat" 
   }' > "$work/tiles.txt"
 count=$(wc -l < "$work/tiles.txt")
 
-# One osmparse per line, each word quoted: the task list.
-tasks="$work/tasks.txt"
-: > "$tasks"
+# One osmparse per line, each word quoted: the task lists of the two statistics passes and the
+# parse. Pass 2 reads pass 1's region statistics, the parse pass 2's.
+mkdir -p "$work/statistics" || die "$work/statistics: cannot create"
+rm -f "$work/statistics/"*.stats
+region_statistics() { echo "$work/statistics/region_$1.stats"; }
+: > "$work/statistics_1.txt"
+: > "$work/statistics_2.txt"
+: > "$work/tasks.txt"
 while read -r name box extract scene; do
-  echo "$(printf '%q ' "$osmparse" "$extract" -o "$scene" --origin "$origin" --keep-inside "$box" \
-    --threads "$cpus" "${parse_options[@]}")" >> "$tasks"
+  tile=(--origin "$origin" --keep-inside "$box" --threads "$cpus" "${parse_options[@]}")
+  echo "$(printf '%q ' "$osmparse" "$extract" --write-region-statistics "$work/statistics/${name}_1.stats" \
+    "${tile[@]}")" >> "$work/statistics_1.txt"
+  echo "$(printf '%q ' "$osmparse" "$extract" --write-region-statistics "$work/statistics/${name}_2.stats" \
+    --region-statistics "$(region_statistics 1)" "${tile[@]}")" >> "$work/statistics_2.txt"
+  echo "$(printf '%q ' "$osmparse" "$extract" -o "$scene" --region-statistics "$(region_statistics 2)" \
+    "${tile[@]}")" >> "$work/tasks.txt"
 done < "$work/tiles.txt"
 
 sbatch_common=(--parsable --chdir "$work")
@@ -142,14 +157,22 @@ EOF
 # Slurm runs a copy of the job script from its spool directory: name the task list by its path.
 cat > "$work/task.sh" << EOF
 #!/usr/bin/env bash
-# One array task: line SLURM_ARRAY_TASK_ID + 1 of tasks.txt.
+# One array task: line SLURM_ARRAY_TASK_ID + 1 of the task list \$1.
 set -euo pipefail
-line=\$(sed -n "\$((SLURM_ARRAY_TASK_ID + 1))p" $(printf '%q' "$tasks"))
-[ -n "\$line" ] || { echo "no task \$SLURM_ARRAY_TASK_ID in $(printf '%q' "$tasks")" >&2; exit 1; }
+line=\$(sed -n "\$((SLURM_ARRAY_TASK_ID + 1))p" "\$1")
+[ -n "\$line" ] || { echo "no task \$SLURM_ARRAY_TASK_ID in \$1" >&2; exit 1; }
 echo "task \$SLURM_ARRAY_TASK_ID on \$(hostname): \$line"
 start=\$(date +%s.%N)
 eval "\$line"
 echo "parse_seconds: \$(awk -v a="\$start" -v b="\$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')"
+EOF
+# After a statistics pass: the tiles' statistics, concatenated, are the region's.
+cat > "$work/merge.sh" << EOF
+#!/usr/bin/env bash
+set -euo pipefail
+cd $(printf '%q' "$work/statistics")
+cat tile_*_\$1.stats > region_\$1.stats.partial
+mv region_\$1.stats.partial region_\$1.stats
 EOF
 {
   echo '#!/usr/bin/env bash'
@@ -159,15 +182,26 @@ EOF
   echo "mv $(printf '%q' "$out/tiles.txt.partial") $(printf '%q' "$out/tiles.txt")"
   echo "touch $(printf '%q' "$work/parse.done")"
 } > "$work/done.sh"
-chmod +x "$work/extract.sh" "$work/task.sh" "$work/done.sh"
+chmod +x "$work/extract.sh" "$work/task.sh" "$work/merge.sh" "$work/done.sh"
 rm -f "$work/parse.done" "$out/tiles.txt"
 
 extract_job=$(sbatch "${sbatch_common[@]}" --job-name "$job_name-extract" --cpus-per-task 1 \
   --output "$work/logs/extract.log" "$work/extract.sh")
 echo "parse_farm: origin $origin, $count tiles of $bounds with ${overlap} m overlap"
 echo "parse_farm: extract job $extract_job"
+# Each job runs after the last one succeeded: statistics pass 1, its merge, pass 2, its merge, the parse.
+after=$extract_job
+for pass in 1 2; do
+  pass_job=$(sbatch "${sbatch_common[@]}" --job-name "$job_name-statistics-$pass" --array "0-$((count - 1))" \
+    --cpus-per-task "$cpus" --dependency "afterok:$after" --kill-on-invalid-dep=yes \
+    --output "$work/logs/statistics_${pass}_%a.log" "$work/task.sh" "$work/statistics_$pass.txt")
+  after=$(sbatch "${sbatch_common[@]}" --job-name "$job_name-merge-$pass" --dependency "afterok:$pass_job" \
+    --kill-on-invalid-dep=yes --output "$work/logs/merge_$pass.log" "$work/merge.sh" "$pass")
+  echo "parse_farm: region statistics pass $pass: array job $pass_job, merge job $after"
+done
 array_job=$(sbatch "${sbatch_common[@]}" --job-name "$job_name" --array "0-$((count - 1))" --cpus-per-task "$cpus" \
-  --dependency "afterok:$extract_job" --kill-on-invalid-dep=yes --output "$work/logs/task_%a.log" "$work/task.sh")
+  --dependency "afterok:$after" --kill-on-invalid-dep=yes --output "$work/logs/task_%a.log" "$work/task.sh" \
+  "$work/tasks.txt")
 echo "parse_farm: array job $array_job ($count tasks); logs in $work/logs"
 done_job=$(sbatch "${sbatch_common[@]}" --job-name "$job_name-done" --dependency "afterok:$array_job" \
   --kill-on-invalid-dep=yes --output "$work/logs/done.log" "$work/done.sh")

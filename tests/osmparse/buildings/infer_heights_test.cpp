@@ -481,6 +481,49 @@ TEST(InferHeights, TaggedHousesOfTheRegionCalibrateTheHouseRule) {
     EXPECT_GT(learnt, 5.0);
 }
 
+// The farm (docs/farm.md): each tile gathers the evidence of the buildings in its core; the
+// parts concatenated guess as the whole does.
+TEST(InferHeights, TheEvidenceOfARegionsPartsIsTheWholes) {
+    BuildingParams params;
+    std::vector<Building> v = city_of_blocks(3);
+    // Rule 3's: ten tagged `yes` buildings far apart, and an untagged one far from all.
+    for (int i = 0; i < 10; ++i) v.push_back(building(300 + i, 1000.0 * i, 5000, "yes", 12.0 + 2 * i, HeightSource::Tagged));
+    v.push_back(building(4, 5000, 9000, "yes", 5, HeightSource::Random));
+    auto west = [](const Building& b) { return b.outer[0].x < 100; };
+    auto east = [](const Building& b) { return b.outer[0].x >= 100; };
+    const HeightEvidence whole = height_evidence(v, {}, params);
+    HeightEvidence parts = height_evidence(v, {}, params, {}, west);
+    const HeightEvidence east_part = height_evidence(v, {}, params, {}, east);
+    EXPECT_GT(parts.tagged.size(), 0u);
+    EXPECT_GT(east_part.tagged.size(), 0u);
+    parts.tagged.insert(parts.tagged.end(), east_part.tagged.begin(), east_part.tagged.end());
+    parts.calibration.insert(parts.calibration.end(), east_part.calibration.begin(), east_part.calibration.end());
+    EXPECT_EQ(parts.tagged.size(), whole.tagged.size());
+    EXPECT_EQ(parts.calibration.size(), whole.calibration.size());
+    EXPECT_EQ(whole.calibration.size(), 40u) << "the tagged blocks and the ten far apart";
+
+    std::vector<Building> one = v, tiled = v;
+    ParseReport one_report, tiled_report;
+    infer_heights(one, {}, params, one_report);
+    infer_heights(tiled, {}, params, tiled_report, {}, &parts);
+    for (size_t i = 0; i < v.size(); ++i) EXPECT_EQ(one[i].height, tiled[i].height) << v[i].osm.id;
+    EXPECT_EQ(by_id(one, 4).height_rule, HeightRule::Neighbours);  // rule 3 took part
+}
+
+// A tile whose own extract has no tagged blocks guesses with the region's.
+TEST(InferHeights, ARegionsEvidenceStandsInForTheExtracts) {
+    BuildingParams params;
+    const HeightEvidence region = height_evidence(city_of_blocks(3), {}, params);
+    std::vector<Building> own = city_of_blocks(0), with_region = own;
+    ParseReport own_report, region_report;
+    infer_heights(own, {}, params, own_report);
+    infer_heights(with_region, {}, params, region_report, {}, &region);
+    EXPECT_EQ(own_report.note_count(ReportKind::BuildingHeights, ReportReason::Calibrated), 0);
+    EXPECT_EQ(region_report.note_count(ReportKind::BuildingHeights, ReportReason::Calibrated), 16);
+    EXPECT_GT(median_height(own, 1000, 2000), 19.0) << "the prior";
+    EXPECT_LT(median_height(with_region, 1000, 2000), 19.0) << "the region's five-storey blocks";
+}
+
 TEST(InferHeights, SameResultWhateverTheOrder) {
     BuildingParams params;
     std::vector<Building> v;
