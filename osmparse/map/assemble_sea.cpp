@@ -263,10 +263,14 @@ std::vector<LandCover> sea_with_islands(TaggedRings& water, TaggedRings& islands
 
 }  // namespace
 
+std::pair<LatLon, LatLon> extract_bounds(const OsmData& osm) {
+    if (osm.has_extract_bounds) return {osm.extract_min, osm.extract_max};
+    return {osm.min, osm.max};
+}
+
 Box2 extract_box(const OsmData& osm, const Projection& projection) {
     Box2 box;
-    const LatLon lo = osm.has_extract_bounds ? osm.extract_min : osm.min;
-    const LatLon hi = osm.has_extract_bounds ? osm.extract_max : osm.max;
+    const auto [lo, hi] = extract_bounds(osm);
     if (lo.lat > hi.lat || lo.lon > hi.lon) return box;
     for (double lat : {lo.lat, hi.lat})
         for (double lon : {lo.lon, hi.lon}) box.extend(round_to_stored_precision(projection.to_local(lat, lon)));

@@ -4,6 +4,7 @@
 // coastline rings inside the bounds are islands (holes) or enclosed seas.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "common/scene.h"
@@ -16,6 +17,8 @@ namespace citygen {
 // The rectangle (local metres) the sea is clipped to: the file header's bounds when given,
 // else the bounds of the data read.
 Box2 extract_box(const OsmData& osm, const Projection& projection);
+// The same bounds in degrees (min, max).
+std::pair<LatLon, LatLon> extract_bounds(const OsmData& osm);
 
 // Sea polygons (class Sea, outer CCW, holes CW) inside `box`. A chain cut short by a
 // clipped extract (its next node missing) is carried to the nearest box edge, counted.

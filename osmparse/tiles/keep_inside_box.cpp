@@ -65,7 +65,7 @@ TileChoice choose_all(const Scene& s, Inside inside) {
         return w.road >= 0 ? c.roads.has(w.road) : ring_inside(w.polygon);
     });
     c.lamps = choose(s.lamps, [&](const Lamp& l) { return inside({l.position.x, l.position.y}); });
-    c.land_cover = choose(s.land_cover, [&](const LandCover& l) { return ring_inside(l.outer); });
+    c.land_cover = choose(s.land_cover, [&](const LandCover& l) { return l.cover == LandCoverClass::Sea || ring_inside(l.outer); });
     c.trees = choose(s.trees, [&](const Tree& t) { return inside(t.position); });
     c.paths = choose(s.paths, [&](const PathEdge& p) { return inside(edge_anchor(p.centreline)); });
     c.path_joints = choose(s.path_joints, [&](const Joint& j) {
@@ -118,6 +118,23 @@ Vec2 ring_anchor(const Ring& ring) {
 Vec2 edge_anchor(const std::vector<Vec2>& centreline) {
     if (centreline.empty()) return {0, 0};
     return (centreline.front() + centreline.back()) * 0.5;
+}
+
+Box2 tile_sea_box(const LatLonBox& core, LatLon lo, LatLon hi, const Projection& projection) {
+    const LatLon min{std::max(core.min.lat, lo.lat), std::max(core.min.lon, lo.lon)};
+    const LatLon max{std::min(core.max.lat, hi.lat), std::min(core.max.lon, hi.lon)};
+    Box2 box;
+    if (min.lat >= max.lat || min.lon >= max.lon) return box;
+    constexpr int kSamples = 64;  // per edge: a tile's edge bends by metres, not more, between them
+    for (int i = 0; i <= kSamples; ++i) {
+        const double t = static_cast<double>(i) / kSamples;
+        const double lat = min.lat + t * (max.lat - min.lat), lon = min.lon + t * (max.lon - min.lon);
+        for (const LatLon p : {LatLon{lat, min.lon}, LatLon{lat, max.lon}, LatLon{min.lat, lon}, LatLon{max.lat, lon}})
+            box.extend(projection.to_local(p.lat, p.lon));
+    }
+    box.extend(box.min - Vec2(1, 1));
+    box.extend(box.max + Vec2(1, 1));
+    return box;
 }
 
 bool box_holds(const LatLonBox& box, const Projection& projection, Vec2 point) {

@@ -19,10 +19,18 @@ Vec2 edge_anchor(const std::vector<Vec2>& centreline);  // the middle of its fir
 // the projection, so an object's anchor is the same point in each).
 bool box_holds(const LatLonBox& box, const Projection& projection, Vec2 point);
 
+// The rectangle (scene metres) a tile's sea is assembled in: around the part of its core box
+// within its extract (from `lo` to `hi` in degrees). The sea is no OSM object to anchor but what
+// the coastline closes within a box, so each tile makes the sea of its core, and the tiles' seas
+// together cover the region's. Lines of latitude and longitude are curves in the plane: the
+// rectangle holds the core's edges, sampled, and a metre more, so neighbours' seas overlap
+// (the same water) rather than leave a gap.
+Box2 tile_sea_box(const LatLonBox& core, LatLon lo, LatLon hi, const Projection& projection);
+
 // Drops every object whose anchor is outside `box` and renumbers the references between the
 // rest. Sidewalks go with their corner's joint or their strip's road, crossings with their road,
 // and a joint with its first edge (whose class a path joint's paving shows), so what refers to
-// something keeps it; a reference to an object another tile keeps becomes -1 (an edge's joint)
+// something keeps it (and every sea polygon stays: tile_sea_box); a reference to an object another tile keeps becomes -1 (an edge's joint)
 // or is left out (a joint's edges): render's merge (render/scene/merge_scenes.h) links them again.
 // Each dropped object is counted in the report's "tile:" rows. Returns how many of the first
 // `leading` buildings stay (the pipeline's map buildings, before the generated ones).

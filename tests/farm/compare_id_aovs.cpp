@@ -63,6 +63,9 @@ std::string identity(const Scene& s, int kind, size_t i) {
             return "l" + to_string(s.lamps[i].osm) + at_cm({s.lamps[i].position.x, s.lamps[i].position.y});
         case ObjectKind::LandCover:
             check(s.land_cover.size());
+            // The sea is no OSM object but what the coastline closes within an extract's box:
+            // a tile's pieces are other polygons than one parse's, the same water.
+            if (s.land_cover[i].cover == LandCoverClass::Sea) return "sea";
             return "c" + to_string(s.land_cover[i].osm) + at_cm(middle(s.land_cover[i].outer));
         case ObjectKind::Tree:
             check(s.trees.size());

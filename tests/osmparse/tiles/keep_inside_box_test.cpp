@@ -139,6 +139,46 @@ TEST(KeepInsideBox, AnAnchorOnTheEdgeBelongsToOneTile) {
     }
 }
 
+// The sea is made per tile within its core (tile_sea_box): every tile keeps its own, wherever
+// its centroid.
+TEST(KeepInsideBox, EveryTileKeepsItsSea) {
+    for (const LatLonBox& box : {LatLonBox{{-90, -180}, {50, 8}}, LatLonBox{{50, 8}, {90, 180}}}) {
+        Scene s;
+        LandCover sea, water;
+        sea.cover = LandCoverClass::Sea;
+        water.cover = LandCoverClass::Water;
+        sea.outer = water.outer = {{5000, 5000}, {6000, 5000}, {6000, 6000}};  // north-east of the origin
+        s.land_cover = {sea, water};
+        ParseReport report;
+        keep_inside_box(s, kProjection, box, report);
+        ASSERT_FALSE(s.land_cover.empty());
+        EXPECT_EQ(s.land_cover[0].cover, LandCoverClass::Sea);
+        EXPECT_EQ(s.land_cover.size(), box.min.lat == 50 ? 2u : 1u) << "other water goes by its anchor";
+    }
+}
+
+// Four tiles' sea boxes cover the region's extract, each only a little beyond its core.
+TEST(TileSeaBox, TheTilesCoverTheExtractAndLittleMore) {
+    const LatLon lo{49.8, 7.7}, hi{50.2, 8.3};  // the extract: about 43 x 44 km
+    const LatLonBox cores[4] = {{{-90, -180}, {50, 8}}, {{-90, 8}, {50, 180}}, {{50, -180}, {90, 8}}, {{50, 8}, {90, 180}}};
+    Box2 boxes[4];
+    for (int i = 0; i < 4; ++i) boxes[i] = tile_sea_box(cores[i], lo, hi, kProjection);
+    // Points of the extract, on a lattice of degrees: each in a tile's sea box.
+    for (double lat = lo.lat; lat <= hi.lat; lat += 0.01)
+        for (double lon = lo.lon; lon <= hi.lon; lon += 0.01) {
+            const Vec2 p = kProjection.to_local(lat, lon);
+            bool covered = false;
+            for (const Box2& b : boxes) covered = covered || (p.x >= b.min.x && p.x <= b.max.x && p.y >= b.min.y && p.y <= b.max.y);
+            EXPECT_TRUE(covered) << lat << "," << lon;
+        }
+    // The south-west tile's box ends near the origin (the cut), not at the extract's far edge:
+    // within the bend of a meridian over 22 km at 50 N (about 0.2 degrees, 80 m) and the metre.
+    EXPECT_NEAR(boxes[0].max.x, 0, 100);
+    EXPECT_NEAR(boxes[0].max.y, 0, 100);
+    EXPECT_LT(boxes[0].min.x, -21000);
+    EXPECT_TRUE(tile_sea_box({{60, 8}, {90, 180}}, lo, hi, kProjection).empty()) << "a core beyond the extract";
+}
+
 TEST(KeepInsideBox, ReturnsTheMapBuildingsKept) {
     Scene s = two_sided_scene();
     ParseReport report;
