@@ -305,11 +305,8 @@ void add_empty_blocks(ParseState& s, ParseReport& report) {
 void lay_out_land_cover(ParseState& s, ParseReport& report) {
     const bool with_piers = !s.params().terrain.dem_files.empty();
     std::vector<LandCover> cover = build_land_cover(s.osm, *s.projection, s.params().buildings, with_piers, report);
-    Box2 sea_box = extract_box(s.osm, *s.projection);
-    if (s.job.keep_inside) {
-        const auto [lo, hi] = extract_bounds(s.osm);
-        sea_box = tile_sea_box(*s.job.keep_inside, lo, hi, *s.projection);
-    }
+    const Box2 sea_box = s.job.keep_inside ? tile_sea_box(*s.job.keep_inside, s.osm, *s.projection)
+                                           : extract_box(s.osm, *s.projection);
     std::vector<LandCover> sea = assemble_sea(s.osm, *s.projection, sea_box, s.scene.buildings, report);
     cover.insert(cover.end(), std::make_move_iterator(sea.begin()), std::make_move_iterator(sea.end()));
     s.scene.land_cover = drop_land_cover_beyond_limits(std::move(cover), report);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "osmparse/map/assemble_sea.h"
+
 namespace citygen {
 
 namespace {
@@ -120,7 +122,8 @@ Vec2 edge_anchor(const std::vector<Vec2>& centreline) {
     return (centreline.front() + centreline.back()) * 0.5;
 }
 
-Box2 tile_sea_box(const LatLonBox& core, LatLon lo, LatLon hi, const Projection& projection) {
+Box2 tile_sea_box(const LatLonBox& core, const OsmData& osm, const Projection& projection) {
+    const auto [lo, hi] = extract_bounds(osm);
     const LatLon min{std::max(core.min.lat, lo.lat), std::max(core.min.lon, lo.lon)};
     const LatLon max{std::min(core.max.lat, hi.lat), std::min(core.max.lon, hi.lon)};
     Box2 box;
@@ -132,8 +135,9 @@ Box2 tile_sea_box(const LatLonBox& core, LatLon lo, LatLon hi, const Projection&
         for (const LatLon p : {LatLon{lat, min.lon}, LatLon{lat, max.lon}, LatLon{min.lat, lon}, LatLon{max.lat, lon}})
             box.extend(projection.to_local(p.lat, p.lon));
     }
-    box.extend(box.min - Vec2(1, 1));
-    box.extend(box.max + Vec2(1, 1));
+    const Box2 extract = extract_box(osm, projection);
+    box.min = Vec2(std::max(box.min.x - 1, extract.min.x), std::max(box.min.y - 1, extract.min.y));
+    box.max = Vec2(std::min(box.max.x + 1, extract.max.x), std::min(box.max.y + 1, extract.max.y));
     return box;
 }
 

@@ -7,6 +7,7 @@
 
 #include "common/projection.h"
 #include "common/scene.h"
+#include "osmparse/core/osm_data.h"
 #include "osmparse/core/report.h"
 #include "osmparse/tiles/lat_lon_text.h"
 
@@ -20,12 +21,12 @@ Vec2 edge_anchor(const std::vector<Vec2>& centreline);  // the middle of its fir
 bool box_holds(const LatLonBox& box, const Projection& projection, Vec2 point);
 
 // The rectangle (scene metres) a tile's sea is assembled in: around the part of its core box
-// within its extract (from `lo` to `hi` in degrees). The sea is no OSM object to anchor but what
-// the coastline closes within a box, so each tile makes the sea of its core, and the tiles' seas
-// together cover the region's. Lines of latitude and longitude are curves in the plane: the
-// rectangle holds the core's edges, sampled, and a metre more, so neighbours' seas overlap
-// (the same water) rather than leave a gap.
-Box2 tile_sea_box(const LatLonBox& core, LatLon lo, LatLon hi, const Projection& projection);
+// within the extract of `osm`. The sea is no OSM object to anchor but what the coastline closes
+// within a box, so each tile makes the sea of its core, and the tiles' seas together cover the
+// region's. Lines of latitude and longitude are curves in the plane: the rectangle holds the
+// core's edges, sampled, and a metre more, so neighbours' seas overlap (the same water) rather
+// than leave a gap; it ends where the extract's box (extract_box) does, as one parse's sea.
+Box2 tile_sea_box(const LatLonBox& core, const OsmData& osm, const Projection& projection);
 
 // Drops every object whose anchor is outside `box` and renumbers the references between the
 // rest. Sidewalks go with their corner's joint or their strip's road, crossings with their road,

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "common/error.h"
+#include "osmparse/map/assemble_sea.h"
 #include "osmparse/tiles/keep_inside_box.h"
 
 using namespace citygen;
@@ -157,26 +158,43 @@ TEST(KeepInsideBox, EveryTileKeepsItsSea) {
     }
 }
 
-// Four tiles' sea boxes cover the region's extract, each only a little beyond its core.
+// Four tiles' sea boxes cover the region's extract, each only a little beyond its core, and none
+// beyond the extract's box.
 TEST(TileSeaBox, TheTilesCoverTheExtractAndLittleMore) {
     const LatLon lo{49.8, 7.7}, hi{50.2, 8.3};  // the extract: about 43 x 44 km
+    OsmData osm;
+    osm.has_extract_bounds = true;
+    osm.extract_min = lo;
+    osm.extract_max = hi;
     const LatLonBox cores[4] = {{{-90, -180}, {50, 8}}, {{-90, 8}, {50, 180}}, {{50, -180}, {90, 8}}, {{50, 8}, {90, 180}}};
     Box2 boxes[4];
-    for (int i = 0; i < 4; ++i) boxes[i] = tile_sea_box(cores[i], lo, hi, kProjection);
-    // Points of the extract, on a lattice of degrees: each in a tile's sea box.
+    for (int i = 0; i < 4; ++i) boxes[i] = tile_sea_box(cores[i], osm, kProjection);
+    const Box2 whole = extract_box(osm, kProjection);
+    for (const Box2& b : boxes) {
+        EXPECT_GE(b.min.x, whole.min.x);
+        EXPECT_GE(b.min.y, whole.min.y);
+        EXPECT_LE(b.max.x, whole.max.x);
+        EXPECT_LE(b.max.y, whole.max.y);
+    }
+    // Points of the extract, on a lattice of degrees: each one within one parse's sea box (where
+    // the extract's curved edges do not bulge beyond it) is in a tile's.
+    int points = 0;
     for (double lat = lo.lat; lat <= hi.lat; lat += 0.01)
         for (double lon = lo.lon; lon <= hi.lon; lon += 0.01) {
             const Vec2 p = kProjection.to_local(lat, lon);
+            if (p.x < whole.min.x || p.x > whole.max.x || p.y < whole.min.y || p.y > whole.max.y) continue;
+            ++points;
             bool covered = false;
             for (const Box2& b : boxes) covered = covered || (p.x >= b.min.x && p.x <= b.max.x && p.y >= b.min.y && p.y <= b.max.y);
             EXPECT_TRUE(covered) << lat << "," << lon;
         }
+    EXPECT_GT(points, 2000);
     // The south-west tile's box ends near the origin (the cut), not at the extract's far edge:
     // within the bend of a meridian over 22 km at 50 N (about 0.2 degrees, 80 m) and the metre.
     EXPECT_NEAR(boxes[0].max.x, 0, 100);
     EXPECT_NEAR(boxes[0].max.y, 0, 100);
     EXPECT_LT(boxes[0].min.x, -21000);
-    EXPECT_TRUE(tile_sea_box({{60, 8}, {90, 180}}, lo, hi, kProjection).empty()) << "a core beyond the extract";
+    EXPECT_TRUE(tile_sea_box({{60, 8}, {90, 180}}, osm, kProjection).empty()) << "a core beyond the extract";
 }
 
 TEST(KeepInsideBox, ReturnsTheMapBuildingsKept) {
