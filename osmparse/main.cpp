@@ -153,8 +153,8 @@ void set_tile_options(ParseJob& job, const Options& o) {
 int run_parse(ParseJob& job, const Options& o) {
     ParseParams& p = job.params;
     const bool statistics_only = !o.write_region_statistics.empty();
-    if (statistics_only && !o.output.empty())
-        throw Error("--write-region-statistics writes no scene: leave out -o");
+    if (statistics_only && (!o.output.empty() || !o.geojson.empty()))
+        throw Error("--write-region-statistics writes no scene: leave out -o and --geojson");
     const std::string& output = statistics_only ? o.write_region_statistics : o.output;
     if (job.input.empty() || output.empty()) throw Error("need an input file and -o OUTPUT.scene (see --help)");
     check_output_target(output, {job.input, o.region_statistics});

@@ -116,6 +116,7 @@ TEST(TileOptionsCli, BadStatisticsGetOneLine) {
          {"--region-statistics " + quoted(dir.file("cut.stats")), "--region-statistics " + quoted(dir.file("garbage.stats")),
           "--region-statistics " + quoted(dir.file("missing.stats")),
           "--write-region-statistics " + quoted(dir.file("x.stats")),  // with -o: one output or the other
+          "--write-region-statistics " + quoted(dir.file("x.stats")) + " --geojson " + quoted(dir.file("x.geojson")),
           "--write-region-statistics " + quoted(dir.file("x.stats")) + " --region-statistics " + quoted(dir.file("cut.stats"))}) {
         const CommandResult r = parse(args, scene);
         EXPECT_NE(r.exit_code, 0) << args;
