@@ -1,5 +1,6 @@
-// Fuzzes the command-line value parsers: the first byte picks the parser, the rest is the
-// value. Each must return a value within its limits or throw citygen::Error.
+// Fuzzes the command-line value parsers and the small text files options name: the first byte
+// picks the parser, the rest is the value. Each must return a value within its limits or throw
+// citygen::Error.
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -8,6 +9,7 @@
 #include "common/error.h"
 #include "common/scene_limits.h"
 #include "osmparse/core/osm_units.h"
+#include "osmparse/tiles/region_statistics.h"
 #include "render/camera/camera_path.h"
 #include "render/cli_values.h"
 #include "render/lights/sky.h"
@@ -19,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size == 0) return 0;
     const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
     try {
-        switch (data[0] % 8) {
+        switch (data[0] % 9) {
             case 0: {
                 const Vec3 p = parse_point(text, "--camera");
                 if (!(std::fabs(p.x) <= kMaxCoordinate && std::fabs(p.y) <= kMaxCoordinate &&
@@ -56,6 +58,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                 break;
             }
             case 7: parse_frame_range(text); break;
+            case 8: {  // a farm's region statistics (--region-statistics): what the rules read stays finite
+                const RegionStatistics s = parse_region_statistics(text, "region.stats");
+                for (const HeightEvidence::Tagged& t : s.heights.tagged)
+                    if (!(t.height > 0 && std::isfinite(t.height)) || t.area_class < 0 ||
+                        t.area_class >= HeightEvidence::kFootprintClasses)
+                        std::abort();
+                for (const HeightEvidence::Ratio& r : s.heights.calibration)
+                    if (!std::isfinite(r.log_ratio) || r.group < 0 || r.group >= HeightEvidence::kCalibratedGroups)
+                        std::abort();
+                for (int g = 0; g < static_cast<int>(RoofGroup::Count); ++g)
+                    if (s.roofs.tagged[g] < 0 || s.roofs.pitched[g] < 0 || s.roofs.pitched[g] > s.roofs.tagged[g])
+                        std::abort();
+                break;
+            }
         }
     } catch (const Error&) {
     }
