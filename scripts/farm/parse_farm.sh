@@ -166,12 +166,14 @@ start=\$(date +%s.%N)
 eval "\$line"
 echo "parse_seconds: \$(awk -v a="\$start" -v b="\$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')"
 EOF
-# After a statistics pass: the tiles' statistics, concatenated, are the region's.
+# After statistics pass \$1: the tiles' statistics, concatenated, are the region's.
 cat > "$work/merge.sh" << EOF
 #!/usr/bin/env bash
 set -euo pipefail
 cd $(printf '%q' "$work/statistics")
-cat tile_*_\$1.stats > region_\$1.stats.partial
+parts=(tile_*_\$1.stats)
+[ \${#parts[@]} -eq $count ] || { echo "pass \$1: \${#parts[@]} tiles' statistics, not $count" >&2; exit 1; }
+cat "\${parts[@]}" > region_\$1.stats.partial
 mv region_\$1.stats.partial region_\$1.stats
 EOF
 {
