@@ -9,6 +9,8 @@
 #include <iterator>
 #include <sstream>
 
+#include <sys/stat.h>
+
 #include "common/error.h"
 #include "common/scene_io.h"
 
@@ -186,6 +188,8 @@ RegionStatistics parse_region_statistics(const std::string& text, const std::str
 }
 
 RegionStatistics read_region_statistics(const std::string& path) {
+    struct stat info;
+    if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) throw Error(path + ": a directory, not a file");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open");
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

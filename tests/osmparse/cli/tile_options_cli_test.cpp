@@ -114,7 +114,7 @@ TEST(TileOptionsCli, BadStatisticsGetOneLine) {
     write_text(dir.file("garbage.stats"), "citygen-region-statistics 1\ntagged 9 1 yes\nend 1\n");
     for (const std::string& args :
          {"--region-statistics " + quoted(dir.file("cut.stats")), "--region-statistics " + quoted(dir.file("garbage.stats")),
-          "--region-statistics " + quoted(dir.file("missing.stats")),
+          "--region-statistics " + quoted(dir.file("missing.stats")), "--region-statistics " + quoted(dir.path()),
           "--write-region-statistics " + quoted(dir.file("x.stats")),  // with -o: one output or the other
           "--write-region-statistics " + quoted(dir.file("x.stats")) + " --geojson " + quoted(dir.file("x.geojson")),
           "--write-region-statistics " + quoted(dir.file("x.stats")) + " --region-statistics " + quoted(dir.file("cut.stats"))}) {
@@ -122,6 +122,7 @@ TEST(TileOptionsCli, BadStatisticsGetOneLine) {
         EXPECT_NE(r.exit_code, 0) << args;
         EXPECT_EQ(count_lines(r.err), 1) << args << ": " << r.err;
         EXPECT_EQ(r.err.rfind("osmparse: ", 0), 0u) << r.err;
+        EXPECT_EQ(r.err.find("unexpected"), std::string::npos) << "a clear line: " << r.err;
         EXPECT_EQ(read_text(scene), "previous") << args;
     }
     // Writing the statistics over the file they are read from is refused, and the file kept.
