@@ -638,8 +638,10 @@ HeightEvidence HeightGuesser::evidence(const std::function<bool(const Building&)
         const std::string& type = type_of(b, plan.area);
         e.tagged.push_back({type_key(type), area_class(plan.area), b.height});
         const TypePrior p = type_prior(type, plan);
-        if (p.group != kNotCalibrated && p.height > 0 && b.height > 0)
-            e.calibration.push_back({p.group, std::log(b.height / p.height)});
+        // Finite: a tagged height of 1e-320 m would make the ratio's log -inf.
+        const double log_ratio = p.height > 0 ? std::log(b.height / p.height) : 0;
+        if (p.group != kNotCalibrated && p.height > 0 && std::isfinite(log_ratio))
+            e.calibration.push_back({p.group, log_ratio});
     }
     return e;
 }

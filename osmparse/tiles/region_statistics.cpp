@@ -19,11 +19,12 @@ namespace citygen {
 namespace {
 
 constexpr const char* kHeader = "citygen-region-statistics 1";
-// Far beyond any building (the tallest stands 830 m) and any ratio of one to its rule, but
-// finite: a corrupt file cannot make a median infinite.
+// Bounds that every value the writer can be given passes (a tagged height is above 0 and at
+// most BuildingParams::max_height; a log ratio of two positive doubles is within 745 of 0),
+// while a corrupt file cannot make a median infinite.
 constexpr double kMaxHeight = 10000;
-constexpr double kMaxLogRatio = 50;
-constexpr size_t kMaxTypeLength = 255;  // OSM's limit for a tag value
+constexpr double kMaxLogRatio = 1000;
+constexpr size_t kMaxTypeLength = 1024;  // bytes: OSM's 255 characters of up to 4 bytes each
 
 std::string hex_float(double v) {
     char text[40];
@@ -77,9 +78,8 @@ public:
     double number(double min, double max, const char* what) {
         const std::string w = word();
         char* end = nullptr;
-        errno = 0;
-        const double v = std::strtod(w.c_str(), &end);
-        if (*end != '\0' || errno != 0 || !std::isfinite(v) || v < min || v > max)
+        const double v = std::strtod(w.c_str(), &end);  // overflow gives inf; underflow, a denormal or 0
+        if (*end != '\0' || !std::isfinite(v) || v < min || v > max)
             fail(std::string(what) + " '" + w + "' is not a number in range");
         return v;
     }
@@ -153,7 +153,8 @@ RegionStatistics parse_region_statistics(const std::string& text, const std::str
         if (kind == "tagged") {
             HeightEvidence::Tagged t;
             t.area_class = static_cast<int>(r.integer(0, HeightEvidence::kFootprintClasses - 1, "footprint class"));
-            t.height = r.number(0.01, kMaxHeight, "height");
+            t.height = r.number(0, kMaxHeight, "height");
+            if (!(t.height > 0)) r.fail("height 0: a tagged height is above 0");
             t.type = r.type();
             s.heights.tagged.push_back(std::move(t));
         } else if (kind == "ratio") {

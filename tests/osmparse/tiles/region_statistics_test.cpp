@@ -3,6 +3,8 @@
 // is refused with one line naming the file and the line.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "common/error.h"
 #include "osmparse/tiles/region_statistics.h"
 
@@ -45,6 +47,15 @@ TEST(RegionStatistics, ReadsBackExactlyWhatWasWritten) {
     EXPECT_EQ(text.rfind("end 7\n"), text.size() - 6) << "three tagged, two ratios, two roof groups";
 }
 
+// Never a file its reader refuses: the extremes the gathering can meet read back.
+TEST(RegionStatistics, TheExtremesReadBack) {
+    RegionStatistics s;
+    s.heights.tagged = {{std::string(1020, '\xe4'), 0, 5e-324}, {"yes", 4, 1000}};
+    s.heights.calibration = {{1, std::log(4.9e-324)}, {2, std::log(1.7e308)}};  // the logs of the least and largest doubles
+    s.roofs.tagged[0] = s.roofs.pitched[0] = 2147483647;
+    expect_equal(parse_region_statistics(region_statistics_text(s), "x.stats"), s);
+}
+
 TEST(RegionStatistics, ConcatenatedPartsAreTheirSum) {
     const RegionStatistics a = sample();
     RegionStatistics b;
@@ -76,15 +87,16 @@ TEST(RegionStatistics, RefusesWhatIsMalformedOutOfRangeOrCut) {
         {head + "tagged 0 nan yes\nend 1\n", "height"},
         {head + "tagged 0 inf yes\nend 1\n", "height"},
         {head + "tagged 0 -3 yes\nend 1\n", "height"},
+        {head + "tagged 0 0 yes\nend 1\n", "height 0"},
         {head + "tagged 0 1e9 yes\nend 1\n", "height"},
         {head + "tagged 0 12m yes\nend 1\n", "height"},
         {head + "tagged 0 12\nend 1\n", "too few fields"},
         {head + "tagged 0 12 yes no\nend 1\n", "unexpected field 'no'"},
         {head + "tagged 0 12 ye%G1\nend 1\n", "escape"},
         {head + "tagged 0 12 ye%4\nend 1\n", "escape"},
-        {head + "tagged 0 12 " + std::string(300, 'a') + "\nend 1\n", "type longer"},
+        {head + "tagged 0 12 " + std::string(1100, 'a') + "\nend 1\n", "type longer"},
         {head + "ratio 4 0.1\nend 1\n", "group"},
-        {head + "ratio 0 60\nend 1\n", "ratio"},
+        {head + "ratio 0 1e4\nend 1\n", "ratio"},
         {head + "roofs 6 1 0\nend 1\n", "roof group"},
         {head + "roofs 1 2 3\nend 1\n", "pitched count"},
         {head + "roofs 1 -2 0\nend 1\n", "count"},
