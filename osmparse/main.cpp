@@ -53,7 +53,8 @@ struct Options {
     std::string ignore_types, road_classes, trees = "all";
     CLI::Option* dem_resolution = nullptr;  // given or not: 0 is an error, not the default
     std::string origin, keep_inside;        // the farm's tiles (docs/farm.md)
-    std::string region_statistics, write_region_statistics;
+    std::vector<std::string> region_statistics;  // one file a tile: their sum
+    std::string write_region_statistics;
 };
 
 void add_file_options(CLI::App& app, ParseJob& job, Options& o) {
@@ -133,7 +134,9 @@ void add_tile_options(CLI::App& app, Options& o) {
                    "(all without it) and stop, with no scene; the tiles' files concatenated are the region's");
     app.add_option("--region-statistics", o.region_statistics,
                    "FILE: the height and roof rules read these statistics (a region's, from "
-                   "--write-region-statistics) instead of the extract's own");
+                   "--write-region-statistics) instead of the extract's own; repeat it for several files, summed")
+        ->expected(1)
+        ->take_all();
 }
 
 void set_tile_options(ParseJob& job, const Options& o) {
@@ -157,7 +160,9 @@ int run_parse(ParseJob& job, const Options& o) {
         throw Error("--write-region-statistics writes no scene: leave out -o and --geojson");
     const std::string& output = statistics_only ? o.write_region_statistics : o.output;
     if (job.input.empty() || output.empty()) throw Error("need an input file and -o OUTPUT.scene (see --help)");
-    check_output_target(output, {job.input, o.region_statistics});
+    std::vector<std::string> inputs = o.region_statistics;
+    inputs.push_back(job.input);
+    check_output_target(output, inputs);
     if (!o.geojson.empty()) {
         check_output_target(o.geojson, {job.input, o.output});
         if (o.geojson == o.output) throw Error("--geojson and -o name the same file");

@@ -188,14 +188,20 @@ RegionStatistics parse_region_statistics(const std::string& text, const std::str
     return s;
 }
 
-RegionStatistics read_region_statistics(const std::string& path) {
-    struct stat info;
-    if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) throw Error(path + ": a directory, not a file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open");
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) throw Error(path + ": cannot read");
-    return parse_region_statistics(text, path);
+RegionStatistics read_region_statistics(const std::vector<std::string>& paths) {
+    std::string text;
+    for (const std::string& path : paths) {
+        struct stat info;
+        if (::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) throw Error(path + ": a directory, not a file");
+        std::ifstream in(path, std::ios::binary);
+        if (!in) throw Error(path + ": cannot open");
+        const std::string part((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        if (in.bad()) throw Error(path + ": cannot read");
+        parse_region_statistics(part, path);  // each file whole, each error naming its file
+        text += part;
+        if (!part.empty() && part.back() != '\n') text += '\n';
+    }
+    return parse_region_statistics(text, paths.size() == 1 ? paths.front() : "the region statistics");
 }
 
 void write_region_statistics(const std::string& path, const RegionStatistics& statistics) {

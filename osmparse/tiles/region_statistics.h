@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "osmparse/buildings/infer_heights.h"
 #include "osmparse/roofs/build_roofs.h"
@@ -29,7 +30,8 @@ std::string region_statistics_text(const RegionStatistics& statistics);
 // out of range or cut.
 RegionStatistics parse_region_statistics(const std::string& text, const std::string& path);
 
-RegionStatistics read_region_statistics(const std::string& path);
+// The sum of the files (each read as parse_region_statistics reads its text).
+RegionStatistics read_region_statistics(const std::vector<std::string>& paths);
 // Atomically (write_file_atomically), checked by parse_region_statistics first.
 void write_region_statistics(const std::string& path, const RegionStatistics& statistics);
 

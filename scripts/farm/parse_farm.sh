@@ -6,7 +6,7 @@
 # Before that, two shorter job arrays gather the statistics the height and roof rules read of
 # the whole region (osmparse --write-region-statistics, each tile over its core box): the first
 # the tagged heights, the second the roof tags, whose groups depend on the heights the first
-# gives; each tile's parse reads the region's (--region-statistics), as one parse would.
+# gives; each tile's parse reads every tile's (--region-statistics, summed), as one parse would.
 # render loads the tile scenes as one city: render OUTDIR/tile_*.scene -o city.png (docs/farm.md).
 #
 #   scripts/farm/parse_farm.sh REGION.osm.pbf OUTDIR --tiles CxR [farm options] [-- osmparse options]
@@ -123,10 +123,14 @@ awk -v columns="$columns" -v rows="$rows" -v overlap="$overlap" -v a="$min_lat" 
 count=$(wc -l < "$work/tiles.txt")
 
 # One osmparse per line, each word quoted: the task lists of the two statistics passes and the
-# parse. Pass 2 reads pass 1's region statistics, the parse pass 2's.
+# parse. Pass 2 reads every tile's pass 1 statistics (osmparse sums them), the parse pass 2's.
 mkdir -p "$work/statistics" || die "$work/statistics: cannot create"
 rm -f "$work/statistics/"*.stats
-region_statistics() { echo "$work/statistics/region_$1.stats"; }
+every_tile() {  # --region-statistics for each tile's file of pass $1
+  while read -r name _; do printf -- '--region-statistics\n%s\n' "$work/statistics/${name}_$1.stats"; done < "$work/tiles.txt"
+}
+mapfile -t pass_1 < <(every_tile 1)
+mapfile -t pass_2 < <(every_tile 2)
 : > "$work/statistics_1.txt"
 : > "$work/statistics_2.txt"
 : > "$work/tasks.txt"
@@ -135,9 +139,8 @@ while read -r name box extract scene; do
   echo "$(printf '%q ' "$osmparse" "$extract" --write-region-statistics "$work/statistics/${name}_1.stats" \
     "${tile[@]}")" >> "$work/statistics_1.txt"
   echo "$(printf '%q ' "$osmparse" "$extract" --write-region-statistics "$work/statistics/${name}_2.stats" \
-    --region-statistics "$(region_statistics 1)" "${tile[@]}")" >> "$work/statistics_2.txt"
-  echo "$(printf '%q ' "$osmparse" "$extract" -o "$scene" --region-statistics "$(region_statistics 2)" \
-    "${tile[@]}")" >> "$work/tasks.txt"
+    "${pass_1[@]}" "${tile[@]}")" >> "$work/statistics_2.txt"
+  echo "$(printf '%q ' "$osmparse" "$extract" -o "$scene" "${pass_2[@]}" "${tile[@]}")" >> "$work/tasks.txt"
 done < "$work/tiles.txt"
 
 sbatch_common=(--parsable --chdir "$work")
@@ -166,16 +169,6 @@ start=\$(date +%s.%N)
 eval "\$line"
 echo "parse_seconds: \$(awk -v a="\$start" -v b="\$(date +%s.%N)" 'BEGIN { printf "%.2f", b - a }')"
 EOF
-# After statistics pass \$1: the tiles' statistics, concatenated, are the region's.
-cat > "$work/merge.sh" << EOF
-#!/usr/bin/env bash
-set -euo pipefail
-cd $(printf '%q' "$work/statistics")
-parts=(tile_*_\$1.stats)
-[ \${#parts[@]} -eq $count ] || { echo "pass \$1: \${#parts[@]} tiles' statistics, not $count" >&2; exit 1; }
-cat "\${parts[@]}" > region_\$1.stats.partial
-mv region_\$1.stats.partial region_\$1.stats
-EOF
 {
   echo '#!/usr/bin/env bash'
   echo '# Runs after every tile is parsed: the list render takes.'
@@ -184,22 +177,20 @@ EOF
   echo "mv $(printf '%q' "$out/tiles.txt.partial") $(printf '%q' "$out/tiles.txt")"
   echo "touch $(printf '%q' "$work/parse.done")"
 } > "$work/done.sh"
-chmod +x "$work/extract.sh" "$work/task.sh" "$work/merge.sh" "$work/done.sh"
+chmod +x "$work/extract.sh" "$work/task.sh" "$work/done.sh"
 rm -f "$work/parse.done" "$out/tiles.txt"
 
 extract_job=$(sbatch "${sbatch_common[@]}" --job-name "$job_name-extract" --cpus-per-task 1 \
   --output "$work/logs/extract.log" "$work/extract.sh")
 echo "parse_farm: origin $origin, $count tiles of $bounds with ${overlap} m overlap"
 echo "parse_farm: extract job $extract_job"
-# Each job runs after the last one succeeded: statistics pass 1, its merge, pass 2, its merge, the parse.
+# Each array runs after the last one succeeded: statistics pass 1, pass 2, the parse.
 after=$extract_job
 for pass in 1 2; do
-  pass_job=$(sbatch "${sbatch_common[@]}" --job-name "$job_name-statistics-$pass" --array "0-$((count - 1))" \
+  after=$(sbatch "${sbatch_common[@]}" --job-name "$job_name-statistics-$pass" --array "0-$((count - 1))" \
     --cpus-per-task "$cpus" --dependency "afterok:$after" --kill-on-invalid-dep=yes \
     --output "$work/logs/statistics_${pass}_%a.log" "$work/task.sh" "$work/statistics_$pass.txt")
-  after=$(sbatch "${sbatch_common[@]}" --job-name "$job_name-merge-$pass" --dependency "afterok:$pass_job" \
-    --kill-on-invalid-dep=yes --output "$work/logs/merge_$pass.log" "$work/merge.sh" "$pass")
-  echo "parse_farm: region statistics pass $pass: array job $pass_job, merge job $after"
+  echo "parse_farm: region statistics pass $pass: array job $after"
 done
 array_job=$(sbatch "${sbatch_common[@]}" --job-name "$job_name" --array "0-$((count - 1))" --cpus-per-task "$cpus" \
   --dependency "afterok:$after" --kill-on-invalid-dep=yes --output "$work/logs/task_%a.log" "$work/task.sh" \

@@ -102,6 +102,16 @@ TEST(TileOptionsCli, TwoTilesGatherTheWholesStatistics) {
     ASSERT_EQ(parse(origin, dir.file("plain.scene")).exit_code, 0);
     ASSERT_EQ(parse(origin + "--region-statistics " + quoted(dir.file("whole.stats")), dir.file("read.scene")).exit_code, 0);
     EXPECT_EQ(read_text(dir.file("plain.scene")), read_text(dir.file("read.scene")));
+    // The tiles' files given one by one are summed: the same scene.
+    ASSERT_EQ(parse(origin + "--region-statistics " + quoted(dir.file("west.stats")) + " --region-statistics " +
+                        quoted(dir.file("east.stats")),
+                    dir.file("tiles.scene"))
+                  .exit_code,
+              0);
+    EXPECT_EQ(read_text(dir.file("plain.scene")), read_text(dir.file("tiles.scene")));
+    // One tile's alone is not the region's: its heights differ.
+    ASSERT_EQ(parse(origin + "--region-statistics " + quoted(dir.file("west.stats")), dir.file("west.scene")).exit_code, 0);
+    EXPECT_NE(read_text(dir.file("plain.scene")), read_text(dir.file("west.scene")));
 }
 
 TEST(TileOptionsCli, BadStatisticsGetOneLine) {

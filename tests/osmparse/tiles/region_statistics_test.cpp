@@ -119,7 +119,7 @@ TEST(RegionStatistics, RefusesWhatIsMalformedOutOfRangeOrCut) {
 
 TEST(RegionStatistics, AMissingFileIsNamed) {
     try {
-        read_region_statistics("/nonexistent/region.stats");
+        read_region_statistics({"/nonexistent/region.stats"});
         ADD_FAILURE();
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("/nonexistent/region.stats: cannot open"), std::string::npos) << e.what();
