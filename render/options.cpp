@@ -187,7 +187,7 @@ void add_view_options(CLI::App& app, Options& o) {
     app.add_option("--fov", o.fov, "vertical field of view in degrees")->check(CLI::Range(1.0, 170.0))
         ->capture_default_str();
     app.add_flag("--denoise", o.denoise,
-                 "edge-avoiding a-trous filter guided by normal, depth, albedo and id (EXR keeps raw.R/G/B)");
+                 "first-order regression filter guided by normal, depth, albedo and direct light (EXR keeps raw.R/G/B)");
 }
 
 // Time of day, sun, exposure, lamps, windows and atmosphere.

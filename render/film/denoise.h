@@ -1,18 +1,25 @@
-// An edge-avoiding à-trous wavelet filter (Dammertz, Sewtz, Hanika, Lensch: "Edge-Avoiding
-// À-Trous Wavelet Transform for fast Global Illumination Filtering", HPG 2010), guided by the
-// noise-free AOVs of the ray through each pixel centre: normal, depth, albedo and object id.
+// A weighted first-order regression filter (after Moon, Carr and Yoon: "Adaptive Rendering based
+// on Weighted Local Regression", TOG 2014, and Bitterli et al.: "Nonlinearly Weighted
+// First-order Regression for Denoising Monte Carlo Renderings", EGSR 2016), guided by what the
+// film knows without noise about each pixel: albedo, normal, depth and direct light, averaged
+// over the pixel.
 //
-// Each level blurs with the B3-spline kernel (1/16, 1/4, 3/8, 1/4, 1/16) whose taps lie 2^level
-// pixels apart, and weights every tap by how alike the two pixels are: luminance, measured in
-// units of the pixel's own noise (the variance of its samples, filtered along, as in SVGF by
-// Schied et al. 2017; the tolerance halves with each level, as the paper's colour tolerance), normal,
-// relative depth and albedo; pixels of another object (or the sky) get no weight at all. The
-// filter works on colour minus the direct light (emitters, haze, the sun's light with hard
+// For every pixel the filter fits, over a window of neighbours, the light as a linear function
+// of how the neighbours' guides and image positions differ from the pixel's, and keeps the fit's
+// value at the pixel itself. A pixel that mixes a roof, a wall and a street (a building a few
+// pixels wide) has no neighbour with its guides, but it lies between neighbours that show each
+// part; an average of alike pixels, as the earlier edge-avoiding à-trous filter was, leaves it
+// as noisy as it came. Neighbours weigh by distance, by how alike their guides are, and by how
+// alike the mean luminance of their 3x3 patch is, in units of the pixel's own noise (from the
+// variance of its samples): a shadow or lamp pool that no guide knows stays, and a firefly is
+// not spread. Only the sky is a hard edge.
+//
+// The filter works on colour minus the direct light (emitters, haze, the sun's light with hard
 // shadows) along the pixel's own sample rays (film.guide_sample_direct, so where the samples
 // fell does not count as noise), divided by albedo; the direct light of film.guide_direct (the
 // same over a fixed grid in the pixel) goes back unfiltered, so texture, lamps, lit windows and
-// shadow edges are kept. Every pixel is computed alone from the previous level, so the result
-// does not depend on the thread count.
+// shadow edges are kept. Every pixel is computed alone, so the result does not depend on the
+// thread count.
 #pragma once
 
 #include "render/film/render_image.h"
@@ -20,11 +27,12 @@
 namespace citygen {
 
 struct DenoiseSettings {
-    int levels = 4;            // taps 1, 2, 4, 8 pixels apart
-    double sigma_luminance = 6;  // luminance difference, in standard deviations of the pixel's noise, halving per level
-    double sigma_normal = 0.7; // length of the difference of unit normals
-    double sigma_depth = 0.03; // depth difference relative to depth, per pixel of tap distance
-    double sigma_albedo = 0.2; // albedo difference
+    int radius = 9;               // the window: (2 radius + 1)^2 pixels, weighted by a Gaussian of sigma radius / 2
+    double sigma_luminance = 2;   // 3x3 patch luminance difference, in standard deviations of the pixel's noise
+    double sigma_normal = 1.0;    // length of the difference of the pixels' mean normals
+    double sigma_depth = 0.03;    // depth difference relative to depth, per pixel of distance
+    double sigma_albedo = 0.2;    // albedo difference
+    double ridge = 1e-4;          // pull of the fit's slopes towards zero, relative to the window's weight
 };
 
 // How far (in pixels, each way) a filtered pixel sees: a region rendered this much larger and
@@ -32,7 +40,7 @@ struct DenoiseSettings {
 int denoise_margin(const DenoiseSettings& settings);
 
 // Filters film.rgb in place (it needs the film's AOVs) and keeps the unfiltered radiance in
-// film.raw_rgb. `exposure` scales radiance to display values for the colour weight.
+// film.raw_rgb. `exposure` scales radiance to display values.
 void denoise(Film& film, double exposure, const DenoiseSettings& settings = {});
 
 }  // namespace citygen

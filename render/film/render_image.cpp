@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -117,33 +118,47 @@ void fill_aovs(const PathContext& context, const Camera& camera, int x, int y, s
     film.object_index[i] = static_cast<float>(hit.object);
 }
 
-// The denoiser's guides: albedo, normal, depth and direct light averaged over a 6x6 grid of
+// The denoiser's guides: albedo, normal, depth and direct light averaged over a grid of
 // positions inside the pixel, so a window narrower than a pixel still shows (a fixed grid:
 // noise-free, and it takes nothing from the pixel's random stream). The direct light goes back
-// into the image unfiltered, so the grid must be fine enough for a shadow or window edge that
-// crosses the pixel: 6x6 is clearly better than 3x3 and a finer grid adds little
-// (tests/bench/denoise_bench.sh; docs/bench/2026-11-denoise.md).
+// into the image unfiltered, so its error at a shadow, window or roof edge that crosses the
+// pixel is the image's: where it varies over the 6x6 grid by more than kEdgeContrast, the pixel
+// takes the 12x12 grid's mean instead (docs/bench/2026-12-water.md, round 5).
 void fill_guides(const PathContext& context, const Camera& camera, int x, int y, size_t i, Film& film,
                  uint64_t& rays) {
-    constexpr int kGrid = 6;
-    double albedo[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, direct[3] = {0, 0, 0}, depth = 0;
-    for (int sy = 0; sy < kGrid; ++sy)
-        for (int sx = 0; sx < kGrid; ++sx) {
-            const Ray ray = camera.generate_ray(x + (sx + 0.5) / kGrid, y + (sy + 0.5) / kGrid);
-            Hit hit;
-            ++rays;
-            if (!context.scene.intersect(ray, hit)) {
-                const Color d = direct_light_past_scene(context, ray);
+    constexpr int kGrid = 6, kEdgeGrid = 12;
+    constexpr double kEdgeContrast = 0.05;
+    double albedo[3], normal[3], direct[3], depth;
+    // Sums over an n x n grid; returns whether the direct light's luminance varies over it.
+    auto sum_grid = [&](int n) {
+        std::fill_n(albedo, 3, 0.0), std::fill_n(normal, 3, 0.0), std::fill_n(direct, 3, 0.0), depth = 0;
+        double least = std::numeric_limits<double>::infinity(), most = 0;
+        for (int sy = 0; sy < n; ++sy)
+            for (int sx = 0; sx < n; ++sx) {
+                const Ray ray = camera.generate_ray(x + (sx + 0.5) / n, y + (sy + 0.5) / n);
+                Hit hit;
+                ++rays;
+                Color d;
+                if (!context.scene.intersect(ray, hit)) {
+                    d = direct_light_past_scene(context, ray);
+                } else {
+                    const Color a = albedo_at(context, hit, ray.direction);
+                    const Vec3 facing =
+                        dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
+                    d = direct_light_at(context, ray, hit, rays);
+                    for (int c = 0; c < 3; ++c) albedo[c] += a[c], normal[c] += facing[c];
+                    depth += hit.t;
+                }
                 for (int c = 0; c < 3; ++c) direct[c] += d[c];
-                continue;
+                const double l = luminance(d);
+                least = std::min(least, l);
+                most = std::max(most, l);
             }
-            const Color a = albedo_at(context, hit, ray.direction);
-            const Vec3 n = dot(hit.shading_normal, ray.direction) < 0 ? hit.shading_normal : -hit.shading_normal;
-            const Color d = direct_light_at(context, ray, hit, rays);
-            for (int c = 0; c < 3; ++c) albedo[c] += a[c], normal[c] += n[c], direct[c] += d[c];
-            depth += hit.t;
-        }
-    constexpr double inv = 1.0 / (kGrid * kGrid);
+        return most - least > kEdgeContrast * most;
+    };
+    int n = kGrid;
+    if (sum_grid(n)) sum_grid(n = kEdgeGrid);
+    const double inv = 1.0 / (n * n);
     for (int c = 0; c < 3; ++c) {
         film.guide_albedo[3 * i + c] = static_cast<float>(albedo[c] * inv);
         film.guide_normal[3 * i + c] = static_cast<float>(normal[c] * inv);

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Denoiser benchmark (run by hand): the bundled example at 640x360, a day and a night view, and
 # Monaco's harbour and sea from the air by day (the view where glints and the sea's guides once
-# gave magenta halos; skipped without ../shared/data/osm/monaco.osm.pbf), each against a 1024-spp reference rendered with another seed (the same seed would share its first
-# samples with every test image and flatter them). PSNR on the 8-bit tone-mapped PNGs (idiff),
+# gave magenta halos) and a Monaco street at night (both skipped without
+# ../shared/data/osm/monaco.osm.pbf), each against a 1024-spp reference rendered with another
+# seed (the same seed would share its first samples with every test image and flatter them). PSNR on the 8-bit tone-mapped PNGs (idiff),
 # for raw renders at 16..256 spp and --denoise at 16 and 64 spp; the equal-quality factor is the
 # raw spp (log-interpolated) that matches denoised 16 spp, over 16. Filter seconds: median of
 # RUNS (default 3) denoise_seconds from --stats (the filter alone, 2 threads here). CPU with
@@ -27,16 +28,18 @@ CACHE=${CACHE:-$work}
 mkdir -p "$CACHE"
 build/bin/osmparse examples/neukolln.osm.bz2 -o "$work/city.scene" -q
 monaco=../shared/data/osm/monaco.osm.pbf
-views=${VIEWS:-day night sea}
-if [[ " $views " == *" sea "* ]]; then
+views=${VIEWS:-day night sea street}
+if [[ " $views " == *" sea "* || " $views " == *" street "* ]]; then
   if [ -f "$monaco" ]; then build/bin/osmparse "$monaco" -o "$work/monaco.scene" -q
-  else echo "denoise_bench.sh: no $monaco, the sea view is skipped" >&2; views=${views//sea/}; fi
+  else echo "denoise_bench.sh: no $monaco, the sea and street views are skipped" >&2; views=${views//sea/}; views=${views//street/}; fi
 fi
-# A view's scene and flags: the bundled example by day or night, or Monaco from the air (its
-# test renders with seed 4, as in the issue that found the halos).
+# A view's scene and flags: the bundled example by day or night, Monaco from the air (its test
+# renders with seed 4, as in the issue that found the halos), or a Monaco street at night at
+# eye height (lamp-lit walls, where a filter can spread fireflies into blobs).
 view_args() {
   case $1 in
     sea) echo "$work/monaco.scene --camera=-600,-450,250 --look-at=0,0,20 --fov 40" ;;
+    street) echo "$work/monaco.scene --camera=-15,-54,1.7 --look-at=80,-32,3 --fov 60 --time night" ;;
     *) echo "$work/city.scene --time $1" ;;
   esac
 }

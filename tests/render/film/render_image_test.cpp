@@ -1,4 +1,6 @@
-// The image loop: the same seed gives the same pixels whatever the thread count.
+// The image loop: the same seed gives the same pixels whatever the thread count, and the
+// denoiser's guides are the pixels' means.
+#include <cmath>
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -66,4 +68,30 @@ TEST(ProgressiveRender, PassesAddUpToTheFixedSppImage) {
     r.spp = 2;  // and not any other spp's
     const Film two = render_image(context, camera, r);
     EXPECT_NE(0, std::memcmp(two.rgb.data(), progressive.rgb.data(), two.rgb.size() * sizeof(float)));
+}
+
+// The denoiser's direct-light guide goes back into the image unfiltered, so it must be each
+// pixel's mean: on the sunlit town, where roof and shadow edges cross pixels, it agrees with the
+// mean along many random sample rays (guide_sample_direct, which converges to the same).
+TEST(DenoiseGuides, TheDirectLightIsThePixelsMean) {
+    const auto scene = build_render_scene(small_town(), GeometryModes{});
+    const MaterialTable materials = default_materials();
+    const Sky sky = Sky::daylight(TimeOfDay::Day);
+    RenderSettings r = tiny(1024);
+    r.integrator = IntegratorSettings{};
+    r.integrator.max_depth = 0;
+    r.denoise_guides = true;
+    const PathContext context{*scene, materials, sky, r.integrator};
+    const Film film = render_image(context, view_of_town(r), r);
+    double error = 0, light = 0;
+    for (size_t i = 0; i < film.guide_direct.size(); i += 3) {
+        const double grid = 0.2126 * film.guide_direct[i] + 0.7152 * film.guide_direct[i + 1] + 0.0722 * film.guide_direct[i + 2];
+        const double samples = 0.2126 * film.guide_sample_direct[i] + 0.7152 * film.guide_sample_direct[i + 1] +
+                               0.0722 * film.guide_sample_direct[i + 2];
+        error += std::abs(grid - samples);
+        light += samples;
+    }
+    // The 6x6 grid alone is 0.59% off, the 12x12 where the light varies 0.31%; 1024 samples'
+    // own noise is about 0.2%.
+    EXPECT_LT(error / light, 0.0045);
 }
