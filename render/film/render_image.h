@@ -54,7 +54,8 @@ struct Film {
     std::vector<float> object_kind;  // ObjectKind as a number (0: sky)
     std::vector<float> object_index; // index of the object in the scene file's list of its kind
     // Denoiser guides, present when RenderSettings::denoise_guides: albedo, normal and depth
-    // averaged over 6x6 positions in the pixel, so a window narrower than a pixel still shows.
+    // averaged over 6x6 (12x12 where an edge crosses the pixel) positions in the pixel, so a
+    // window narrower than a pixel still shows.
     std::vector<float> guide_albedo, guide_normal, guide_depth;
     std::vector<float> guide_direct;    // 3 per pixel, emission and haze seen directly and the
                                         // small globes and panes gathered (noise-free)

@@ -61,7 +61,7 @@ TempDir* ProductionCli::dir_ = nullptr;
 
 TEST_F(ProductionCli, RegionsTileTheFullFrameExactly) {
     // Uneven tiles (the frame does not split evenly), PNG and EXR. The denoised EXR frame is wide
-    // enough that a tile's 31-pixel filter margin does not reach across the whole frame, so the
+    // enough that a tile's 10-pixel filter margin does not reach across the whole frame, so the
     // margin itself is what makes its tiles match.
     struct Case {
         std::string ext, options;
