@@ -9,6 +9,7 @@
 #include "render/film/render_image.h"
 #include "render/geometry/build_render_scene.h"
 #include "render/lights/scene_lights.h"
+#include "render/materials/bsdf.h"
 #include "tests/render/small_town.h"
 
 using namespace citygen;
@@ -85,9 +86,9 @@ TEST(DenoiseGuides, TheDirectLightIsThePixelsMean) {
     const Film film = render_image(context, view_of_town(r), r);
     double error = 0, light = 0;
     for (size_t i = 0; i < film.guide_direct.size(); i += 3) {
-        const double grid = 0.2126 * film.guide_direct[i] + 0.7152 * film.guide_direct[i + 1] + 0.0722 * film.guide_direct[i + 2];
-        const double samples = 0.2126 * film.guide_sample_direct[i] + 0.7152 * film.guide_sample_direct[i + 1] +
-                               0.0722 * film.guide_sample_direct[i + 2];
+        const double grid = luminance({film.guide_direct[i], film.guide_direct[i + 1], film.guide_direct[i + 2]});
+        const double samples =
+            luminance({film.guide_sample_direct[i], film.guide_sample_direct[i + 1], film.guide_sample_direct[i + 2]});
         error += std::abs(grid - samples);
         light += samples;
     }
