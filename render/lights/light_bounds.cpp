@@ -179,12 +179,15 @@ void LightBounds4::importance(const LightQuery& q, float most[4], float least[4]
         factor = factor * select(cos_i > cos_b, one, cos_i * cos_b + sin_i * sin_b);
     }
     factor = select(dark | !(factor > zero), zero, factor);
-    // Nearest point of the box (no nearer than kNearest) and farthest point of the sphere.
+    // Nearest point of the box (no nearer than kNearest) and farthest point of the sphere, each
+    // distance with the visibility prior (kReach).
     const F4 ex = max(abs(tx) - hx4, zero), ey = max(abs(ty) - hy4, zero), ez = max(abs(tz) - hz4, zero);
     const F4 near2 = max(ex * ex + ey * ey + ez * ez, F4(kNearest * kNearest));
     const F4 far = dist + radius;
-    (factor / near2).store(most);
-    (factor / max(far * far, near2)).store(least);
+    const F4 far2 = max(far * far, near2);
+    const F4 reach2(kReach * kReach);
+    (factor / near2 * (reach2 / (reach2 + near2))).store(most);
+    (factor / far2 * (reach2 / (reach2 + far2))).store(least);
 }
 
 void LightBounds::join(const LightBounds& b) {

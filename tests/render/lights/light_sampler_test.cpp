@@ -109,5 +109,25 @@ TEST(BVHLightSampler, EveryLightThatReachesAPointHasAChance) {
     }
 }
 
+// Two equal globes, 10 m and 200 m from a point: by power over squared distance alone the far one
+// would have (10 / 200)^2 of the near one's chance; the visibility prior (LightBounds4::kReach)
+// gives it far less, and still some.
+TEST(BVHLightSampler, AFarLightHasLessChanceThanItsSquaredDistanceGives) {
+    std::vector<LightBounds> lights(2);
+    const Vec3 p{0, 0, 2};
+    const double distance[2] = {10, 200};
+    for (int i = 0; i < 2; ++i) {
+        const Vec3 c{distance[i], 0, 2};
+        lights[i].set_box(c - Vec3{0.01, 0.01, 0.01}, c + Vec3{0.01, 0.01, 0.01});
+        lights[i].phi = 1;
+        lights[i].cos_theta_o = -1;
+    }
+    const auto tree = make_light_sampler(lights, LightSamplerKind::Tree);
+    const double near = tree->pmf(p, {0, 0, 0}, 0), far = tree->pmf(p, {0, 0, 0}, 1);
+    EXPECT_NEAR(near + far, 1, 1e-9);
+    EXPECT_GT(far, 0);
+    EXPECT_LT(far / near, 0.5 * (10.0 / 200) * (10.0 / 200));
+}
+
 }  // namespace
 }  // namespace citygen
