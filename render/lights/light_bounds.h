@@ -69,11 +69,8 @@ struct alignas(16) LightBounds4 {
     void importance(const LightQuery& q, float most[4], float least[4]) const;
     static constexpr float kNearest = 0.1f;  // metres: closer than any shading point to a light's centre
     // Metres. In a city the buildings between a point and a light hide it more often the farther
-    // it is: a window sample of Monaco from above ends more than 128 m away two times in three,
-    // and 4-7% of those reach their light. The prior halves a cluster's importance at kReach.
-    // Chosen over 30-120 m on four night views of three cities (Monaco's street and elevated
-    // views, Kaiserslautern's and the bundled example's default views), where the optimum is
-    // broad; docs/bench/2026-12-night-panes.md.
+    // it is, which the bounds cannot know; the prior halves a cluster's importance at kReach.
+    // Chosen leaving one of four night views of three cities out (docs/bench/2026-12-night-panes.md).
     static constexpr float kReach = 60.f;
 };
 
